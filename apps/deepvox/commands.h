@@ -1,0 +1,18 @@
+// Subcommands of the `deepvox` CLI. Each adds its options to the CLI11 app and returns the
+// function that runs it (exit code).
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace dv::cli {
+
+using Runner = std::function<int()>;
+
+Runner add_probe(CLI::App& app);
+Runner add_render(CLI::App& app);
+Runner add_info(CLI::App& app);
+Runner add_list(CLI::App& app);
+
+}  // namespace dv::cli

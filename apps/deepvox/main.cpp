@@ -1,0 +1,37 @@
+// deepvox: the research testbed's one executable. Parses the subcommand, runs it, and turns
+// every error into a clear message on stderr and a non-zero exit (never a crash).
+#include <cstdio>
+#include <exception>
+#include <map>
+#include <string>
+
+#include "apps/deepvox/commands.h"
+#include "apps/deepvox/run_metadata.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"deepvox " DEEPVOX_VERSION
+               ": deep shadow maps and voxelization for translucent scenes (research testbed)"};
+  app.require_subcommand(1);
+  dv::cli::remember_command_line(argc, argv);
+  std::map<std::string, dv::cli::Runner> runners;
+  runners["probe"] = dv::cli::add_probe(app);
+  runners["render"] = dv::cli::add_render(app);
+  runners["info"] = dv::cli::add_info(app);
+  runners["list"] = dv::cli::add_list(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (CLI::App* sub : app.get_subcommands()) return runners.at(sub->get_name())();
+  } catch (const dv::InputError& e) {
+    std::fprintf(stderr, "deepvox: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "deepvox: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,92 @@
+// Device memory through the CUDA runtime API (or clear errors in CPU-only builds).
+#include "core/device_memory.h"
+
+#include "core/error.h"
+#include "core/hd.h"
+
+#if defined(DEEPVOX_WITH_CUDA)
+#include <cuda_runtime_api.h>
+
+#include "core/cuda_check.h"
+#endif
+
+namespace dv {
+
+#if defined(DEEPVOX_WITH_CUDA)
+
+bool cuda_device_available(std::string* why_not) {
+  int count = 0;
+  cudaError_t err = cudaGetDeviceCount(&count);
+  if (err != cudaSuccess) {
+    if (why_not) *why_not = std::string("no usable CUDA device: ") + cudaGetErrorString(err);
+    cudaGetLastError();
+    return false;
+  }
+  if (count == 0) {
+    if (why_not) *why_not = "no CUDA device present";
+    return false;
+  }
+  return true;
+}
+
+std::string cuda_device_name() {
+  int device = 0;
+  DV_CUDA_CHECK(cudaGetDevice(&device));
+  cudaDeviceProp prop{};
+  DV_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
+  return prop.name;
+}
+
+void* device_allocate(size_t bytes, const char* what) {
+  void* ptr = nullptr;
+  if (bytes == 0) return nullptr;
+  cudaError_t err = cudaMalloc(&ptr, bytes);
+  if (err != cudaSuccess) {
+    cudaGetLastError();
+    throw Error(std::string("cudaMalloc of ") + std::to_string(bytes) + " bytes for " + what +
+                " failed: " + cudaGetErrorString(err));
+  }
+  return ptr;
+}
+
+void device_free(void* ptr) noexcept {
+  if (ptr) cudaFree(ptr);
+}
+
+void copy_to_device(void* dst, const void* src, size_t bytes) {
+  if (bytes) DV_CUDA_CHECK(cudaMemcpy(dst, src, bytes, cudaMemcpyHostToDevice));
+}
+
+void copy_to_host(void* dst, const void* src, size_t bytes) {
+  if (bytes) DV_CUDA_CHECK(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost));
+}
+
+void device_memset(void* dst, int value, size_t bytes) {
+  if (bytes) DV_CUDA_CHECK(cudaMemset(dst, value, bytes));
+}
+
+void device_synchronize(const char* what) { check_cuda(cudaDeviceSynchronize(), what, __FILE__, __LINE__); }
+
+#else
+
+namespace {
+[[noreturn]] void no_cuda(const char* call) {
+  throw Error(std::string(call) + ": this deepvox was built without CUDA (-DDEEPVOX_CUDA=OFF or no nvcc)");
+}
+}  // namespace
+
+bool cuda_device_available(std::string* why_not) {
+  if (why_not) *why_not = "deepvox was built without CUDA";
+  return false;
+}
+std::string cuda_device_name() { no_cuda("cuda_device_name"); }
+void* device_allocate(size_t, const char*) { no_cuda("device_allocate"); }
+void device_free(void*) noexcept {}
+void copy_to_device(void*, const void*, size_t) { no_cuda("copy_to_device"); }
+void copy_to_host(void*, const void*, size_t) { no_cuda("copy_to_host"); }
+void device_memset(void*, int, size_t) { no_cuda("device_memset"); }
+void device_synchronize(const char*) { no_cuda("device_synchronize"); }
+
+#endif
+
+}  // namespace dv

@@ -1,0 +1,23 @@
+// Raw device-memory calls behind a plain C++ interface, so host code compiled by g++ can own
+// GPU buffers. Implemented with the CUDA runtime when the build has CUDA; otherwise every call
+// that needs a GPU throws an Error that says so.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace dv {
+
+// True when a CUDA device can be used now; `why_not` (if given) receives the reason otherwise.
+bool cuda_device_available(std::string* why_not = nullptr);
+std::string cuda_device_name();
+
+void* device_allocate(size_t bytes, const char* what);
+void device_free(void* ptr) noexcept;
+void copy_to_device(void* dst, const void* src, size_t bytes);
+void copy_to_host(void* dst, const void* src, size_t bytes);
+void device_memset(void* dst, int value, size_t bytes);
+// Waits for all launched work; throws naming `what` if a kernel failed.
+void device_synchronize(const char* what);
+
+}  // namespace dv

@@ -1,0 +1,33 @@
+// Linear RGB float images and their files: PNG (sRGB-encoded, 8 bit, through stb_image_write,
+// in every build) and OpenEXR (linear half/float, through OpenImageIO, full build only).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace dv {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgb;  // row-major from the top row, 3 floats per pixel, linear
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgb(size_t(w) * h * 3, 0.0f) {}
+  dvec3 at(int x, int y) const {
+    const float* p = &rgb[(size_t(y) * width + x) * 3];
+    return {p[0], p[1], p[2]};
+  }
+};
+
+// Writes by extension: .png always; .exr only where exr_supported().
+void write_image(const std::string& path, const Image& image);
+void write_png(const std::string& path, const Image& image);
+
+// Provided by io/image_exr_oiio.cpp (full build) or io/image_exr_unavailable.cpp (lean build).
+bool exr_supported();
+void write_exr(const std::string& path, const Image& image);
+
+}  // namespace dv

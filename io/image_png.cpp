@@ -1,0 +1,41 @@
+// PNG output through stb_image_write (header-only, compiled here) and extension dispatch.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "io/image.h"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STBI_WRITE_NO_STDIO_FILENAME_CHECK
+#include <stb_image_write.h>
+
+namespace dv {
+
+namespace {
+
+unsigned char srgb_byte(float linear) {
+  const double c = std::clamp(double(linear), 0.0, 1.0);
+  const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return static_cast<unsigned char>(std::lround(s * 255.0));
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const Image& image) {
+  std::vector<unsigned char> bytes(image.rgb.size());
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(image.rgb[i]);
+  if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3))
+    throw InputError(path, "cannot write PNG file");
+}
+
+void write_image(const std::string& path, const Image& image) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".png") return write_png(path, image);
+  if (ext == ".exr") return write_exr(path, image);
+  throw InputError(path, "unknown image type '" + ext + "' (known: .png, .exr)");
+}
+
+}  // namespace dv

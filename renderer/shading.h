@@ -1,0 +1,66 @@
+// Phong shading (Knecht eq. 3.8/3.9) shared by every renderer, on host and device. The shadow
+// term multiplies both the diffuse and the specular term (eq. 3.9 as printed shadows only the
+// specular: a typo). Cone fade and 1/d^2 falloff belong to the light's intensity at a point,
+// never to its transmittance.
+#pragma once
+
+#include <cmath>
+
+#include "core/hd.h"
+#include "core/math.h"
+#include "scene/scene_view.h"
+
+namespace dv {
+
+// Direction from p toward the light and the light's intensity arriving there, unshadowed.
+struct LightArrival {
+  dvec3 to_light;
+  double intensity;
+};
+
+DV_HD inline LightArrival light_arrival(const LightView& l, const dvec3& p) {
+  if (l.type == LightType::directional) return {-l.direction, l.intensity};
+  const dvec3 d = l.position - p;
+  const double dist2 = glm::dot(d, d);
+  if (dist2 == 0.0) return {dvec3(0.0, 1.0, 0.0), 0.0};
+  const dvec3 to_light = d / sqrt(dist2);
+  double fade = 1.0;
+  if (l.type == LightType::spot) {
+    const double c = -glm::dot(to_light, l.direction);
+    if (c < l.cos_cutoff) return {to_light, 0.0};
+    if (l.cos_inner > l.cos_cutoff && c < l.cos_inner) {
+      const double x = (c - l.cos_cutoff) / (l.cos_inner - l.cos_cutoff);
+      fade = x * x * (3.0 - 2.0 * x);
+    }
+  }
+  return {to_light, l.intensity * fade / dist2};
+}
+
+// Phong colour of a point with unit normal n (facing the viewer) or n = 0 for unoriented
+// volume samples (then the diffuse term takes no angle and there is no highlight).
+template <class Source>
+DV_HD dvec3 shade_phong(const SceneView& s, const Source& shadows, typename Source::Cursor& cursor,
+                        const ObjectView& o, const dvec3& color, const dvec3& p, const dvec3& n,
+                        const dvec3& to_eye) {
+  dvec3 out = o.ambient * color;
+  const bool oriented = glm::dot(n, n) > 0.0;
+  for (int li = 0; li < int(s.lights.size); ++li) {
+    const LightView& l = s.lights[li];
+    const LightArrival a = light_arrival(l, p);
+    if (a.intensity <= 0.0) continue;
+    const double n_dot_l = oriented ? glm::dot(n, a.to_light) : 1.0;
+    if (n_dot_l <= 0.0) continue;
+    const double t = shadows.transmittance(cursor, p, li);
+    if (t <= 0.0) continue;
+    double spec = 0.0;
+    if (oriented && o.specular > 0.0) {
+      const dvec3 r = 2.0 * n_dot_l * n - a.to_light;
+      const double r_dot_v = glm::dot(r, to_eye);
+      if (r_dot_v > 0.0) spec = o.specular * pow(r_dot_v, o.shininess);
+    }
+    out += l.color * (a.intensity * t) * (o.diffuse * n_dot_l * color + dvec3(spec));
+  }
+  return out;
+}
+
+}  // namespace dv

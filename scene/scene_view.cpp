@@ -1,0 +1,129 @@
+// Flattening of a Scene into world-space arrays plus a BVH (see scene_view.h).
+#include "scene/scene_view.h"
+
+#include <cmath>
+
+namespace dv {
+
+LightView make_light_view(const Light& l) {
+  LightView v{};
+  v.type = l.type;
+  v.position = l.position;
+  v.direction = glm::length(l.direction) > 0 ? glm::normalize(l.direction) : dvec3(0, -1, 0);
+  const double deg = 3.14159265358979323846 / 180.0;
+  v.cos_cutoff = std::cos(l.cutoff_deg * deg);
+  v.cos_inner = std::cos(std::max(0.0, l.cutoff_deg - l.penumbra_deg) * deg);
+  v.color = l.color;
+  v.intensity = l.intensity;
+  return v;
+}
+
+namespace {
+
+ObjectView make_object_view(const Scene& scene, const Object& obj, std::vector<TransferPoint>& transfer) {
+  ObjectView o{};
+  const Material& m = obj.material;
+  o.color = m.color;
+  o.ambient = m.ambient;
+  o.diffuse = m.diffuse;
+  o.specular = m.specular;
+  o.shininess = m.shininess;
+  o.alpha = m.alpha;
+  o.interior = obj.interior.kind;
+  o.sigma = obj.interior.kind == InteriorKind::constant ? obj.interior.sigma : 0.0;
+  o.volume = obj.interior.kind == InteriorKind::volume ? obj.interior.volume : -1;
+  o.transfer_first = int32_t(transfer.size());
+  o.transfer_count = int32_t(obj.interior.transfer.points.size());
+  transfer.insert(transfer.end(), obj.interior.transfer.points.begin(), obj.interior.transfer.points.end());
+  o.world_to_grid = dmat4(1.0);
+  o.step = 0.0;
+  if (o.volume >= 0) {
+    const VolumeGrid& g = scene.volumes[o.volume];
+    dmat4 object_to_grid(1.0);
+    for (int a = 0; a < 3; ++a) {
+      object_to_grid[a][a] = 1.0 / g.spacing[a];
+      object_to_grid[3][a] = -g.origin[a] / g.spacing[a];
+    }
+    o.world_to_grid = object_to_grid * glm::inverse(obj.transform);
+    // Default step: half the smallest cell edge, measured in world units.
+    double cell = 1e300;
+    for (int a = 0; a < 3; ++a) {
+      dvec3 edge = dvec3(obj.transform * dvec4(g.spacing[a] * (a == 0), g.spacing[a] * (a == 1),
+                                               g.spacing[a] * (a == 2), 0.0));
+      cell = std::min(cell, glm::length(edge));
+    }
+    o.step = obj.interior.step > 0 ? obj.interior.step : 0.5 * cell;
+  }
+  return o;
+}
+
+}  // namespace
+
+SceneData::SceneData(const Scene& scene, Memory memory) : memory_(memory) {
+  std::vector<dvec3> vertices;
+  std::vector<u32vec3> tris;
+  std::vector<uint32_t> tri_object;
+  for (size_t oi = 0; oi < scene.objects.size(); ++oi) {
+    const Object& obj = scene.objects[oi];
+    const TriangleMesh& mesh = scene.meshes[obj.mesh];
+    uint32_t base = uint32_t(vertices.size());
+    for (const dvec3& p : mesh.positions) vertices.push_back(dvec3(obj.transform * dvec4(p, 1.0)));
+    // A mirroring transform flips winding; keep outward normals outward.
+    bool flip = glm::determinant(obj.transform) < 0.0;
+    for (const u32vec3& t : mesh.triangles) {
+      tris.push_back(flip ? u32vec3(t.x + base, t.z + base, t.y + base) : t + u32vec3(base));
+      tri_object.push_back(uint32_t(oi));
+    }
+  }
+  std::vector<Aabb> boxes(tris.size());
+  Aabb bounds;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    for (int k = 0; k < 3; ++k) boxes[i].extend(vertices[tris[i][k]]);
+    bounds.extend(boxes[i]);
+  }
+  BvhBuild bvh = build_bvh(boxes);
+  bvh_depth_ = bvh.depth;
+  order_ = bvh.order;
+  std::vector<u32vec3> sorted_tris(tris.size());
+  std::vector<uint32_t> sorted_object(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    sorted_tris[i] = tris[bvh.order[i]];
+    sorted_object[i] = tri_object[bvh.order[i]];
+  }
+
+  std::vector<TransferPoint> transfer;
+  std::vector<ObjectView> objects;
+  for (const Object& obj : scene.objects) objects.push_back(make_object_view(scene, obj, transfer));
+  std::vector<VolumeView> volumes;
+  std::vector<float> densities;
+  for (const VolumeGrid& g : scene.volumes) {
+    volumes.push_back({g.dims, int64_t(densities.size())});
+    densities.insert(densities.end(), g.density.begin(), g.density.end());
+  }
+  std::vector<LightView> lights;
+  for (const Light& l : scene.lights) lights.push_back(make_light_view(l));
+
+  vertices_ = Buffer<dvec3>(memory, vertices, "scene vertices");
+  triangles_ = Buffer<u32vec3>(memory, sorted_tris, "scene triangles");
+  triangle_object_ = Buffer<uint32_t>(memory, sorted_object, "triangle objects");
+  nodes_ = Buffer<BvhNode>(memory, bvh.nodes, "bvh nodes");
+  objects_ = Buffer<ObjectView>(memory, objects, "objects");
+  volumes_ = Buffer<VolumeView>(memory, volumes, "volumes");
+  densities_ = Buffer<float>(memory, densities, "volume densities");
+  transfer_ = Buffer<TransferPoint>(memory, transfer, "transfer functions");
+  lights_ = Buffer<LightView>(memory, lights, "lights");
+
+  view_.vertices = vertices_.const_view();
+  view_.triangles = triangles_.const_view();
+  view_.triangle_object = triangle_object_.const_view();
+  view_.nodes = nodes_.const_view();
+  view_.objects = objects_.const_view();
+  view_.volumes = volumes_.const_view();
+  view_.densities = densities_.const_view();
+  view_.transfer = transfer_.const_view();
+  view_.lights = lights_.const_view();
+  view_.bounds = bounds;
+  view_.diagonal = bounds.empty() ? 0.0 : glm::length(bounds.extent());
+}
+
+}  // namespace dv

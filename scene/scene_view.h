@@ -1,0 +1,85 @@
+// The scene as kernels see it: flat world-space arrays behind plain views, identical on CPU and
+// CUDA. SceneData owns the arrays (host or device memory) and builds them from a Scene once;
+// kernels receive SceneView by value.
+#pragma once
+
+#include <cstdint>
+
+#include "core/buffer.h"
+#include "core/math.h"
+#include "scene/bvh.h"
+#include "scene/scene.h"
+
+namespace dv {
+
+struct ObjectView {
+  dvec3 color;
+  double ambient, diffuse, specular, shininess;
+  double alpha;  // surface opacity per crossing
+  InteriorKind interior;
+  double sigma;  // constant interior
+  int32_t volume;  // index into SceneView::volumes, or -1
+  int32_t transfer_first, transfer_count;
+  double step;        // volume ray-marching step (world units)
+  dmat4 world_to_grid;  // world position -> continuous grid index (i, j, k)
+};
+
+struct VolumeView {
+  ivec3 dims;
+  int64_t offset;  // first density sample in SceneView::densities
+};
+
+struct LightView {
+  LightType type;
+  dvec3 position;
+  dvec3 direction;  // unit; spot and directional
+  double cos_cutoff;  // spot: cos(cutoff)
+  double cos_inner;   // spot: cos(cutoff - penumbra)
+  dvec3 color;
+  double intensity;
+};
+
+struct SceneView {
+  View<const dvec3> vertices;          // world space
+  View<const u32vec3> triangles;       // BVH order
+  View<const uint32_t> triangle_object;
+  View<const BvhNode> nodes;
+  View<const ObjectView> objects;
+  View<const VolumeView> volumes;
+  View<const float> densities;
+  View<const TransferPoint> transfer;
+  View<const LightView> lights;
+  Aabb bounds;      // world bounds of all triangles
+  double diagonal;  // length of the bounds' diagonal (scale for tolerances)
+};
+
+class SceneData {
+ public:
+  SceneData(const Scene& scene, Memory memory);
+  const SceneView& view() const { return view_; }
+  Memory memory() const { return memory_; }
+  int64_t triangle_count() const { return triangles_.size(); }
+  int bvh_depth() const { return bvh_depth_; }
+  // BVH position of each input triangle is not needed outside; input triangle of a BVH slot:
+  const std::vector<uint32_t>& bvh_order() const { return order_; }
+
+ private:
+  Memory memory_;
+  Buffer<dvec3> vertices_;
+  Buffer<u32vec3> triangles_;
+  Buffer<uint32_t> triangle_object_;
+  Buffer<BvhNode> nodes_;
+  Buffer<ObjectView> objects_;
+  Buffer<VolumeView> volumes_;
+  Buffer<float> densities_;
+  Buffer<TransferPoint> transfer_;
+  Buffer<LightView> lights_;
+  std::vector<uint32_t> order_;
+  int bvh_depth_ = 0;
+  SceneView view_{};
+};
+
+// Converts a host light into its kernel form (normalised direction, cosines).
+LightView make_light_view(const Light& light);
+
+}  // namespace dv

@@ -1,0 +1,56 @@
+// StrategyParams parsing and checking (see registry.h).
+#include "strategies/registry.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace dv {
+
+std::string lowercase(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+StrategyParams StrategyParams::parse(const std::vector<std::string>& items) {
+  std::map<std::string, std::string> values;
+  for (const std::string& item : items) {
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--param", "expected key=value, got '" + item + "'");
+    values[item.substr(0, eq)] = item.substr(eq + 1);
+  }
+  return StrategyParams(std::move(values));
+}
+
+double StrategyParams::number(const std::string& key, double fallback) const {
+  auto it = values_.find(key);
+  if (it == values_.end()) return fallback;
+  read_.insert(key);
+  char* end = nullptr;
+  const double v = std::strtod(it->second.c_str(), &end);
+  if (end == it->second.c_str() || *end != '\0' || !std::isfinite(v))
+    throw InputError("--param " + key, "expected a number, got '" + it->second + "'");
+  return v;
+}
+
+int StrategyParams::integer(const std::string& key, int fallback) const {
+  const double v = number(key, fallback);
+  if (v != std::floor(v) || std::abs(v) > 2e9) throw InputError("--param " + key, "expected an integer");
+  return int(v);
+}
+
+std::string StrategyParams::string(const std::string& key, const std::string& fallback) const {
+  auto it = values_.find(key);
+  if (it == values_.end()) return fallback;
+  read_.insert(key);
+  return it->second;
+}
+
+void StrategyParams::finish(const std::string& strategy) const {
+  std::string unknown;
+  for (const auto& [key, value] : values_)
+    if (!read_.count(key)) unknown += (unknown.empty() ? "'" : ", '") + key + "'";
+  if (!unknown.empty()) throw InputError(strategy, "unknown parameter(s) " + unknown);
+}
+
+}  // namespace dv

@@ -1,0 +1,33 @@
+// Host side of the shadow-method family: a registered, named strategy that prepares whatever
+// it needs for a scene (maps, grids) and hands kernels a concrete shadow source.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/execute.h"
+#include "scene/scene_view.h"
+#include "strategies/registry.h"
+#include "strategies/shadow/shadow_source.h"
+
+namespace dv {
+
+class ShadowMethod {
+ public:
+  virtual ~ShadowMethod() = default;
+  virtual std::string name() const = 0;
+  virtual nlohmann::json params() const = 0;
+  // `scene` lives in the memory of `backend`; the returned source refers into it (and into
+  // whatever the method built), so it stays valid while both live.
+  virtual ShadowSourceVariant prepare(const SceneData& scene, Backend backend) = 0;
+};
+
+Registry<ShadowMethod>& shadow_registry();
+
+// Registration functions, one per method file; shadow_registry() calls each once.
+void register_no_shadows(Registry<ShadowMethod>& registry);
+void register_reference_shadows(Registry<ShadowMethod>& registry);
+
+}  // namespace dv

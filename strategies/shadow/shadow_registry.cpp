@@ -1,0 +1,16 @@
+// The shadow-method registry: every method registers here, once, on first use.
+#include "strategies/shadow/shadow_method.h"
+
+namespace dv {
+
+Registry<ShadowMethod>& shadow_registry() {
+  static Registry<ShadowMethod> registry = [] {
+    Registry<ShadowMethod> r("shadow method");
+    register_no_shadows(r);
+    register_reference_shadows(r);
+    return r;
+  }();
+  return registry;
+}
+
+}  // namespace dv

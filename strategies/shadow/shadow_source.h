@@ -1,0 +1,42 @@
+// Shadow sources as kernels see them. A shadow source answers
+//   transmittance(cursor, point, light)
+// for points of non-decreasing distance along one camera ray; the small per-ray Cursor lets
+// coherent methods (the DSM's incremental lookup) keep state. Kernels are templated on the
+// concrete source chosen on the host (std::visit over ShadowSourceVariant): no virtual calls
+// in device code. A new shadow method adds its source type here and its host class in its own
+// file under strategies/shadow/.
+#pragma once
+
+#include <cstdint>
+#include <variant>
+
+#include "core/hd.h"
+#include "oracle/transmittance.h"
+#include "scene/scene_view.h"
+
+namespace dv {
+
+// No shadows: every light reaches every point (cone and falloff stay in the light's intensity).
+struct NoShadowSource {
+  struct Cursor {
+    uint32_t flags = 0;
+  };
+  DV_HD double transmittance(Cursor&, const dvec3&, int) const { return 1.0; }
+};
+
+// The exact oracle per shaded sample: slow, the ground truth.
+struct ReferenceShadowSource {
+  SceneView scene;
+  struct Cursor {
+    uint32_t flags = 0;  // OracleFlag bits seen along this ray
+  };
+  DV_HD double transmittance(Cursor& cursor, const dvec3& p, int light) const {
+    const OracleResult r = exact_transmittance(scene, scene.lights[light], p);
+    cursor.flags |= r.flags;
+    return r.transmittance;
+  }
+};
+
+using ShadowSourceVariant = std::variant<NoShadowSource, ReferenceShadowSource>;
+
+}  // namespace dv
