@@ -15,6 +15,9 @@ if(NOT DEEPVOX_CUDA STREQUAL "OFF")
       set(CMAKE_CUDA_ARCHITECTURES "90-real;90-virtual")
     endif()
     enable_language(CUDA)
+    # CMake 3.25 does not know nvcc 13's C++20 dialect flag: tell it.
+    set(CMAKE_CUDA20_STANDARD_COMPILE_OPTION "-std=c++20")
+    set(CMAKE_CUDA20_EXTENSION_COMPILE_OPTION "-std=c++20")
     set(CMAKE_CUDA_STANDARD 20)
     set(CMAKE_CUDA_STANDARD_REQUIRED ON)
     set(CMAKE_CUDA_RUNTIME_LIBRARY Static)
@@ -30,7 +33,8 @@ message(STATUS "deepvox: CUDA backend ${DEEPVOX_WITH_CUDA}")
 
 function(deepvox_kernel_sources)
   if(DEEPVOX_WITH_CUDA)
-    set_source_files_properties(${ARGN} DIRECTORY ${CMAKE_SOURCE_DIR} PROPERTIES LANGUAGE CUDA)
+    set_source_files_properties(${ARGN} DIRECTORY ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR}
+                                PROPERTIES LANGUAGE CUDA)
   endif()
 endfunction()
 

@@ -10,13 +10,10 @@
 #include <numbers>
 #include <unordered_map>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
-#include <CGAL/Surface_mesh.h>
 
 #include "core/error.h"
+#include "generators/cgal_surface_mesh.h"
 #include "generators/mesh_topology.h"
 #include "io/mesh_io.h"
 
@@ -119,47 +116,15 @@ TriangleMesh midpoint_subdivide_once(const TriangleMesh& mesh) {
   return out;
 }
 
-using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
-
 TriangleMesh cgal_subdivide(const TriangleMesh& mesh, SubdivisionScheme scheme, int iterations) {
-  namespace PMP = CGAL::Polygon_mesh_processing;
-  std::vector<Point> points;
-  for (const dvec3& p : mesh.positions) points.emplace_back(p.x, p.y, p.z);
-  std::vector<std::array<size_t, 3>> polygons;
-  for (const u32vec3& t : mesh.triangles) {
-    for (int k = 0; k < 3; ++k)
-      require(t[k] < mesh.positions.size(), mesh.name, "triangle index out of range");
-    polygons.push_back({t.x, t.y, t.z});
-  }
-  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) PMP::orient_polygon_soup(points, polygons);
-  SurfaceMesh surface;
-  PMP::polygon_soup_to_polygon_mesh(points, polygons, surface);
-  // CGAL keeps unused points as isolated vertices, which its orientation code cannot handle.
-  for (SurfaceMesh::Vertex_index v : surface.vertices())
-    if (surface.is_isolated(v)) surface.remove_vertex(v);
-  surface.collect_garbage();
+  SurfaceMesh surface = to_surface_mesh(mesh);
   const auto steps = CGAL::parameters::number_of_iterations(unsigned(iterations));
   if (scheme == SubdivisionScheme::loop) {
     CGAL::Subdivision_method_3::Loop_subdivision(surface, steps);
   } else {
     CGAL::Subdivision_method_3::Sqrt3_subdivision(surface, steps);
   }
-  surface.collect_garbage();
-  TriangleMesh out;
-  out.name = mesh.name;
-  for (SurfaceMesh::Vertex_index v : surface.vertices()) {
-    const Point& p = surface.point(v);
-    out.positions.emplace_back(p.x(), p.y(), p.z());
-  }
-  for (SurfaceMesh::Face_index f : surface.faces()) {
-    std::vector<uint32_t> corners;
-    for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(surface.halfedge(f), surface))
-      corners.push_back(uint32_t(v.idx()));
-    for (size_t k = 1; k + 1 < corners.size(); ++k)
-      out.triangles.emplace_back(corners[0], corners[k], corners[k + 1]);
-  }
-  return out;
+  return from_surface_mesh(surface, mesh.name);
 }
 
 double growth_factor(SubdivisionScheme scheme) {
@@ -289,7 +254,8 @@ TriangleMesh make_torus(double major_radius, double minor_radius, int segments, 
   std::vector<dvec2> tube;
   for (int i = 0; i < sides; ++i) {
     const double angle = 2.0 * std::numbers::pi * i / sides;
-    tube.emplace_back(major_radius + minor_radius * std::cos(angle), minor_radius * std::sin(angle));
+    tube.emplace_back(major_radius + minor_radius * std::cos(angle),
+                      minor_radius * std::sin(angle));
   }
   return revolve("torus", tube, segments, true);
 }
@@ -325,8 +291,8 @@ TriangleMesh make_cup(const CupShape& cup) {
 
 TriangleMesh subdivide(const TriangleMesh& mesh, SubdivisionScheme scheme, int iterations) {
   require(iterations >= 0, "subdivide", "'iterations' must be >= 0");
-  require_triangle_budget(double(mesh.triangles.size()) * std::pow(growth_factor(scheme), iterations),
-                          "subdivide");
+  require_triangle_budget(
+      double(mesh.triangles.size()) * std::pow(growth_factor(scheme), iterations), "subdivide");
   if (iterations == 0) return mesh;
   if (scheme != SubdivisionScheme::midpoint) return cgal_subdivide(mesh, scheme, iterations);
   for (const u32vec3& t : mesh.triangles) {
@@ -364,8 +330,8 @@ TriangleMesh make_bunny(const std::string& assets_dir, int midpoint_iterations) 
 }
 
 std::vector<std::string> mesh_generator_names() {
-  return {"box", "quad", "subdivided_quad", "icosphere", "uv_sphere",
-          "cylinder", "torus", "cup", "bunny"};
+  return {"box", "quad", "subdivided_quad", "icosphere", "uv_sphere", "cylinder", "torus",
+          "cup", "bunny"};
 }
 
 TriangleMesh generate_mesh(JsonReader& spec, const std::string& assets_dir) {
@@ -373,8 +339,11 @@ TriangleMesh generate_mesh(JsonReader& spec, const std::string& assets_dir) {
   std::function<TriangleMesh()> build;
   if (generator == "box") {
     if (spec.has("size")) {
-      if (spec.has("min") || spec.has("max")) spec.fail("size", "give 'size' or 'min'/'max', not both");
-      const double half = 0.5 * spec.number("size");
+      if (spec.has("min") || spec.has("max"))
+        spec.fail("size", "give 'size' or 'min'/'max', not both");
+      const double size = spec.number("size");
+      if (!(size > 0.0)) spec.fail("size", "must be positive");
+      const double half = 0.5 * size;
       build = [half] { return make_box(dvec3(-half), dvec3(half)); };
     } else {
       const dvec3 lo = spec.vec3("min", dvec3(-0.5)), hi = spec.vec3("max", dvec3(0.5));
@@ -419,7 +388,8 @@ TriangleMesh generate_mesh(JsonReader& spec, const std::string& assets_dir) {
     build = [assets_dir, iterations] { return make_bunny(assets_dir, iterations); };
   } else {
     std::string known;
-    for (const std::string& name : mesh_generator_names()) known += (known.empty() ? "" : ", ") + name;
+    for (const std::string& name : mesh_generator_names())
+      known += (known.empty() ? "" : ", ") + name;
     spec.fail("generator", "unknown generator '" + generator + "' (known: " + known + ")");
   }
 

@@ -72,8 +72,8 @@ TriangleMesh make_cylinder(double radius, double height, int segments);
 TriangleMesh make_torus(double major_radius, double minor_radius, int segments, int sides);
 
 struct CupShape {
-  double radius = 0.5;         // outer radius at the rim
-  double bottom_radius = 0.35; // outer radius at the foot
+  double radius = 0.5;          // outer radius at the rim
+  double bottom_radius = 0.35;  // outer radius at the foot
   double height = 0.8;
   double wall = 0.04;    // wall thickness (measured horizontally)
   double bottom = 0.06;  // floor thickness

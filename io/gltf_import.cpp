@@ -596,12 +596,7 @@ void Importer::finish_camera() {
   cam.height = 480;
   cam.up = dvec3(0.0, 1.0, 0.0);
   if (!has_camera_) {
-    double radius = std::max(0.5 * glm::length(box.extent()), 1e-3);
-    cam.fov_deg = 45.0;
-    double distance = radius / std::sin(0.5 * cam.fov_deg * kPi / 180.0);
-    cam.target = box.center();
-    cam.position = box.center() + dvec3(0.0, 0.0, distance);
-    cam.near_plane = std::min(0.01, 0.5 * (distance - radius));
+    cam = default_camera(box);
     return;
   }
   const tinygltf::Camera& src = model_.cameras[size_t(camera_index_)];
@@ -627,14 +622,7 @@ void Importer::finish_camera() {
 }
 
 void Importer::add_default_light() {
-  Aabb box = world_bounds(scene_);
-  double radius = std::max(0.5 * glm::length(box.extent()), 1e-3);
-  Light light;
-  light.type = LightType::omni;
-  light.position = dvec3(box.center().x, box.hi.y + radius, box.center().z);
-  double distance = glm::length(light.position - box.center());
-  light.intensity = distance * distance;
-  scene_.lights.push_back(light);
+  scene_.lights.push_back(default_light(world_bounds(scene_)));
   log_info(path_ + ": no lights in the file; added an omni light above the scene");
 }
 

@@ -24,6 +24,8 @@ struct Image {
 
 // Writes by extension: .png always; .exr only where exr_supported().
 void write_image(const std::string& path, const Image& image);
+// Throws the InputError write_image would throw for this path's type, without writing.
+void check_image_path(const std::string& path);
 void write_png(const std::string& path, const Image& image);
 
 // Provided by io/image_exr_oiio.cpp (full build) or io/image_exr_unavailable.cpp (lean build).

@@ -30,12 +30,27 @@ void write_png(const std::string& path, const Image& image) {
     throw InputError(path, "cannot write PNG file");
 }
 
-void write_image(const std::string& path, const Image& image) {
+namespace {
+
+std::string image_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".png") return write_png(path, image);
-  if (ext == ".exr") return write_exr(path, image);
-  throw InputError(path, "unknown image type '" + ext + "' (known: .png, .exr)");
+  return ext;
+}
+
+}  // namespace
+
+void check_image_path(const std::string& path) {
+  const std::string ext = image_extension(path);
+  if (ext == ".exr" && !exr_supported()) write_exr(path, Image());  // throws the reason
+  if (ext != ".png" && ext != ".exr")
+    throw InputError(path, "unknown image type '" + ext + "' (known: .png, .exr)");
+}
+
+void write_image(const std::string& path, const Image& image) {
+  check_image_path(path);
+  if (image_extension(path) == ".png") return write_png(path, image);
+  write_exr(path, image);
 }
 
 }  // namespace dv

@@ -37,7 +37,8 @@ std::string lowercase_extension(const std::string& path) {
 
 std::string supported_list() {
   std::string list;
-  for (const char* ext : kSupportedExtensions) list += (list.empty() ? "" : ", ") + std::string(ext);
+  for (const char* ext : kSupportedExtensions)
+    list += (list.empty() ? "" : ", ") + std::string(ext);
   return list;
 }
 
@@ -91,11 +92,12 @@ std::string find_obj_problem(const std::string& path) {
     } else if (keyword == "f") {
       while (words >> word) {
         const long long index = std::strtoll(word.c_str(), nullptr, 10);  // stops at '/'
-        const bool valid = index > 0 ? size_t(index) <= total_vertices
-                                     : index < 0 && size_t(-index) <= vertices;
+        const bool valid =
+            index > 0 ? size_t(index) <= total_vertices : index < 0 && size_t(-index) <= vertices;
         if (!valid) {
-          return at("face refers to vertex " + word.substr(0, word.find('/')) + " but the file has " +
-                    std::to_string(total_vertices) + " vertices (OBJ counts from 1)");
+          return at("face refers to vertex " + word.substr(0, word.find('/')) +
+                    " but the file has " + std::to_string(total_vertices) +
+                    " vertices (OBJ counts from 1)");
         }
       }
     }
@@ -114,8 +116,8 @@ bool is_mesh_file(const std::string& path) {
 TriangleMesh load_mesh_file(const std::string& path) {
   const std::string ext = lowercase_extension(path);
   if (!is_mesh_file(path)) {
-    throw InputError(path, "unsupported mesh file extension '" + ext + "' (supported: " +
-                               supported_list() + ")");
+    throw InputError(path, "unsupported mesh file extension '" + ext +
+                               "' (supported: " + supported_list() + ")");
   }
   check_file_readable(path);
 

@@ -38,23 +38,29 @@ Aabb world_bounds(const Scene& scene) {
   return box;
 }
 
+// Bounding-sphere radius of a box, never zero.
+static double bounding_radius(const Aabb& bounds) {
+  return bounds.empty() ? 1.0 : std::max(0.5 * glm::length(bounds.extent()), 1e-3);
+}
+
 Camera default_camera(const Aabb& bounds) {
   Camera c;
   const dvec3 center = bounds.empty() ? dvec3(0.0) : bounds.center();
-  const double size = bounds.empty() ? 1.0 : std::max(glm::length(bounds.extent()), 1e-6);
+  const double radius = bounding_radius(bounds);
+  c.fov_deg = 45.0;
+  const double distance = radius / std::sin(0.5 * c.fov_deg * 3.14159265358979323846 / 180.0);
   c.target = center;
-  c.position = center + dvec3(0.0, 0.35, 1.2) * size;
-  c.near_plane = 1e-3 * size;
+  c.position = center + dvec3(0.0, 0.0, distance);
+  c.near_plane = std::min(0.01, 0.5 * (distance - radius));
   return c;
 }
 
 Light default_light(const Aabb& bounds) {
   Light l;
   const dvec3 center = bounds.empty() ? dvec3(0.0) : bounds.center();
-  const double size = bounds.empty() ? 1.0 : std::max(glm::length(bounds.extent()), 1e-6);
   l.type = LightType::omni;
-  l.position = center + dvec3(0.3, 1.0, 0.6) * size;
-  l.intensity = glm::dot(l.position - center, l.position - center);
+  l.position = dvec3(center.x, (bounds.empty() ? 0.0 : bounds.hi.y) + bounding_radius(bounds), center.z);
+  l.intensity = glm::dot(l.position - center, l.position - center);  // irradiance 1 at the centre
   return l;
 }
 

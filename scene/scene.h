@@ -110,9 +110,11 @@ const char* to_string(InteriorKind kind);
 // World-space bounds of all objects (vertices after transforms).
 Aabb world_bounds(const Scene& scene);
 
-// A camera that frames `bounds` from the front (+z) and slightly above, 640x480.
+// A 640x480 camera with a 45 degree field of view looking at the centre of `bounds` from the
+// +z side, far enough that the bounding sphere fits the vertical field of view.
 Camera default_camera(const Aabb& bounds);
-// An omni light above and in front of `bounds`, bright enough to light it at unit exposure.
+// An omni light one bounding-sphere radius above the top of `bounds`, with the intensity that
+// gives irradiance 1 at the centre.
 Light default_light(const Aabb& bounds);
 
 // Checks invariants the renderer and oracle rely on (indices in range, finite numbers, closed

@@ -52,8 +52,7 @@ Runner add_render(CLI::App& app) {
     Scene scene = load_scene(opt->scene);
     if (opt->width) scene.camera.width = opt->width;
     if (opt->height) scene.camera.height = opt->height;
-    if (std::filesystem::path(opt->out).extension() == ".exr" && !exr_supported())
-      write_exr(opt->out, Image());  // reports the missing EXR support before any work
+    check_image_path(opt->out);  // before any work: an unwritable type would lose the render
     const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
     nlohmann::json stats = {{"meta", run_metadata(backend)},
                             {"scene", opt->scene},

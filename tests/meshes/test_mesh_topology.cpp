@@ -42,7 +42,8 @@ TEST(MeshTopology, BoxMissingOneTriangleHasThreeOpenEdges) {
   const std::vector<OpenEdge> open = open_edges(box);
   ASSERT_EQ(open.size(), 3u);
   auto in_removed = [&](uint32_t v) { return v == removed.x || v == removed.y || v == removed.z; };
-  for (const OpenEdge& e : open) EXPECT_TRUE(in_removed(e.a) && in_removed(e.b)) << e.a << "-" << e.b;
+  for (const OpenEdge& e : open)
+    EXPECT_TRUE(in_removed(e.a) && in_removed(e.b)) << e.a << "-" << e.b;
   EXPECT_FALSE(is_closed(box));
 }
 
@@ -56,7 +57,9 @@ TEST(MeshTopology, EdgeUsedThreeTimesIsOpen) {
   EXPECT_EQ(open.size(), 7u);  // 0-1 three times, plus the 6 single edges
 }
 
-TEST(MeshTopology, EmptyMeshIsNotClosed) { EXPECT_FALSE(is_closed(TriangleMesh{})); }
+TEST(MeshTopology, EmptyMeshIsNotClosed) {
+  EXPECT_FALSE(is_closed(TriangleMesh{}));
+}
 
 TEST(MeshTopology, SignedVolumeOfBoxIsExactAndFlipsSign) {
   const TriangleMesh box = make_box(dvec3(-1.0, 0.5, 2.0), dvec3(2.0, 1.5, 4.5));
@@ -82,7 +85,8 @@ TEST(MeshTopology, OrientOutwardFlipsAnInvertedBox) {
 TEST(MeshTopology, OrientOutwardRepairsMixedWinding) {
   TriangleMesh sphere = make_icosphere(1.0, 2);
   const double volume = signed_volume(sphere);
-  for (size_t t = 0; t < sphere.triangles.size(); t += 3) std::swap(sphere.triangles[t].y, sphere.triangles[t].z);
+  for (size_t t = 0; t < sphere.triangles.size(); t += 3)
+    std::swap(sphere.triangles[t].y, sphere.triangles[t].z);
   orient_outward(sphere);
   EXPECT_TRUE(is_closed(sphere));
   EXPECT_NEAR(signed_volume(sphere), volume, 1e-9);

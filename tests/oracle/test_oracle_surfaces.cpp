@@ -11,12 +11,7 @@ namespace dv {
 namespace {
 
 using test::SceneBuilder;
-
-double oracle(const SceneData& data, int light, const dvec3& p) {
-  const OracleResult r = exact_transmittance(data.view(), data.view().lights[light], p);
-  EXPECT_EQ(r.flags, 0u);
-  return r.transmittance;
-}
+constexpr auto oracle = test::oracle_at;
 
 TEST(OracleSurfaces, TranslucentQuadsMultiply) {
   SceneBuilder b;

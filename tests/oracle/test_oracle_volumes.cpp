@@ -12,6 +12,7 @@ namespace dv {
 namespace {
 
 using test::SceneBuilder;
+constexpr auto oracle = test::oracle_at;
 
 // A ramp volume: density = i / (n - 1) along x, n x 2 x 2 samples of spacing h, and a box mesh
 // that covers the grid exactly.
@@ -31,12 +32,6 @@ Object& add_ramp(SceneBuilder& b, int n, double h, std::vector<TransferPoint> tr
 }
 
 TransferPoint tp(double density, double sigma) { return {density, dvec3(1.0), sigma}; }
-
-double oracle(const SceneData& data, int light, const dvec3& p) {
-  const OracleResult r = exact_transmittance(data.view(), data.view().lights[light], p);
-  EXPECT_EQ(r.flags, 0u);
-  return r.transmittance;
-}
 
 TEST(OracleVolumes, LinearRampIsExact) {
   SceneBuilder b;

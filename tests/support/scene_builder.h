@@ -1,10 +1,13 @@
 // Small scenes for tests, built in code: objects from generators with a material and interior,
-// lights, and a helper that validates and flattens them for the CPU backend.
+// lights, a helper that validates and flattens them for the CPU backend, and oracle queries.
 #pragma once
+
+#include <gtest/gtest.h>
 
 #include <utility>
 
 #include "generators/mesh_generators.h"
+#include "oracle/transmittance.h"
 #include "scene/scene.h"
 #include "scene/scene_view.h"
 
@@ -59,5 +62,12 @@ struct SceneBuilder {
     return SceneData(scene, Memory::host);
   }
 };
+
+// The oracle's transmittance of `light` at p; a raised flag fails the calling test.
+inline double oracle_at(const SceneData& data, int light, const dvec3& p) {
+  const OracleResult r = exact_transmittance(data.view(), data.view().lights[light], p);
+  EXPECT_EQ(r.flags, 0u);
+  return r.transmittance;
+}
 
 }  // namespace dv::test

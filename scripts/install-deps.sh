@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs the Debian packages deepvox builds against, only those missing (Debian 12).
+# Needs root or sudo when something is missing; prints what it installs.
+set -euo pipefail
+
+packages=(
+  cmake g++ make pkg-config git
+  libglm-dev libglfw3-dev libopenimageio-dev python3-imath libcgal-dev libeigen3-dev
+  libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
+  libgtest-dev libbenchmark-dev
+  libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "deepvox: installing missing Debian packages: ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -q
+"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,167 @@
+// The deepvox executable end to end: subcommands and their help, probe output against the
+// in-process oracle, render outputs, and clear errors (file named, non-zero exit, no crash)
+// for bad input of every kind.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "io/scene_loader.h"
+#include "oracle/transmittance.h"
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+CommandResult run(const std::string& args) {
+  const std::string cmd = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(DEEPVOX_BINARY_DIR) / "test_cli_tmp" / info->name();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // Expects a clean failure whose message contains every fragment.
+  void expect_error(const std::string& args, std::initializer_list<std::string> fragments) {
+    const CommandResult r = run(args);
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_LT(r.exit_code, 128) << "crashed: " << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
+    for (const std::string& f : fragments) EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+  }
+  fs::path dir_;
+};
+
+const std::string kSmallScene = R"({
+  "camera": {"position": [0, 1, 4], "target": [0, 0.3, 0], "width": 40, "height": 30},
+  "lights": [{"type": "omni", "position": [0.5, 3, 0.5], "intensity": 9}],
+  "objects": [
+    {"mesh": {"generator": "box", "min": [-2, -0.1, -2], "max": [2, 0, 2]}},
+    {"name": "glass", "mesh": {"generator": "box", "size": 0.6}, "transform": {"translate": [0, 0.6, 0]},
+     "material": {"alpha": 0.4}, "interior": {"type": "constant", "sigma": 1.5}}
+  ]
+})";
+
+TEST_F(Cli, HelpAndList) {
+  for (const char* sub : {"probe", "render", "info", "list"}) {
+    const CommandResult r = run(std::string(sub) + " --help");
+    EXPECT_EQ(r.exit_code, 0) << sub;
+    EXPECT_NE(r.output.find(sub), std::string::npos);
+  }
+  const CommandResult list = run("list");
+  EXPECT_EQ(list.exit_code, 0);
+  for (const char* name : {"reference", "none", "storage", "voxelizer", "icosphere", "shepp_logan", "cpu"})
+    EXPECT_NE(list.output.find(name), std::string::npos) << name;
+  EXPECT_NE(run("").exit_code, 0);
+}
+
+TEST_F(Cli, ProbeMatchesTheOracle) {
+  const std::string scene = write("scene.json", kSmallScene);
+  write("points.csv", "x,y,z\n0,0,0\n0.1,0.6,0.05\n1.5,0,1.5\n0,-1,0\n");
+  const CommandResult r = run("probe " + scene + " --points " + path("points.csv") + " --out " + path("t.csv") + " --backend cpu");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(path("t.csv"));
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "x,y,z,light0");
+  const Scene s = load_scene(scene);
+  const SceneData data(s, Memory::host);
+  std::string line;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    double x, y, z, t;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &z, &t), 4) << line;
+    const double expected = exact_transmittance(data.view(), data.view().lights[0], {x, y, z}).transmittance;
+    EXPECT_DOUBLE_EQ(t, expected);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 4);
+  // The point inside the glass cube sees its top face and part of its medium.
+  const double inside = exact_transmittance(data.view(), data.view().lights[0], {0.1, 0.6, 0.05}).transmittance;
+  EXPECT_GT(inside, 0.0);
+  EXPECT_LT(inside, 0.6);
+}
+
+TEST_F(Cli, RenderWritesImagesAndStats) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const CommandResult r = run("render " + scene + " --backend cpu --out " + path("img.png") + " --stats " + path("s.json") +
+                    " --frames 2 --orbit 30");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("img_0000.png")));
+  EXPECT_TRUE(fs::exists(path("img_0001.png")));
+  std::ifstream in(path("s.json"));
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  ASSERT_EQ(stats["frames"].size(), 2u);
+  EXPECT_GT(stats["frames"][0]["hits"].get<long long>(), 0);
+  EXPECT_EQ(stats["frames"][0]["overflow_pixels"].get<long long>(), 0);
+  EXPECT_EQ(stats["meta"]["backend"], "cpu");
+  EXPECT_EQ(stats["shadows"]["name"], "reference");
+  const CommandResult info = run("info " + scene + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_EQ(nlohmann::json::parse(info.output)["triangles"].get<int>(), 24);
+}
+
+TEST_F(Cli, MeshFileIsASceneOfOneObject) {
+  const std::string mesh = std::string(DEEPVOX_SOURCE_DIR) + "/assets/meshes/stanford-bunny-lowres.obj";
+  const CommandResult r = run("info " + mesh + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["objects"].size(), 1u);
+  EXPECT_EQ(j["triangles"].get<int>(), 3674);
+  EXPECT_EQ(j["lights"].size(), 1u);
+}
+
+TEST_F(Cli, BadInputGivesClearErrors) {
+  const std::string probe_tail = " --points " + write("p.csv", "0,0,0\n") + " --out " + path("o.csv");
+  expect_error("info " + path("missing.json"), {"missing.json", "not found"});
+  expect_error("info " + write("bad.json", "{\"objects\": [}"), {"bad.json", "malformed JSON"});
+  expect_error("info " + write("key.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
+      "objects": [{"mesh": {"generator": "box"}, "colour": [1,0,0]}]})"), {"key.json", "colour"});
+  expect_error("info " + write("gen.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
+      "objects": [{"mesh": {"generator": "dodecahedron"}}]})"), {"gen.json", "dodecahedron", "icosphere"});
+  expect_error("info " + write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n"), {"nan.obj"});
+  expect_error("info " + write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), {"range.obj"});
+  expect_error("info " + write("zero.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
+      "volumes": {"v": {"generator": "block", "dims": [0, 4, 4]}},
+      "objects": [{"mesh": {"generator": "box"}}]})"), {"zero.json", "zero-size"});
+  expect_error("info " + write("open.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
+      "objects": [{"mesh": {"generator": "quad"}, "interior": {"type": "constant", "sigma": 1}}]})"),
+               {"open.json", "not closed", "open edge"});
+  expect_error("info " + write("light.json", R"({"lights": [{"type": "area", "position": [0,1,0]}],
+      "objects": [{"mesh": {"generator": "box"}}]})"), {"light.json", "area", "spot"});
+  const std::string scene = write("scene.json", kSmallScene);
+  expect_error("probe " + scene + " --shadows magic" + probe_tail, {"magic", "reference"});
+  expect_error("probe " + scene + " --points " + write("garbage.csv", "x,y,z\n1,2,3\n1,two,3\n") + " --out " + path("o.csv"),
+               {"garbage.csv:3"});
+  expect_error("probe " + scene + probe_tail + " --backend opencl", {"opencl"});
+  expect_error("render " + scene + " --out " + path("img.bmp") + " --backend cpu", {"img.bmp", ".png"});
+  expect_error("info " + write("scene.txt", "hello"), {"scene.txt", ".json"});
+}
+
+}  // namespace
+}  // namespace dv

@@ -1,0 +1,108 @@
+// The two executors: the CPU parallel-for covers every index once, atomics and buffers work on
+// the host, and the CUDA smoke test runs the same lambda as a kernel (skipped with the reason
+// where no GPU can be used).
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <vector>
+
+#include "core/atomic.h"
+#include "core/buffer.h"
+#include "core/device_memory.h"
+#include "core/execute.h"
+
+namespace dv {
+namespace {
+
+// Fills out[i] = i * i + 1 and counts visits, on the given backend.
+void square_plus_one(Backend backend, int64_t n, std::vector<int64_t>& values, unsigned long long& visits) {
+  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  Buffer<int64_t> out(memory, n, "test values");
+  Buffer<unsigned long long> count(memory, 1, "test counter");
+  count.fill_zero();
+  const View<int64_t> o = out.view();
+  unsigned long long* c = count.data();
+  parallel_for(backend, "square_plus_one", n, DV_KERNEL_LAMBDA(int64_t i) {
+    o[i] = i * i + 1;
+    atomic_add(c, 1ull);
+  });
+  if (backend == Backend::cuda) device_synchronize("square_plus_one");
+  values = out.to_vector();
+  visits = count.to_vector()[0];
+}
+
+TEST(Backends, CpuParallelForVisitsEachIndexOnce) {
+  const int64_t n = 100003;
+  std::vector<int64_t> values;
+  unsigned long long visits = 0;
+  square_plus_one(Backend::cpu, n, values, visits);
+  EXPECT_EQ(visits, (unsigned long long)n);
+  for (int64_t i = 0; i < n; ++i) ASSERT_EQ(values[i], i * i + 1);
+}
+
+TEST(Backends, CpuParallelForRethrows) {
+  EXPECT_THROW(cpu_parallel_for(1000, [](int64_t i) {
+    if (i == 517) throw Error("boom");
+  }), Error);
+}
+
+TEST(Backends, HostAtomicsAgreeWithSerialResults) {
+  unsigned int bits = 0;
+  int maximum = -1, minimum = 1 << 30;
+  double sum = 0.0;
+  cpu_parallel_for(1024, [&](int64_t i) {
+    atomic_or(&bits, 1u << (i % 32));
+    atomic_max(&maximum, int(i));
+    atomic_min(&minimum, int(i) + 5);
+    atomic_add(&sum, 0.5);
+  }, 1);
+  EXPECT_EQ(bits, 0xffffffffu);
+  EXPECT_EQ(maximum, 1023);
+  EXPECT_EQ(minimum, 5);
+  EXPECT_DOUBLE_EQ(sum, 512.0);
+  int word = 3;
+  EXPECT_EQ(atomic_cas(&word, 3, 9), 3);
+  EXPECT_EQ(word, 9);
+  EXPECT_EQ(atomic_cas(&word, 3, 1), 9);
+  EXPECT_EQ(word, 9);
+}
+
+TEST(Backends, HostBufferRoundTrip) {
+  std::vector<float> v(1000);
+  std::iota(v.begin(), v.end(), 0.5f);
+  Buffer<float> b(Memory::host, v, "host buffer");
+  EXPECT_EQ(b.to_vector(), v);
+  b.fill_zero();
+  EXPECT_EQ(b.to_vector(), std::vector<float>(1000, 0.0f));
+  EXPECT_THROW(b.upload(std::vector<float>(3)), Error);
+}
+
+TEST(Backends, CudaSmoke) {
+  std::string why;
+  if (!cuda_device_available(&why)) GTEST_SKIP() << "CUDA smoke test needs a GPU: " << why;
+  EXPECT_FALSE(cuda_device_name().empty());
+  const int64_t n = 1 << 20;
+  std::vector<int64_t> cpu_values, gpu_values;
+  unsigned long long cpu_visits = 0, gpu_visits = 0;
+  square_plus_one(Backend::cpu, n, cpu_values, cpu_visits);
+  square_plus_one(Backend::cuda, n, gpu_values, gpu_visits);
+  EXPECT_EQ(gpu_visits, (unsigned long long)n);
+  EXPECT_EQ(gpu_values, cpu_values);
+  std::vector<float> v(4096, 2.5f);
+  Buffer<float> d(Memory::device, v, "device buffer");
+  EXPECT_EQ(d.to_vector(), v);
+}
+
+TEST(Backends, BackendNamesAndAvailability) {
+  EXPECT_EQ(parse_backend("cpu"), Backend::cpu);
+  EXPECT_EQ(parse_backend("cuda"), Backend::cuda);
+  EXPECT_THROW(parse_backend("opencl"), InputError);
+  EXPECT_NO_THROW(require_backend(Backend::cpu));
+  if (!cuda_device_available()) {
+    EXPECT_THROW(require_backend(Backend::cuda), Error);
+    EXPECT_EQ(default_backend(), Backend::cpu);
+  }
+}
+
+}  // namespace
+}  // namespace dv
