@@ -6,9 +6,7 @@
 #include "core/device_memory.h"
 #include "core/parallel.h"
 
-#ifndef DEEPVOX_GIT_SHA
-#define DEEPVOX_GIT_SHA "unknown"
-#endif
+#include "git_sha.h"
 #ifndef DEEPVOX_BUILD_TYPE
 #define DEEPVOX_BUILD_TYPE "unknown"
 #endif
