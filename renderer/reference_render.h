@@ -12,14 +12,12 @@
 
 #include "core/execute.h"
 #include "io/image.h"
+#include "renderer/fragment_walk.h"
 #include "scene/scene.h"
 #include "scene/scene_view.h"
 #include "strategies/shadow/shadow_method.h"
 
 namespace dv {
-
-inline constexpr int kMaxInsideObjects = 16;  // media a ray can be inside at once
-inline constexpr int kMaxHitsPerPixel = 4096;
 
 struct RenderCounters {
   unsigned long long hits = 0;             // surface crossings walked

@@ -1,0 +1,283 @@
+// The passes of the tile rasterizer (see tile_raster.h), each a parallel_for that runs on CPU
+// threads or as a CUDA kernel (nvcc compiles this file when CUDA is on):
+//   setup   one thread per source triangle: clip, snap, orient; the first piece goes to the
+//           triangle's own record, further pieces of clipped triangles are counted;
+//   extras  only if clipping made extra pieces: they are set up again and appended;
+//   count   one thread per record: per tile of its box, a coverage mask; non-zero ones are
+//           counted per tile (atomic);
+//   scan    on the host over the per-tile counts (the array is small), with the entry limit;
+//   write   the same masks again, each stored at its tile's next free slot (atomic cursor);
+//   sort    one thread per tile: entries ordered by (triangle, mask), so the arbitrary order
+//           of the atomic writes never shows.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "core/atomic.h"
+#include "core/device_memory.h"
+#include "core/error.h"
+#include "renderer/raster/tile_raster.h"
+
+namespace dv {
+
+namespace {
+
+constexpr const char* kWhere = "rasterize_tiles";
+
+struct SetupCounters {
+  unsigned long long clipped, clipped_near, clipped_guard;
+  unsigned long long culled_behind, culled_offscreen, culled_degenerate, culled_invalid;
+  unsigned long long extra_pieces;
+};
+
+// Sets up source triangle t of the view (indices checked: a bad one culls it as invalid).
+template <class Emit>
+DV_HD uint32_t setup_source(const RasterView& view, int64_t t, Emit&& emit) {
+  const u32vec3 tri = view.triangles[t];
+  dvec3 world[3];
+  for (int k = 0; k < 3; ++k) {
+    if (int64_t(tri[k]) >= view.vertices.size) return kSetupCulledInvalid;
+    world[k] = view.vertices[tri[k]];
+  }
+  return setup_triangle(view.projection, world, uint32_t(t), emit);
+}
+
+DV_HD inline void tally(SetupCounters* c, uint32_t flags, int pieces) {
+  const unsigned long long one = 1;
+  if (flags & kSetupCulledAny) {
+    if (flags & kSetupCulledBehind) atomic_add(&c->culled_behind, one);
+    if (flags & kSetupCulledOffscreen) atomic_add(&c->culled_offscreen, one);
+    if (flags & kSetupCulledDegenerate) atomic_add(&c->culled_degenerate, one);
+    if (flags & kSetupCulledInvalid) atomic_add(&c->culled_invalid, one);
+    return;
+  }
+  if (flags & (kSetupClippedNear | kSetupClippedGuard)) atomic_add(&c->clipped, one);
+  if (flags & kSetupClippedNear) atomic_add(&c->clipped_near, one);
+  if (flags & kSetupClippedGuard) atomic_add(&c->clipped_guard, one);
+  if (pieces > 1) atomic_add(&c->extra_pieces, (unsigned long long)(pieces - 1));
+}
+
+// The records: one per source triangle (possibly empty), then the extra pieces.
+struct Records {
+  View<const RasterTriangle> first, extra;
+  DV_HD int64_t size() const { return first.size + extra.size; }
+  DV_HD const RasterTriangle& operator[](int64_t r) const {
+    return r < first.size ? first[r] : extra[r - first.size];
+  }
+};
+
+DV_HD inline bool entry_less(const TileEntry& a, const TileEntry& b) {
+  return a.triangle != b.triangle ? a.triangle < b.triangle : a.mask < b.mask;
+}
+
+DV_HD inline void sift_down(TileEntry* e, int64_t root, int64_t end) {
+  while (2 * root + 1 < end) {
+    int64_t child = 2 * root + 1;
+    if (child + 1 < end && entry_less(e[child], e[child + 1])) ++child;
+    if (!entry_less(e[root], e[child])) return;
+    const TileEntry swap = e[root];
+    e[root] = e[child];
+    e[child] = swap;
+    root = child;
+  }
+}
+
+// Insertion sort for short lists, heap sort (n log n, no extra memory) for long ones.
+DV_HD inline void sort_entries(TileEntry* e, int64_t n) {
+  if (n <= 16) {
+    for (int64_t i = 1; i < n; ++i) {
+      const TileEntry key = e[i];
+      int64_t j = i;
+      for (; j > 0 && entry_less(key, e[j - 1]); --j) e[j] = e[j - 1];
+      e[j] = key;
+    }
+    return;
+  }
+  for (int64_t start = n / 2 - 1; start >= 0; --start) sift_down(e, start, n);
+  for (int64_t end = n - 1; end > 0; --end) {
+    const TileEntry swap = e[0];
+    e[0] = e[end];
+    e[end] = swap;
+    sift_down(e, 0, end);
+  }
+}
+
+Memory memory_of(Backend backend) { return backend == Backend::cuda ? Memory::device : Memory::host; }
+
+void check_view(const RasterView& view) {
+  const RasterProjection& p = view.projection;
+  if (p.width < 1 || p.height < 1 || p.width > kMaxRasterSide || p.height > kMaxRasterSide)
+    throw InputError(kWhere, "image size " + std::to_string(p.width) + "x" +
+                                 std::to_string(p.height) + " is outside 1.." +
+                                 std::to_string(kMaxRasterSide));
+  if (view.triangles.size * int64_t(kMaxPiecesPerTriangle) >= int64_t(UINT32_MAX))
+    throw InputError(kWhere, std::to_string(view.triangles.size) +
+                                 " triangles are more than the 32-bit triangle ids can hold");
+}
+
+struct SetupResult {
+  Buffer<RasterTriangle> first, extra;
+  SetupCounters counters{};
+};
+
+SetupResult setup_records(Backend backend, const RasterView& view) {
+  const Memory memory = memory_of(backend);
+  const int64_t n = view.triangles.size;
+  SetupResult out;
+  out.first = Buffer<RasterTriangle>(memory, n, "raster records");
+  Buffer<uint8_t> piece_counts(memory, n, "raster piece counts");
+  Buffer<SetupCounters> counters(memory, 1, "raster counters");
+  counters.fill_zero();
+  const View<RasterTriangle> first = out.first.view();
+  const View<uint8_t> pieces_of = piece_counts.view();
+  SetupCounters* c = counters.data();
+  parallel_for(backend, "raster_setup", n, DV_KERNEL_LAMBDA(int64_t i) {
+    RasterTriangle head = empty_raster_triangle(uint32_t(i));
+    int pieces = 0;
+    const uint32_t flags = setup_source(view, i, [&](const RasterTriangle& t) {
+      if (pieces == 0) head = t;
+      ++pieces;
+    });
+    first[i] = head;
+    pieces_of[i] = uint8_t(pieces);
+    tally(c, flags, pieces);
+  });
+  out.counters = counters.to_vector()[0];
+  const int64_t extra_count = int64_t(out.counters.extra_pieces);
+  out.extra = Buffer<RasterTriangle>(memory, extra_count, "raster extra pieces");
+  if (extra_count == 0) return out;
+  Buffer<unsigned long long> cursor(memory, 1, "raster extra cursor");
+  cursor.fill_zero();
+  const View<RasterTriangle> extra = out.extra.view();
+  unsigned long long* next = cursor.data();
+  parallel_for(backend, "raster_setup_extra", n, DV_KERNEL_LAMBDA(int64_t i) {
+    const int pieces = pieces_of[i];
+    if (pieces <= 1) return;
+    const unsigned long long base = atomic_add(next, (unsigned long long)(pieces - 1));
+    int k = 0;
+    setup_source(view, i, [&](const RasterTriangle& t) {
+      const int64_t slot = int64_t(base) + k - 1;
+      if (k > 0 && slot < extra.size) extra[slot] = t;
+      ++k;
+    });
+  });
+  return out;
+}
+
+}  // namespace
+
+TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterOptions& options) {
+  require_backend(backend);
+  check_view(view);
+  if (options.max_entries < 0)
+    throw InputError(kWhere, "max_entries must not be negative, got " + std::to_string(options.max_entries));
+  const Memory memory = memory_of(backend);
+  const int width = view.projection.width, height = view.projection.height;
+  TileLists lists;
+  lists.width = width;
+  lists.height = height;
+  lists.tiles_x = (width + kTileSide - 1) / kTileSide;
+  lists.tiles_y = (height + kTileSide - 1) / kTileSide;
+  const int64_t tiles = lists.tile_count();
+  const int tiles_x = lists.tiles_x;
+
+  const SetupResult setup = setup_records(backend, view);
+  const Records records{setup.first.const_view(), setup.extra.const_view()};
+
+  Buffer<uint32_t> tile_counts(memory, tiles, "raster tile counts");
+  tile_counts.fill_zero();
+  uint32_t* counts = tile_counts.data();
+  parallel_for(backend, "raster_count", records.size(), DV_KERNEL_LAMBDA(int64_t r) {
+    const RasterTriangle& t = records[r];
+    for (int ty = t.tile_y0; ty <= t.tile_y1; ++ty)
+      for (int tx = t.tile_x0; tx <= t.tile_x1; ++tx)
+        if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
+          atomic_add(counts + (int64_t(ty) * tiles_x + tx), 1u);
+  });
+
+  // Exclusive scan on the host; tiles whose list does not fit under the limit (and all tiles
+  // after the first such one) keep empty ranges.
+  const std::vector<uint32_t> needed_per_tile = tile_counts.to_vector();
+  const uint64_t limit = uint64_t(std::min<int64_t>(options.max_entries, int64_t(UINT32_MAX)));
+  std::vector<uint32_t> offsets(size_t(tiles) + 1);
+  uint64_t stored = 0, needed = 0;
+  RasterStats& s = lists.stats;
+  s.first_incomplete_tile = tiles;
+  for (int64_t t = 0; t < tiles; ++t) {
+    const uint64_t count = needed_per_tile[size_t(t)];
+    offsets[size_t(t)] = uint32_t(stored);
+    needed += count;
+    s.max_entries_per_tile = std::max<int64_t>(s.max_entries_per_tile, int64_t(count));
+    if (count == 0) continue;
+    if (!s.overflow && stored + count <= limit) {
+      stored += count;
+    } else {
+      if (!s.overflow) s.first_incomplete_tile = t;
+      s.overflow = true;
+      ++s.dropped_tiles;
+    }
+  }
+  offsets[size_t(tiles)] = uint32_t(stored);
+  lists.offsets = Buffer<uint32_t>(memory, std::span<const uint32_t>(offsets), "raster tile offsets");
+  lists.entries = Buffer<TileEntry>(memory, int64_t(stored), "raster tile entries");
+
+  Buffer<uint32_t> tile_fill(memory, tiles, "raster tile cursors");
+  tile_fill.fill_zero();
+  uint32_t* fill = tile_fill.data();
+  const View<const uint32_t> range = lists.offsets.const_view();
+  const View<TileEntry> entries = lists.entries.view();
+  parallel_for(backend, "raster_write", records.size(), DV_KERNEL_LAMBDA(int64_t r) {
+    const RasterTriangle& t = records[r];
+    for (int ty = t.tile_y0; ty <= t.tile_y1; ++ty)
+      for (int tx = t.tile_x0; tx <= t.tile_x1; ++tx) {
+        const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
+        if (mask == 0) continue;
+        const int64_t tile = int64_t(ty) * tiles_x + tx;
+        const uint32_t slot = atomic_add(fill + tile, 1u);
+        if (slot < range[tile + 1] - range[tile]) entries[range[tile] + slot] = {mask, t.source, 0u};
+      }
+  });
+  parallel_for(backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
+    sort_entries(entries.data + range[t], int64_t(range[t + 1] - range[t]));
+  });
+  if (backend == Backend::cuda) device_synchronize(kWhere);
+
+  const SetupCounters& c = setup.counters;
+  s.triangles_in = view.triangles.size;
+  s.culled_behind = int64_t(c.culled_behind);
+  s.culled_offscreen = int64_t(c.culled_offscreen);
+  s.culled_degenerate = int64_t(c.culled_degenerate);
+  s.culled_invalid = int64_t(c.culled_invalid);
+  s.triangles_culled = s.culled_behind + s.culled_offscreen + s.culled_degenerate + s.culled_invalid;
+  s.triangles_rasterized = s.triangles_in - s.triangles_culled;
+  s.triangles_clipped = int64_t(c.clipped);
+  s.clipped_near = int64_t(c.clipped_near);
+  s.clipped_guard = int64_t(c.clipped_guard);
+  s.pieces = s.triangles_rasterized + int64_t(c.extra_pieces);
+  s.entries = int64_t(stored);
+  s.entries_needed = int64_t(needed);
+  return lists;
+}
+
+TileLists rasterize_tiles(Backend backend, const SceneView& scene,
+                          const RasterProjection& projection, const RasterOptions& options) {
+  return rasterize_tiles(backend, make_raster_view(scene, projection), options);
+}
+
+Buffer<uint32_t> count_pixel_fragments(Backend backend, const TileLists& lists) {
+  require_backend(backend);
+  const Memory memory = memory_of(backend);
+  if (lists.offsets.memory() != memory)
+    throw Error("count_pixel_fragments: tile lists are not in the backend's memory");
+  const int width = lists.width;
+  Buffer<uint32_t> counts(memory, int64_t(lists.width) * lists.height, "fragment counts");
+  const View<uint32_t> out = counts.view();
+  const TileListsView v = lists.view();
+  parallel_for(backend, "raster_fragment_count", out.size, DV_KERNEL_LAMBDA(int64_t i) {
+    out[i] = uint32_t(fragment_count(v, int(i % width), int(i / width)));
+  });
+  if (backend == Backend::cuda) device_synchronize("count_pixel_fragments");
+  return counts;
+}
+
+}  // namespace dv
