@@ -11,6 +11,7 @@
 
 #include "core/hd.h"
 #include "core/math.h"
+#include "oracle/transmittance.h"
 #include "scene/ray_query.h"
 #include "scene/scene_view.h"
 
@@ -42,31 +43,41 @@ struct InsideSet {
   }
 };
 
-// Crossings of a ray found through the scene's BVH.
+// Crossings of a ray found through the scene's BVH, up to t_max.
 struct BvhFragments {
   const SceneView* scene;
   ShearedRay ray;
+  double t_max = 1e300;
   DV_HD bool next(double t_after, int64_t after_triangle, RayHit& out) const {
-    return next_hit(*scene, ray, t_after, after_triangle, 1e300, out);
+    return next_hit(*scene, ray, t_after, after_triangle, t_max, out);
   }
 };
 
 struct WalkStatus {
   unsigned long long crossings = 0;
   bool overflow = false;  // kMaxHitsPerPixel or kMaxInsideObjects reached
+  InsideSet inside;       // the media the ray is inside where the walk stopped
 };
 
-// Walks the ray origin + t * dir from t = 0 (a point outside every medium) to t_far. Segments
-// and surfaces before t_near only update the inside set. Payload interface:
+// A payload that only lets the walk track inside-ness.
+struct NoPayload {
+  DV_HD bool done() const { return false; }
+  DV_HD void segment(const InsideSet&, double, double) {}
+  DV_HD void surface(const RayHit&, int32_t) {}
+};
+
+// Walks the ray from t_start, inside the media `inside` there, to t_far, taking crossings after
+// t_start. Segments and surfaces before t_near only update the inside set. Payload interface:
 //   bool done() const;                                     stop early (e.g. opacity saturated)
 //   void segment(const InsideSet&, double t0, double t1);  only called when inside something
 //   void surface(const RayHit&, int32_t object);           a crossing at or beyond t_near
 template <class Fragments, class Payload>
-DV_HD WalkStatus walk_fragments(const SceneView& s, const Fragments& fragments, double t_near, double t_far,
-                                Payload& payload) {
-  InsideSet inside;
+DV_HD WalkStatus walk_fragments(const SceneView& s, const Fragments& fragments, const InsideSet& inside_at_start,
+                                double t_start, double t_near, double t_far, Payload& payload) {
   WalkStatus status;
-  double t_prev = 0.0;
+  InsideSet& inside = status.inside;
+  inside = inside_at_start;
+  double t_prev = t_start;
   int64_t tri_prev = -1;
   while (!payload.done()) {
     if (status.crossings == kMaxHitsPerPixel) {
@@ -88,6 +99,17 @@ DV_HD WalkStatus walk_fragments(const SceneView& s, const Fragments& fragments, 
   }
   status.overflow |= inside.overflow;
   return status;
+}
+
+// The media that contain `point`: a walk toward it from outside the scene along a fixed
+// direction, counting the crossings strictly before it.
+DV_HD inline WalkStatus media_containing(const SceneView& s, const dvec3& point) {
+  const dvec3 w = glm::normalize(dvec3(0.267, 0.913, 0.309));
+  const Aabb box = padded_bounds(s);
+  const double back = max_value(box_exit_distance(box, point, w), 0.0) + 1e-3 * s.diagonal + 1e-6;
+  NoPayload none;
+  const BvhFragments fragments{&s, make_sheared_ray(point + w * back, -w), back};
+  return walk_fragments(s, fragments, InsideSet{}, 0.0, 0.0, back, none);
 }
 
 }  // namespace dv

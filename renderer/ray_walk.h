@@ -25,7 +25,8 @@ DV_HD dvec3 walk_pixel(const SceneView& s, const CameraView& cam, const Source& 
   const double t_near = t_eye + cam.near_plane / glm::dot(dir, cam.forward);
   const double t_far = t_eye + max_value(box_exit_distance(box, cam.position, dir), 0.0);
   ShadePayload<Source> payload{s, shadows, origin, dir};
-  const WalkStatus status = walk_fragments(s, BvhFragments{&s, make_sheared_ray(origin, dir)}, t_near, t_far, payload);
+  const BvhFragments fragments{&s, make_sheared_ray(origin, dir)};
+  const WalkStatus status = walk_fragments(s, fragments, InsideSet{}, 0.0, t_near, t_far, payload);
   if (counters) {
     atomic_add(&counters->hits, status.crossings);
     atomic_add(&counters->volume_samples, payload.samples);

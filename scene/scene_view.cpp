@@ -112,6 +112,7 @@ SceneData::SceneData(const Scene& scene, Memory memory) : memory_(memory) {
   densities_ = Buffer<float>(memory, densities, "volume densities");
   transfer_ = Buffer<TransferPoint>(memory, transfer, "transfer functions");
   lights_ = Buffer<LightView>(memory, lights, "lights");
+  host_lights_ = lights;
 
   view_.vertices = vertices_.const_view();
   view_.triangles = triangles_.const_view();

@@ -62,6 +62,8 @@ class SceneData {
   int bvh_depth() const { return bvh_depth_; }
   // BVH position of each input triangle is not needed outside; input triangle of a BVH slot:
   const std::vector<uint32_t>& bvh_order() const { return order_; }
+  // The lights in host memory whatever memory the view is in (host-side planning needs them).
+  const std::vector<LightView>& host_lights() const { return host_lights_; }
 
  private:
   Memory memory_;
@@ -75,6 +77,7 @@ class SceneData {
   Buffer<TransferPoint> transfer_;
   Buffer<LightView> lights_;
   std::vector<uint32_t> order_;
+  std::vector<LightView> host_lights_;
   int bvh_depth_ = 0;
   SceneView view_{};
 };

@@ -1,6 +1,7 @@
-// `deepvox render SCENE --out img.png [--backend cpu|cuda] [--shadows NAME] [--stats s.json]
-//  [--frames N --orbit DEG] [--width W --height H]`: the reference renderer with a shadow
-// method, PNG or EXR out, per-frame timings and counters in a stats JSON.
+// `deepvox render SCENE --out img.png [--backend cpu|cuda] [--renderer raster|raytrace]
+//  [--shadows NAME] [--stats s.json] [--frames N --orbit DEG] [--width W --height H]`: the
+// rasterizing renderer (or the BVH ray-walk reference) with a shadow method, PNG or EXR out,
+// per-frame pass timings and counters in a stats JSON.
 #include <filesystem>
 #include <fstream>
 
@@ -10,6 +11,7 @@
 #include "io/image.h"
 #include "io/scene_loader.h"
 #include "renderer/camera_rays.h"
+#include "renderer/raster_render.h"
 #include "renderer/reference_render.h"
 
 namespace dv::cli {
@@ -28,7 +30,7 @@ std::string frame_path(const std::string& path, int frame, int frames) {
 
 Runner add_render(CLI::App& app) {
   struct Options {
-    std::string scene, out, stats, shadows = "reference", backend;
+    std::string scene, out, stats, shadows = "reference", backend, renderer = "raster";
     std::vector<std::string> params;
     int frames = 1, width = 0, height = 0;
     double orbit = 0.0;
@@ -38,6 +40,10 @@ Runner add_render(CLI::App& app) {
   cmd->add_option("scene", opt->scene, "scene: .json, .gltf/.glb or a mesh file")->required();
   cmd->add_option("--out", opt->out, "image file: .png (any build) or .exr (full build)")->required();
   cmd->add_option("--shadows", opt->shadows, "shadow method (see `deepvox list`)")->capture_default_str();
+  cmd->add_option("--renderer", opt->renderer,
+                  "raster: tile rasterizer + fragment walk; raytrace: BVH ray walk (reference)")
+      ->check(CLI::IsMember({"raster", "raytrace"}))
+      ->capture_default_str();
   cmd->add_option("--param", opt->params, "shadow-method parameter key=value (repeatable)");
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   cmd->add_option("--stats", opt->stats, "write timings, counters and run metadata as JSON");
@@ -63,14 +69,23 @@ Runner add_render(CLI::App& app) {
     int exit_code = 0;
     for (int f = 0; f < opt->frames; ++f) {
       const Camera cam = orbit_camera(scene.camera, opt->orbit, f, opt->frames);
-      const RenderResult r = render_reference(backend, data, cam, *method, scene.background);
+      nlohmann::json frame;
+      RenderResult r;
+      if (opt->renderer == "raster") {
+        RasterRenderResult rr = render_raster(backend, data, cam, *method, scene.background);
+        frame = rr.stats();
+        r = std::move(rr.render);
+      } else {
+        r = render_reference(backend, data, cam, *method, scene.background);
+        frame = r.stats();
+        frame["renderer"] = "raytrace";
+      }
       const std::string path = frame_path(opt->out, f, opt->frames);
       write_image(path, r.image);
-      nlohmann::json frame = r.stats();
       frame["image"] = path;
       stats["frames"].push_back(frame);
       log_info("render: frame " + std::to_string(f) + " " + std::to_string(r.image.width) + "x" +
-               std::to_string(r.image.height) + " on " + to_string(backend) + " with " + method->name() +
+               std::to_string(r.image.height) + " " + opt->renderer + " on " + to_string(backend) + " with " + method->name() +
                " shadows: " + std::to_string(r.milliseconds) + " ms -> " + path);
       if (r.counters.overflow_pixels || r.counters.oracle_flag_pixels) {
         log_warning("frame " + std::to_string(f) + ": " + std::to_string(r.counters.overflow_pixels) +
@@ -78,6 +93,7 @@ Runner add_render(CLI::App& app) {
                     std::to_string(r.counters.oracle_flag_pixels) + " raised oracle flags");
         exit_code = 3;
       }
+      stats["shadows"]["stats"] = method->stats();
       if (!opt->stats.empty()) {  // rewrite after every frame: nothing computed is lost
         std::ofstream out(opt->stats);
         if (!out) throw InputError(opt->stats, "cannot write stats file");

@@ -15,7 +15,9 @@ namespace {
 constexpr const char* kWhere = "raster projection";
 constexpr double kPi = 3.14159265358979323846;
 
-bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 void check_size(int width, int height) {
   if (width < 1 || height < 1 || width > kMaxRasterSide || height > kMaxRasterSide)
@@ -25,10 +27,12 @@ void check_size(int width, int height) {
 
 void check_depth_range(double near_plane, double far_plane) {
   if (!(near_plane > 0.0) || !std::isfinite(near_plane))
-    throw InputError(kWhere, "near plane must be a positive number, got " + std::to_string(near_plane));
+    throw InputError(kWhere,
+                     "near plane must be a positive number, got " + std::to_string(near_plane));
   if (!(far_plane > near_plane) || !std::isfinite(far_plane))
     throw InputError(kWhere, "far plane must be finite and beyond the near plane (" +
-                                 std::to_string(near_plane) + "), got " + std::to_string(far_plane));
+                                 std::to_string(near_plane) + "), got " +
+                                 std::to_string(far_plane));
 }
 
 struct Basis {
@@ -95,7 +99,8 @@ double fit_far_plane(const dvec3& eye, const dvec3& direction, const Aabb& bound
   if (!bounds.empty()) {
     const dvec3 forward = glm::normalize(direction);
     for (int corner = 0; corner < 8; ++corner) {
-      const dvec3 p((corner & 1) ? bounds.hi.x : bounds.lo.x, (corner & 2) ? bounds.hi.y : bounds.lo.y,
+      const dvec3 p((corner & 1) ? bounds.hi.x : bounds.lo.x,
+                    (corner & 2) ? bounds.hi.y : bounds.lo.y,
                     (corner & 4) ? bounds.hi.z : bounds.lo.z);
       farthest = std::max(farthest, glm::dot(forward, p - eye));
     }
@@ -131,7 +136,8 @@ RasterProjection make_perspective_projection(const dvec3& eye, const dvec3& dire
   check_size(width, height);
   check_depth_range(near_plane, far_plane);
   if (!(fov_y_deg > 0.0 && fov_y_deg < 180.0))
-    throw InputError(kWhere, "field of view must be in (0, 180) degrees, got " + std::to_string(fov_y_deg));
+    throw InputError(kWhere,
+                     "field of view must be in (0, 180) degrees, got " + std::to_string(fov_y_deg));
   if (!(aspect > 0.0) || !std::isfinite(aspect))
     throw InputError(kWhere, "aspect ratio must be positive, got " + std::to_string(aspect));
   const Basis b = view_basis(eye, direction, up);

@@ -18,8 +18,10 @@ TileLists TileLists::to_host() const {
   copy.tiles_y = tiles_y;
   const std::vector<uint32_t> host_offsets = offsets.to_vector();
   const std::vector<TileEntry> host_entries = entries.to_vector();
-  copy.offsets = Buffer<uint32_t>(Memory::host, std::span<const uint32_t>(host_offsets), "tile offsets");
-  copy.entries = Buffer<TileEntry>(Memory::host, std::span<const TileEntry>(host_entries), "tile entries");
+  copy.offsets =
+      Buffer<uint32_t>(Memory::host, std::span<const uint32_t>(host_offsets), "tile offsets");
+  copy.entries =
+      Buffer<TileEntry>(Memory::host, std::span<const TileEntry>(host_entries), "tile entries");
   copy.stats = stats;
   return copy;
 }

@@ -102,7 +102,9 @@ DV_HD inline void sort_entries(TileEntry* e, int64_t n) {
   }
 }
 
-Memory memory_of(Backend backend) { return backend == Backend::cuda ? Memory::device : Memory::host; }
+Memory memory_of(Backend backend) {
+  return backend == Backend::cuda ? Memory::device : Memory::host;
+}
 
 void check_view(const RasterView& view) {
   const RasterProjection& p = view.projection;
@@ -131,17 +133,18 @@ SetupResult setup_records(Backend backend, const RasterView& view) {
   const View<RasterTriangle> first = out.first.view();
   const View<uint8_t> pieces_of = piece_counts.view();
   SetupCounters* c = counters.data();
-  parallel_for(backend, "raster_setup", n, DV_KERNEL_LAMBDA(int64_t i) {
-    RasterTriangle head = empty_raster_triangle(uint32_t(i));
-    int pieces = 0;
-    const uint32_t flags = setup_source(view, i, [&](const RasterTriangle& t) {
-      if (pieces == 0) head = t;
-      ++pieces;
-    });
-    first[i] = head;
-    pieces_of[i] = uint8_t(pieces);
-    tally(c, flags, pieces);
-  });
+  parallel_for(
+      backend, "raster_setup", n, DV_KERNEL_LAMBDA(int64_t i) {
+        RasterTriangle head = empty_raster_triangle(uint32_t(i));
+        int pieces = 0;
+        const uint32_t flags = setup_source(view, i, [&](const RasterTriangle& t) {
+          if (pieces == 0) head = t;
+          ++pieces;
+        });
+        first[i] = head;
+        pieces_of[i] = uint8_t(pieces);
+        tally(c, flags, pieces);
+      });
   out.counters = counters.to_vector()[0];
   const int64_t extra_count = int64_t(out.counters.extra_pieces);
   out.extra = Buffer<RasterTriangle>(memory, extra_count, "raster extra pieces");
@@ -150,17 +153,18 @@ SetupResult setup_records(Backend backend, const RasterView& view) {
   cursor.fill_zero();
   const View<RasterTriangle> extra = out.extra.view();
   unsigned long long* next = cursor.data();
-  parallel_for(backend, "raster_setup_extra", n, DV_KERNEL_LAMBDA(int64_t i) {
-    const int pieces = pieces_of[i];
-    if (pieces <= 1) return;
-    const unsigned long long base = atomic_add(next, (unsigned long long)(pieces - 1));
-    int k = 0;
-    setup_source(view, i, [&](const RasterTriangle& t) {
-      const int64_t slot = int64_t(base) + k - 1;
-      if (k > 0 && slot < extra.size) extra[slot] = t;
-      ++k;
-    });
-  });
+  parallel_for(
+      backend, "raster_setup_extra", n, DV_KERNEL_LAMBDA(int64_t i) {
+        const int pieces = pieces_of[i];
+        if (pieces <= 1) return;
+        const unsigned long long base = atomic_add(next, (unsigned long long)(pieces - 1));
+        int k = 0;
+        setup_source(view, i, [&](const RasterTriangle& t) {
+          const int64_t slot = int64_t(base) + k - 1;
+          if (k > 0 && slot < extra.size) extra[slot] = t;
+          ++k;
+        });
+      });
   return out;
 }
 
@@ -170,7 +174,8 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   require_backend(backend);
   check_view(view);
   if (options.max_entries < 0)
-    throw InputError(kWhere, "max_entries must not be negative, got " + std::to_string(options.max_entries));
+    throw InputError(
+        kWhere, "max_entries must not be negative, got " + std::to_string(options.max_entries));
   const Memory memory = memory_of(backend);
   const int width = view.projection.width, height = view.projection.height;
   TileLists lists;
@@ -187,13 +192,14 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   Buffer<uint32_t> tile_counts(memory, tiles, "raster tile counts");
   tile_counts.fill_zero();
   uint32_t* counts = tile_counts.data();
-  parallel_for(backend, "raster_count", records.size(), DV_KERNEL_LAMBDA(int64_t r) {
-    const RasterTriangle& t = records[r];
-    for (int ty = t.tile_y0; ty <= t.tile_y1; ++ty)
-      for (int tx = t.tile_x0; tx <= t.tile_x1; ++tx)
-        if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
-          atomic_add(counts + (int64_t(ty) * tiles_x + tx), 1u);
-  });
+  parallel_for(
+      backend, "raster_count", records.size(), DV_KERNEL_LAMBDA(int64_t r) {
+        const RasterTriangle& t = records[r];
+        for (int ty = t.tile_y0; ty <= t.tile_y1; ++ty)
+          for (int tx = t.tile_x0; tx <= t.tile_x1; ++tx)
+            if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
+              atomic_add(counts + (int64_t(ty) * tiles_x + tx), 1u);
+      });
 
   // Exclusive scan on the host; tiles whose list does not fit under the limit (and all tiles
   // after the first such one) keep empty ranges.
@@ -218,7 +224,8 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
     }
   }
   offsets[size_t(tiles)] = uint32_t(stored);
-  lists.offsets = Buffer<uint32_t>(memory, std::span<const uint32_t>(offsets), "raster tile offsets");
+  lists.offsets =
+      Buffer<uint32_t>(memory, std::span<const uint32_t>(offsets), "raster tile offsets");
   lists.entries = Buffer<TileEntry>(memory, int64_t(stored), "raster tile entries");
 
   Buffer<uint32_t> tile_fill(memory, tiles, "raster tile cursors");
@@ -226,20 +233,23 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   uint32_t* fill = tile_fill.data();
   const View<const uint32_t> range = lists.offsets.const_view();
   const View<TileEntry> entries = lists.entries.view();
-  parallel_for(backend, "raster_write", records.size(), DV_KERNEL_LAMBDA(int64_t r) {
-    const RasterTriangle& t = records[r];
-    for (int ty = t.tile_y0; ty <= t.tile_y1; ++ty)
-      for (int tx = t.tile_x0; tx <= t.tile_x1; ++tx) {
-        const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
-        if (mask == 0) continue;
-        const int64_t tile = int64_t(ty) * tiles_x + tx;
-        const uint32_t slot = atomic_add(fill + tile, 1u);
-        if (slot < range[tile + 1] - range[tile]) entries[range[tile] + slot] = {mask, t.source, 0u};
-      }
-  });
-  parallel_for(backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
-    sort_entries(entries.data + range[t], int64_t(range[t + 1] - range[t]));
-  });
+  parallel_for(
+      backend, "raster_write", records.size(), DV_KERNEL_LAMBDA(int64_t r) {
+        const RasterTriangle& t = records[r];
+        for (int ty = t.tile_y0; ty <= t.tile_y1; ++ty)
+          for (int tx = t.tile_x0; tx <= t.tile_x1; ++tx) {
+            const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
+            if (mask == 0) continue;
+            const int64_t tile = int64_t(ty) * tiles_x + tx;
+            const uint32_t slot = atomic_add(fill + tile, 1u);
+            if (slot < range[tile + 1] - range[tile])
+              entries[range[tile] + slot] = {mask, t.source, 0u};
+          }
+      });
+  parallel_for(
+      backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
+        sort_entries(entries.data + range[t], int64_t(range[t + 1] - range[t]));
+      });
   if (backend == Backend::cuda) device_synchronize(kWhere);
 
   const SetupCounters& c = setup.counters;
@@ -248,7 +258,8 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   s.culled_offscreen = int64_t(c.culled_offscreen);
   s.culled_degenerate = int64_t(c.culled_degenerate);
   s.culled_invalid = int64_t(c.culled_invalid);
-  s.triangles_culled = s.culled_behind + s.culled_offscreen + s.culled_degenerate + s.culled_invalid;
+  s.triangles_culled =
+      s.culled_behind + s.culled_offscreen + s.culled_degenerate + s.culled_invalid;
   s.triangles_rasterized = s.triangles_in - s.triangles_culled;
   s.triangles_clipped = int64_t(c.clipped);
   s.clipped_near = int64_t(c.clipped_near);
@@ -273,9 +284,10 @@ Buffer<uint32_t> count_pixel_fragments(Backend backend, const TileLists& lists) 
   Buffer<uint32_t> counts(memory, int64_t(lists.width) * lists.height, "fragment counts");
   const View<uint32_t> out = counts.view();
   const TileListsView v = lists.view();
-  parallel_for(backend, "raster_fragment_count", out.size, DV_KERNEL_LAMBDA(int64_t i) {
-    out[i] = uint32_t(fragment_count(v, int(i % width), int(i / width)));
-  });
+  parallel_for(
+      backend, "raster_fragment_count", out.size, DV_KERNEL_LAMBDA(int64_t i) {
+        out[i] = uint32_t(fragment_count(v, int(i % width), int(i / width)));
+      });
   if (backend == Backend::cuda) device_synchronize("count_pixel_fragments");
   return counts;
 }

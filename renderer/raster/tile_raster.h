@@ -144,7 +144,8 @@ struct RasterOptions {
 
 // Bins the view's triangles into tile lists. The triangles and vertices must be in the
 // backend's memory; the lists come back in the same memory.
-TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterOptions& options = {});
+TileLists rasterize_tiles(Backend backend, const RasterView& view,
+                          const RasterOptions& options = {});
 TileLists rasterize_tiles(Backend backend, const SceneView& scene,
                           const RasterProjection& projection, const RasterOptions& options = {});
 

@@ -57,7 +57,9 @@ struct ClipVertex {
   double x, y, w;
 };
 
-DV_HD inline bool finite_number(double v) { return v - v == 0.0; }
+DV_HD inline bool finite_number(double v) {
+  return v - v == 0.0;
+}
 
 // Twice the signed area of (a, b, c) in snapped units; |coordinates| < 2^28 keeps it < 2^59.
 DV_HD inline int64_t area2(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t cx, int64_t cy) {
@@ -72,10 +74,14 @@ DV_HD inline int64_t floor_div(int64_t a, int64_t b) {  // b > 0
 // Guard-band plane k of clip space: |x| <= gx * w, |y| <= gy * w.
 DV_HD inline double guard_distance(const ClipVertex& v, int plane, double gx, double gy) {
   switch (plane) {
-    case 0: return gx * v.w - v.x;
-    case 1: return gx * v.w + v.x;
-    case 2: return gy * v.w - v.y;
-    default: return gy * v.w + v.y;
+    case 0:
+      return gx * v.w - v.x;
+    case 1:
+      return gx * v.w + v.x;
+    case 2:
+      return gy * v.w - v.y;
+    default:
+      return gy * v.w + v.y;
   }
 }
 
@@ -257,7 +263,7 @@ DV_HD inline uint64_t tile_coverage(const RasterTriangle& t, int tile_x, int til
     const int j = k == 2 ? 0 : k + 1;
     const int64_t dx = t.x[j] - t.x[k], dy = t.y[j] - t.y[k];
     // E(p) = cross(v_j - v_k, p - v_k); covered when E >= 0 (top-left edge) or E >= 1.
-    const int64_t bias = 0;
+    const int64_t bias = ((t.top_left >> k) & 1u) ? 0 : 1;
     e[k] = dx * (cy - t.y[k]) - dy * (cx - t.x[k]) - bias;
     sx[k] = -dy * step;
     sy[k] = dx * step;

@@ -19,6 +19,8 @@ class ShadowMethod {
   virtual ~ShadowMethod() = default;
   virtual std::string name() const = 0;
   virtual nlohmann::json params() const = 0;
+  // What the method did so far (maps built, bytes, build times); empty for stateless methods.
+  virtual nlohmann::json stats() const { return nlohmann::json::object(); }
   // `scene` lives in the memory of `backend`; the returned source refers into it (and into
   // whatever the method built), so it stays valid while both live.
   virtual ShadowSourceVariant prepare(const SceneData& scene, Backend backend) = 0;
@@ -29,5 +31,6 @@ Registry<ShadowMethod>& shadow_registry();
 // Registration functions, one per method file; shadow_registry() calls each once.
 void register_no_shadows(Registry<ShadowMethod>& registry);
 void register_reference_shadows(Registry<ShadowMethod>& registry);
+void register_shadow_maps(Registry<ShadowMethod>& registry);
 
 }  // namespace dv

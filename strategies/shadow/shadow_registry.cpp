@@ -8,6 +8,7 @@ Registry<ShadowMethod>& shadow_registry() {
     Registry<ShadowMethod> r("shadow method");
     register_no_shadows(r);
     register_reference_shadows(r);
+    register_shadow_maps(r);
     return r;
   }();
   return registry;

@@ -13,6 +13,7 @@
 #include "core/hd.h"
 #include "oracle/transmittance.h"
 #include "scene/scene_view.h"
+#include "strategies/shadow/shadow_map_source.h"
 
 namespace dv {
 
@@ -37,6 +38,6 @@ struct ReferenceShadowSource {
   }
 };
 
-using ShadowSourceVariant = std::variant<NoShadowSource, ReferenceShadowSource>;
+using ShadowSourceVariant = std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource>;
 
 }  // namespace dv

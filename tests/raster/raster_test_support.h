@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,15 @@
 #include "renderer/camera_rays.h"
 #include "renderer/raster/tile_raster.h"
 #include "scene/scene.h"
+
+namespace dv {
+
+// Test names and failure messages say "cpu" / "cuda" instead of a byte dump.
+inline void PrintTo(Backend backend, std::ostream* out) {
+  *out << to_string(backend);
+}
+
+}  // namespace dv
 
 namespace dv::test {
 
@@ -49,7 +59,8 @@ inline RasterRun rasterize(Backend backend, const Soup& soup, const RasterProjec
                            const RasterOptions& options = {}) {
   const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
   const Buffer<dvec3> vertices(memory, std::span<const dvec3>(soup.vertices), "test vertices");
-  const Buffer<u32vec3> triangles(memory, std::span<const u32vec3>(soup.triangles), "test triangles");
+  const Buffer<u32vec3> triangles(memory, std::span<const u32vec3>(soup.triangles),
+                                  "test triangles");
   const RasterView view{projection, vertices.const_view(), triangles.const_view()};
   const TileLists lists = rasterize_tiles(backend, view, options);
   RasterRun run;
@@ -114,7 +125,8 @@ enum class Side { outside, inside, ambiguous };
 
 // Where point p lies relative to a convex polygon (either orientation), with a band of
 // `tolerance` around each edge line counted as ambiguous.
-inline Side classify(const std::vector<dvec2>& polygon, const dvec2& p, double tolerance = kEdgeTolerance) {
+inline Side classify(const std::vector<dvec2>& polygon, const dvec2& p,
+                     double tolerance = kEdgeTolerance) {
   const size_t n = polygon.size();
   if (n < 3) return Side::outside;
   double area = 0.0;
@@ -138,7 +150,9 @@ inline Side classify(const std::vector<dvec2>& polygon, const dvec2& p, double t
   return Side::ambiguous;
 }
 
-inline dvec2 pixel_center(int x, int y) { return {x + 0.5, y + 0.5}; }
+inline dvec2 pixel_center(int x, int y) {
+  return {x + 0.5, y + 0.5};
+}
 
 // Reference coverage of a world polygon seen by `camera`: near-clipped, projected.
 inline std::vector<dvec2> project_polygon(const CameraView& c, const std::vector<dvec3>& polygon) {

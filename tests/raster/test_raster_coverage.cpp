@@ -27,8 +27,8 @@ void expect_counts(const test::RasterRun& run, const std::vector<int>& expected)
     for (int x = 0; x < run.width; ++x) {
       const int want = expected[size_t(y) * run.width + x];
       if (want >= 0 && int(run.count(x, y)) != want && ++mismatches <= 10)
-        ADD_FAILURE() << "pixel (" << x << ", " << y << "): " << run.count(x, y) << " fragments, reference "
-                      << want;
+        ADD_FAILURE() << "pixel (" << x << ", " << y << "): " << run.count(x, y)
+                      << " fragments, reference " << want;
     }
   EXPECT_EQ(mismatches, 0);
 }
@@ -38,7 +38,8 @@ TEST_P(Coverage, SubdividedQuadCoversItsOutlineExactlyOnce) {
   const dmat4 placement = odd_rotation();
   test::Soup soup;
   soup.add(make_subdivided_quad(2.6, 1800), placement);
-  const test::RasterRun run = test::rasterize(backend(), soup, make_camera_projection(camera, 10.0));
+  const test::RasterRun run =
+      test::rasterize(backend(), soup, make_camera_projection(camera, 10.0));
   const CameraView cv = make_camera_view(camera);
   std::vector<dvec3> outline;
   for (const dvec2 corner : {dvec2(-1, -1), dvec2(1, -1), dvec2(1, 1), dvec2(-1, 1)})
@@ -49,7 +50,9 @@ TEST_P(Coverage, SubdividedQuadCoversItsOutlineExactlyOnce) {
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
       const Side side = test::classify(projected, test::pixel_center(x, y));
-      expected[size_t(y) * camera.width + x] = side == Side::inside ? 1 : side == Side::outside ? 0 : -1;
+      expected[size_t(y) * camera.width + x] = side == Side::inside    ? 1
+                                               : side == Side::outside ? 0
+                                                                       : -1;
       inside += side == Side::inside;
       outside += side == Side::outside;
       EXPECT_LE(run.count(x, y), 1u) << "pixel (" << x << ", " << y << ") covered twice";
@@ -66,11 +69,13 @@ TEST_P(Coverage, ClosedSphereCoversEveryPixelTwiceWithoutCracks) {
   const Camera camera = test::test_camera({0.4, 0.3, 2.6}, {0.05, -0.04, 0.0}, 160, 120);
   test::Soup soup;
   soup.add(make_icosphere(0.8, 3));
-  const test::RasterRun run = test::rasterize(backend(), soup, make_camera_projection(camera, 10.0));
+  const test::RasterRun run =
+      test::rasterize(backend(), soup, make_camera_projection(camera, 10.0));
   const CameraView cv = make_camera_view(camera);
   std::vector<std::vector<dvec2>> projected;
   for (const u32vec3& t : soup.triangles)
-    projected.push_back(test::project_polygon(cv, {soup.vertices[t.x], soup.vertices[t.y], soup.vertices[t.z]}));
+    projected.push_back(
+        test::project_polygon(cv, {soup.vertices[t.x], soup.vertices[t.y], soup.vertices[t.z]}));
   std::vector<int> expected(size_t(camera.width) * camera.height);
   int covered = 0, ambiguous = 0;
   for (int y = 0; y < camera.height; ++y)
@@ -117,7 +122,8 @@ TEST_P(Coverage, JitteredGridOnPixelCentresIsWatertight) {
         soup.triangles.push_back(t);
       }
     }
-  const test::RasterRun run = test::rasterize(backend(), soup, make_screen_projection(width, height));
+  const test::RasterRun run =
+      test::rasterize(backend(), soup, make_screen_projection(width, height));
   // Outline [3.5, 63.5] x [2.5, 46.5]: centres on the top and left sides are inside.
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -150,13 +156,13 @@ TEST_P(Coverage, TopLeftRuleOnEdgesThroughPixelCentres) {
       if (in_square) want = {x >= y ? 0u : 1u};  // the diagonal is a left edge of triangle 0
       EXPECT_EQ(owners(x, y), want) << "pixel (" << x << ", " << y << ")";
     }
-  EXPECT_EQ(owners(13, 5), Ids{2});   // left edge
-  EXPECT_EQ(owners(14, 8), Ids{});    // bottom edge y = 8.5
+  EXPECT_EQ(owners(13, 5), Ids{2});  // left edge
+  EXPECT_EQ(owners(14, 8), Ids{});   // bottom edge y = 8.5
   EXPECT_EQ(owners(14, 7), Ids{2});
   EXPECT_EQ(owners(14, 10), Ids{3});  // top edge y = 10.5
   EXPECT_EQ(owners(19, 10), Ids{3});
-  EXPECT_EQ(owners(20, 10), Ids{});   // the top edge's right end lies on the slanted edge
-  EXPECT_EQ(owners(13, 14), Ids{});   // bottom vertex
+  EXPECT_EQ(owners(20, 10), Ids{});  // the top edge's right end lies on the slanted edge
+  EXPECT_EQ(owners(13, 14), Ids{});  // bottom vertex
 }
 
 TEST_P(Coverage, FanAroundAPixelCentreCoversItOnce) {
@@ -180,9 +186,9 @@ TEST_P(Coverage, FanAroundAPixelCentreCoversItOnce) {
 
 TEST_P(Coverage, DegenerateTrianglesCoverNothing) {
   test::Soup soup;
-  soup.add_triangle({1.5, 1.5, 0}, {5.5, 3.5, 0}, {9.5, 5.5, 0});          // collinear
-  soup.add_triangle({2.0, 7.0, 0}, {2.0, 7.0, 0}, {12.0, 9.0, 0});         // repeated vertex
-  soup.add_triangle({4.0, 4.0, 0}, {4.0, 4.0, 0}, {4.0, 4.0, 0});          // a point
+  soup.add_triangle({1.5, 1.5, 0}, {5.5, 3.5, 0}, {9.5, 5.5, 0});        // collinear
+  soup.add_triangle({2.0, 7.0, 0}, {2.0, 7.0, 0}, {12.0, 9.0, 0});       // repeated vertex
+  soup.add_triangle({4.0, 4.0, 0}, {4.0, 4.0, 0}, {4.0, 4.0, 0});        // a point
   soup.add_triangle({6.5, 6.5, 0}, {6.5001, 6.5, 0}, {6.5, 6.5001, 0});  // zero after snapping
   const test::RasterRun run = test::rasterize(backend(), soup, make_screen_projection(16, 16));
   for (uint32_t c : run.counts) EXPECT_EQ(c, 0u);
@@ -195,7 +201,8 @@ TEST_P(Coverage, HugeTriangleCoversTheImageWithoutOverflow) {
   const Camera camera = test::test_camera({0.0, 0.0, 5.0}, {0.3, 0.1, 0.0}, 97, 64);
   test::Soup soup;
   soup.add_triangle({-1e6, -1e6, 0.0}, {1e6, -1e6, 0.0}, {0.0, 1e6, 0.0});
-  const test::RasterRun run = test::rasterize(backend(), soup, make_camera_projection(camera, 100.0));
+  const test::RasterRun run =
+      test::rasterize(backend(), soup, make_camera_projection(camera, 100.0));
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) EXPECT_EQ(run.count(x, y), 1u) << x << ", " << y;
   EXPECT_EQ(run.lists.stats.clipped_guard, 1);
@@ -216,7 +223,8 @@ TEST_P(Coverage, HugeFloorCrossingTheNearPlaneMatchesTheClippedPolygon) {
       {{0.0, -1.0, -1e6}, {1e6, -1.0, 1e6}, {3e6, -1.0, -2e6}},
       {{-2e6, -1.0, -3e6}, {-1e6, -1.0, 1e6}, {0.0, -1.0, -1e6}}};
   for (const auto& t : floor) soup.add_triangle(t[0], t[1], t[2]);
-  const test::RasterRun run = test::rasterize(backend(), soup, make_camera_projection(camera, 10.0));
+  const test::RasterRun run =
+      test::rasterize(backend(), soup, make_camera_projection(camera, 10.0));
   const CameraView cv = make_camera_view(camera);
   std::vector<int> expected(size_t(camera.width) * camera.height);
   int covered = 0;
@@ -245,7 +253,8 @@ TEST_P(Coverage, NearPlaneClipsExactlyAndCullsWhatIsBehind) {
   test::Soup soup;
   soup.add_triangle(crossing[0], crossing[1], crossing[2]);
   soup.add_triangle({-1.0, -1.0, 3.6}, {1.0, 0.0, 3.6}, {0.0, 1.0, 9.0});  // behind the near plane
-  const test::RasterRun run = test::rasterize(backend(), soup, make_camera_projection(camera, 10.0));
+  const test::RasterRun run =
+      test::rasterize(backend(), soup, make_camera_projection(camera, 10.0));
   const std::vector<dvec2> clipped = test::project_polygon(make_camera_view(camera), crossing);
   ASSERT_EQ(clipped.size(), 4u);
   std::vector<int> expected(size_t(camera.width) * camera.height);
@@ -253,7 +262,9 @@ TEST_P(Coverage, NearPlaneClipsExactlyAndCullsWhatIsBehind) {
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
       const Side side = test::classify(clipped, test::pixel_center(x, y));
-      expected[size_t(y) * camera.width + x] = side == Side::inside ? 1 : side == Side::outside ? 0 : -1;
+      expected[size_t(y) * camera.width + x] = side == Side::inside    ? 1
+                                               : side == Side::outside ? 0
+                                                                       : -1;
       inside += side == Side::inside;
     }
   expect_counts(run, expected);

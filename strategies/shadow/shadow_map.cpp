@@ -1,0 +1,145 @@
+// Shadow method "shadowmap": conventional depth shadow maps rendered with the tile rasterizer
+// from each light (see shadow_map_source.h for the lookup). Parameters: res (texels per side,
+// default 1024), pcf (kernel side, default 2; 1 = unfiltered), bias (world units, default
+// 1e-4 of the scene diagonal), slope (texel sizes added to the bias, default 1.5). Near and far planes are fitted to the casters (the scene's
+// bounds); maps are rebuilt only when the scene data or backend changes.
+#include <cmath>
+
+#include "core/buffer.h"
+#include "core/pass_timer.h"
+#include "renderer/raster/tile_raster.h"
+#include "strategies/shadow/shadow_map_source.h"
+#include "strategies/shadow/shadow_method.h"
+
+namespace dv {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Nearest caster depth per texel of one face.
+void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face, View<float> depths) {
+  const TileLists lists = rasterize_tiles(backend, s, face.projection);
+  if (lists.stats.overflow) throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
+  const TileListsView tiles = lists.view();
+  const int res = face.projection.width;
+  parallel_for(backend, "shadow_map_depth", int64_t(res) * res, DV_KERNEL_LAMBDA(int64_t i) {
+    const int x = int(i % res), y = int(i / res);
+    const PixelRay ray = pixel_ray(face.projection, x, y);
+    double nearest = 1e300;
+    for_each_fragment(tiles, x, y, [&](uint32_t tri) {
+      if (s.objects[s.triangle_object[tri]].alpha <= 0.0) return;
+      const u32vec3 idx = s.triangles[tri];
+      const dvec3 p0 = s.vertices[idx.x];
+      const dvec3 n = glm::cross(s.vertices[idx.y] - p0, s.vertices[idx.z] - p0);
+      const double facing = glm::dot(n, ray.direction);
+      if (facing == 0.0) return;
+      const double t = glm::dot(n, p0 - ray.origin) / facing;
+      nearest = min_value(nearest, shadow_depth(face, ray.origin + ray.direction * t));
+    });
+    depths[face.offset + i] = nearest >= 1e300 ? INFINITY : float(nearest);
+  });
+}
+
+class ShadowMapMethod final : public ShadowMethod {
+ public:
+  explicit ShadowMapMethod(const StrategyParams& p)
+      : res_(p.integer("res", 1024)),
+        pcf_(p.integer("pcf", 2)),
+        bias_(p.number("bias", -1.0)),
+        slope_(p.number("slope", 1.5)) {
+    if (res_ < 1 || res_ > kMaxRasterSide) throw InputError("shadowmap res", "must lie in [1, 65536]");
+    if (pcf_ < 1 || pcf_ > 16) throw InputError("shadowmap pcf", "must lie in [1, 16]");
+  }
+  std::string name() const override { return "shadowmap"; }
+  nlohmann::json params() const override {
+    return {{"res", res_}, {"pcf", pcf_}, {"bias", bias_ >= 0.0 ? nlohmann::json(bias_) : nlohmann::json("auto")},
+            {"slope", slope_}};
+  }
+  nlohmann::json stats() const override {
+    return {{"maps_built", builds_}, {"prepare_calls", prepare_calls_}, {"faces", faces_built_},
+            {"bytes", depths_.bytes()}, {"last_build_ms", build_ms_}};
+  }
+
+  ShadowSourceVariant prepare(const SceneData& scene, Backend backend) override {
+    if (prepared_for_ != &scene || backend_ != backend) build(scene, backend);
+    ++prepare_calls_;
+    return source_;
+  }
+
+ private:
+  std::vector<ShadowFace> faces_for(const LightView& l, const Aabb& bounds, double diagonal) const {
+    const double near_min = 1e-4 * diagonal + 1e-9;
+    std::vector<ShadowFace> faces;
+    auto perspective = [&](const dvec3& dir, const dvec3& up, double fov) {
+      const double far = fit_far_plane(l.position, dir, bounds, near_min);
+      const double texel = 2.0 * std::tan(0.5 * fov * kPi / 180.0) / res_;
+      ShadowFace f{make_perspective_projection(l.position, dir, up, fov, 1.0, near_min, far, res_, res_),
+                   l.position, dir, false, texel, 0};
+      faces.push_back(f);
+    };
+    if (l.type == LightType::spot) {
+      perspective(l.direction, dvec3(0, 1, 0), 2.0 * std::acos(l.cos_cutoff) * 180.0 / kPi);
+    } else if (l.type == LightType::omni) {
+      const dvec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+      for (const dvec3& a : axes) perspective(a, a.y != 0.0 ? dvec3(0, 0, 1) : dvec3(0, 1, 0), 90.0);
+    } else {
+      // Orthographic box around the casters: centred on the bounds, as wide as their sphere.
+      const double radius = 0.5 * diagonal + 1e-9;
+      const dvec3 eye = bounds.center() - l.direction * (radius + 2.0 * near_min);
+      const ShadowFace f{make_orthographic_projection(eye, l.direction, dvec3(0, 1, 0), radius, radius, near_min,
+                                                      2.0 * radius + 3.0 * near_min, res_, res_),
+                         eye, l.direction, true, 2.0 * radius / res_, 0};
+      faces.push_back(f);
+    }
+    return faces;
+  }
+
+  void build(const SceneData& scene, Backend backend) {
+    const SceneView& s = scene.view();
+    PassTimer timer(backend);
+    const std::vector<LightView>& lights = scene.host_lights();
+    std::vector<ShadowFace> faces;
+    std::vector<ShadowLight> light_faces;
+    for (const LightView& l : lights) {
+      std::vector<ShadowFace> f = faces_for(l, s.bounds, s.diagonal);
+      light_faces.push_back({int32_t(faces.size()), int32_t(f.size())});
+      faces.insert(faces.end(), f.begin(), f.end());
+    }
+    const int64_t texels = int64_t(res_) * res_;
+    for (size_t i = 0; i < faces.size(); ++i) faces[i].offset = int64_t(i) * texels;
+    const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+    depths_ = Buffer<float>(memory, texels * int64_t(faces.size()), "shadow map depths");
+    for (const ShadowFace& f : faces) render_depth_face(backend, s, f, depths_.view());
+    faces_ = Buffer<ShadowFace>(memory, faces, "shadow map faces");
+    light_faces_ = Buffer<ShadowLight>(memory, light_faces, "shadow map lights");
+    const double bias = bias_ >= 0.0 ? bias_ : 1e-4 * s.diagonal;
+    source_ = ShadowMapSource{s.lights, light_faces_.const_view(), faces_.const_view(), depths_.const_view(),
+                              res_, pcf_, bias, slope_};
+    prepared_for_ = &scene;
+    backend_ = backend;
+    ++builds_;
+    build_ms_ = timer.stop();
+    faces_built_ = int(faces.size());
+  }
+
+  int res_, pcf_;
+  double bias_, slope_;
+  Buffer<float> depths_;
+  Buffer<ShadowFace> faces_;
+  Buffer<ShadowLight> light_faces_;
+  ShadowMapSource source_{};
+  const SceneData* prepared_for_ = nullptr;
+  Backend backend_ = Backend::cpu;
+  int builds_ = 0, prepare_calls_ = 0, faces_built_ = 0;
+  double build_ms_ = 0.0;
+};
+
+}  // namespace
+
+void register_shadow_maps(Registry<ShadowMethod>& registry) {
+  registry.add("shadowmap", "depth shadow maps from the tile rasterizer, PCF (params: res, pcf, bias)",
+               [](const StrategyParams& p) { return std::make_unique<ShadowMapMethod>(p); });
+}
+
+}  // namespace dv

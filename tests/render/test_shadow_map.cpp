@@ -1,0 +1,96 @@
+// The shadowmap method against the exact oracle on opaque-only scenes, for spot, omni (six
+// faces) and directional lights: answers agree except near shadow edges (aliasing), and the
+// maps are built once however often the method is prepared.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "strategies/shadow/probe.h"
+#include "tests/support/scene_builder.h"
+
+namespace dv {
+namespace {
+
+using test::SceneBuilder;
+
+// An opaque box and sphere over a floor; the light is added by the caller.
+SceneBuilder opaque_scene() {
+  SceneBuilder b;
+  b.add(make_box({-3, -0.1, -3}, {3, 0, 3}));
+  b.add(make_box({-0.9, 0, -0.4}, {-0.3, 0.8, 0.2}));
+  Object& ball = b.add(make_icosphere(0.35, 3));
+  ball.transform[3] = dvec4(0.6, 0.6, 0.3, 1.0);
+  return b;
+}
+
+struct Agreement {
+  double fraction;  // answers within 0.5 of the oracle
+  int shadowed;     // oracle answers below 0.5
+};
+
+Agreement compare_on_floor(SceneBuilder& b, const std::string& params) {
+  const SceneData data = b.build();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  std::vector<dvec3> points;
+  for (int i = 0; i < 4000; ++i) points.push_back({u(rng), 1e-9, u(rng)});
+  auto reference = shadow_registry().create("reference");
+  std::vector<std::string> items;
+  for (size_t start = 0; start < params.size();) {
+    size_t end = params.find(' ', start);
+    if (end == std::string::npos) end = params.size();
+    items.push_back(params.substr(start, end - start));
+    start = end + 1;
+  }
+  auto shadowmap = shadow_registry().create("shadowmap", StrategyParams::parse(items));
+  const ProbeResults exact = probe_transmittance(Backend::cpu, data, *reference, points);
+  const ProbeResults approx = probe_transmittance(Backend::cpu, data, *shadowmap, points);
+  int agree = 0, shadowed = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    agree += std::abs(exact.transmittance[i] - approx.transmittance[i]) < 0.5;
+    shadowed += exact.transmittance[i] < 0.5;
+  }
+  ::testing::Test::RecordProperty("agreement", std::to_string(double(agree) / points.size()));
+  return {double(agree) / points.size(), shadowed};
+}
+
+TEST(ShadowMap, SpotMatchesOracleUpToEdges) {
+  SceneBuilder b = opaque_scene();
+  b.spot({0.5, 4.0, 0.8}, {-0.1, -1.0, -0.15}, 45.0);
+  const Agreement a = compare_on_floor(b, "res=1024 pcf=1");
+  EXPECT_GT(a.fraction, 0.985);
+  EXPECT_GT(a.shadowed, 100);
+}
+
+TEST(ShadowMap, OmniUsesSixFaces) {
+  SceneBuilder b = opaque_scene();
+  b.omni({0.2, 1.6, -0.1});
+  const Agreement a = compare_on_floor(b, "res=512 pcf=2");
+  EXPECT_GT(a.fraction, 0.98);
+  EXPECT_GT(a.shadowed, 100);
+}
+
+TEST(ShadowMap, DirectionalIsOrthographic) {
+  SceneBuilder b = opaque_scene();
+  b.directional({0.4, -1.0, 0.3});
+  const Agreement a = compare_on_floor(b, "res=1024 pcf=1");
+  EXPECT_GT(a.fraction, 0.985);
+  EXPECT_GT(a.shadowed, 100);
+}
+
+TEST(ShadowMap, MapsAreBuiltOncePerScene) {
+  SceneBuilder b = opaque_scene();
+  b.spot({0.5, 4.0, 0.8}, {0.0, -1.0, 0.0}, 40.0);
+  const SceneData data = b.build();
+  auto method = shadow_registry().create("shadowmap", StrategyParams::parse({"res=64"}));
+  method->prepare(data, Backend::cpu);
+  method->prepare(data, Backend::cpu);
+  EXPECT_EQ(method->stats()["maps_built"], 1);
+  EXPECT_EQ(method->stats()["prepare_calls"], 2);
+  EXPECT_EQ(method->stats()["bytes"], 64 * 64 * 4);
+  EXPECT_THROW(shadow_registry().create("shadowmap", StrategyParams::parse({"res=0"})), InputError);
+  EXPECT_THROW(shadow_registry().create("shadowmap", StrategyParams::parse({"pcf=2", "eps=1"})), InputError);
+}
+
+}  // namespace
+}  // namespace dv
