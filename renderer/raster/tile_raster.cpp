@@ -3,8 +3,8 @@
 //   setup   one thread per source triangle: clip, snap, orient; the first piece goes to the
 //           triangle's own record, further pieces of clipped triangles are counted;
 //   extras  only if clipping made extra pieces: they are set up again and appended;
-//   count   one thread per record: per tile of its box, a coverage mask; non-zero ones are
-//           counted per tile (atomic);
+//   count   per record, a few threads (a warp on CUDA) share the tiles of its box: per tile a
+//           coverage mask; non-zero ones are counted per tile (atomic);
 //   scan    on the host over the per-tile counts (the array is small), with the entry limit;
 //   write   the same masks again, each stored at its tile's next free slot (atomic cursor);
 //   sort    one thread per tile: entries ordered by (triangle, mask), so the arbitrary order
@@ -65,6 +65,23 @@ struct Records {
     return r < first.size ? first[r] : extra[r - first.size];
   }
 };
+
+// The tiles of a record's box, shared among `lanes` consecutive threads (a warp on CUDA) so
+// that one large triangle does not hold up a whole launch: lane l takes tiles l, l + lanes, ...
+template <class Visit>
+DV_HD void for_each_box_tile(const RasterTriangle& t, int lane, int lanes, Visit&& visit) {
+  if (t.tile_x0 > t.tile_x1 || t.tile_y0 > t.tile_y1) return;
+  const int64_t columns = t.tile_x1 - t.tile_x0 + 1;
+  const int64_t count = columns * (t.tile_y1 - t.tile_y0 + 1);
+  for (int64_t k = lane; k < count; k += lanes)
+    visit(t.tile_x0 + int(k % columns), t.tile_y0 + int(k / columns));
+}
+
+// CPU threads take chunks of consecutive indices, so a few lanes there spread large boxes too
+// (and CI exercises the striding).
+int box_lanes(Backend backend) {
+  return backend == Backend::cuda ? 32 : 4;
+}
 
 DV_HD inline bool entry_less(const TileEntry& a, const TileEntry& b) {
   return a.triangle != b.triangle ? a.triangle < b.triangle : a.mask < b.mask;
@@ -185,6 +202,7 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   lists.tiles_y = (height + kTileSide - 1) / kTileSide;
   const int64_t tiles = lists.tile_count();
   const int tiles_x = lists.tiles_x;
+  const int lanes = box_lanes(backend);
 
   const SetupResult setup = setup_records(backend, view);
   const Records records{setup.first.const_view(), setup.extra.const_view()};
@@ -193,12 +211,12 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   tile_counts.fill_zero();
   uint32_t* counts = tile_counts.data();
   parallel_for(
-      backend, "raster_count", records.size(), DV_KERNEL_LAMBDA(int64_t r) {
-        const RasterTriangle& t = records[r];
-        for (int ty = t.tile_y0; ty <= t.tile_y1; ++ty)
-          for (int tx = t.tile_x0; tx <= t.tile_x1; ++tx)
-            if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
-              atomic_add(counts + (int64_t(ty) * tiles_x + tx), 1u);
+      backend, "raster_count", records.size() * lanes, DV_KERNEL_LAMBDA(int64_t i) {
+        const RasterTriangle& t = records[i / lanes];
+        for_each_box_tile(t, int(i % lanes), lanes, [&](int tx, int ty) {
+          if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
+            atomic_add(counts + (int64_t(ty) * tiles_x + tx), 1u);
+        });
       });
 
   // Exclusive scan on the host; tiles whose list does not fit under the limit (and all tiles
@@ -234,17 +252,16 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   const View<const uint32_t> range = lists.offsets.const_view();
   const View<TileEntry> entries = lists.entries.view();
   parallel_for(
-      backend, "raster_write", records.size(), DV_KERNEL_LAMBDA(int64_t r) {
-        const RasterTriangle& t = records[r];
-        for (int ty = t.tile_y0; ty <= t.tile_y1; ++ty)
-          for (int tx = t.tile_x0; tx <= t.tile_x1; ++tx) {
-            const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
-            if (mask == 0) continue;
-            const int64_t tile = int64_t(ty) * tiles_x + tx;
-            const uint32_t slot = atomic_add(fill + tile, 1u);
-            if (slot < range[tile + 1] - range[tile])
-              entries[range[tile] + slot] = {mask, t.source, 0u};
-          }
+      backend, "raster_write", records.size() * lanes, DV_KERNEL_LAMBDA(int64_t i) {
+        const RasterTriangle& t = records[i / lanes];
+        for_each_box_tile(t, int(i % lanes), lanes, [&](int tx, int ty) {
+          const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
+          if (mask == 0) return;
+          const int64_t tile = int64_t(ty) * tiles_x + tx;
+          const uint32_t slot = atomic_add(fill + tile, 1u);
+          if (slot < range[tile + 1] - range[tile])
+            entries[range[tile] + slot] = {mask, t.source, 0u};
+        });
       });
   parallel_for(
       backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
