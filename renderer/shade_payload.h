@@ -60,8 +60,36 @@ struct ShadePayload {
     const int64_t steps = int64_t(ceil((t1 - t0) / step));
     for (int64_t k = 0; k < steps && !done(); ++k) {
       const double a = t0 + double(k) * step, b = min_value(a + step, t1);
-      volume_sample(inside, sigma_constant, origin + dir * (0.5 * (a + b)), b - a);
+      const double mid = 0.5 * (a + b);
+      const double empty_until = empty_run_end(inside, mid);
+      if (empty_until > mid) {
+        // Samples whose midpoints lie in empty bricks of every volume would add nothing but the
+        // constant media's absorption: jump over them.
+        const int64_t last = min_value(steps - 1, int64_t(floor((empty_until - t0) / step - 0.5)));
+        const int64_t skip_to = last > k ? last : k;
+        transmittance *= exp(-sigma_constant * (min_value(t0 + double(skip_to + 1) * step, t1) - a));
+        k = skip_to;
+        continue;
+      }
+      volume_sample(inside, sigma_constant, origin + dir * mid, b - a);
     }
+  }
+
+  // The ray parameter up to which every volume the ray is inside stays in empty bricks, from
+  // the sample at t; t itself when some volume is not empty there.
+  DV_HD double empty_run_end(const InsideSet& inside, double t) const {
+    double until = 1e300;
+    const dvec3 x = origin + dir * t;
+    for (int i = 0; i < inside.count; ++i) {
+      const ObjectView& o = s.objects[inside.object[i]];
+      if (o.interior != InteriorKind::volume) continue;
+      const dvec3 g = world_to_grid(o, x);
+      ivec3 brick;
+      if (!in_empty_brick(s, o, g, brick)) return t;
+      const dvec3 gd = dvec3(o.world_to_grid * dvec4(dir, 0.0));
+      until = min_value(until, t + brick_exit_distance(o, brick, g, gd));
+    }
+    return until;
   }
 
   // One volume sample of length dt at x: alpha = 1 - exp(-sigma * dt), emission from the volumes'

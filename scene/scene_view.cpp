@@ -1,6 +1,7 @@
 // Flattening of a Scene into world-space arrays plus a BVH (see scene_view.h).
 #include "scene/scene_view.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dv {
@@ -20,7 +21,47 @@ LightView make_light_view(const Light& l) {
 
 namespace {
 
-ObjectView make_object_view(const Scene& scene, const Object& obj, std::vector<TransferPoint>& transfer) {
+// Largest extinction of a piecewise-linear transfer function over densities [lo, hi]: at the
+// interval's ends or at a control point inside it.
+double max_sigma(const TransferFunction& tf, double lo, double hi) {
+  auto sigma_at = [&](double d) {
+    const auto& p = tf.points;
+    if (d <= p.front().density) return p.front().sigma;
+    if (d >= p.back().density) return p.back().sigma;
+    size_t k = 0;
+    while (k + 2 < p.size() && p[k + 1].density <= d) ++k;
+    const double span = p[k + 1].density - p[k].density;
+    const double w = span > 0.0 ? (d - p[k].density) / span : 1.0;
+    return p[k].sigma * (1.0 - w) + p[k + 1].sigma * w;
+  };
+  double m = std::max(sigma_at(lo), sigma_at(hi));
+  for (const TransferPoint& p : tf.points)
+    if (p.density > lo && p.density < hi) m = std::max(m, p.sigma);
+  return m;
+}
+
+// Flags the bricks of a volume whose extinction is zero everywhere: the range of the samples
+// that trilinear interpolation inside the brick can reach maps to zero extinction.
+void flag_empty_bricks(const VolumeGrid& g, const TransferFunction& tf, ObjectView& o, std::vector<uint8_t>& flags) {
+  for (int a = 0; a < 3; ++a) o.bricks[a] = std::max(1, (g.dims[a] - 1 + kBrickCells - 1) / kBrickCells);
+  o.brick_offset = int64_t(flags.size());
+  for (int bz = 0; bz < o.bricks.z; ++bz)
+    for (int by = 0; by < o.bricks.y; ++by)
+      for (int bx = 0; bx < o.bricks.x; ++bx) {
+        float lo = 1e30f, hi = -1e30f;
+        for (int z = bz * kBrickCells; z <= std::min((bz + 1) * kBrickCells, g.dims.z - 1); ++z)
+          for (int y = by * kBrickCells; y <= std::min((by + 1) * kBrickCells, g.dims.y - 1); ++y)
+            for (int x = bx * kBrickCells; x <= std::min((bx + 1) * kBrickCells, g.dims.x - 1); ++x) {
+              const float d = g.density[(size_t(z) * g.dims.y + y) * g.dims.x + x];
+              lo = std::min(lo, d);
+              hi = std::max(hi, d);
+            }
+        flags.push_back(max_sigma(tf, lo, hi) <= 0.0 ? 1 : 0);
+      }
+}
+
+ObjectView make_object_view(const Scene& scene, const Object& obj, std::vector<TransferPoint>& transfer,
+                            std::vector<uint8_t>& brick_empty) {
   ObjectView o{};
   const Material& m = obj.material;
   o.color = m.color;
@@ -53,13 +94,14 @@ ObjectView make_object_view(const Scene& scene, const Object& obj, std::vector<T
       cell = std::min(cell, glm::length(edge));
     }
     o.step = obj.interior.step > 0 ? obj.interior.step : 0.5 * cell;
+    flag_empty_bricks(g, obj.interior.transfer, o, brick_empty);
   }
   return o;
 }
 
 }  // namespace
 
-SceneData::SceneData(const Scene& scene, Memory memory) : memory_(memory) {
+SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& options) : memory_(memory) {
   std::vector<dvec3> vertices;
   std::vector<u32vec3> tris;
   std::vector<uint32_t> tri_object;
@@ -92,8 +134,10 @@ SceneData::SceneData(const Scene& scene, Memory memory) : memory_(memory) {
   }
 
   std::vector<TransferPoint> transfer;
+  std::vector<uint8_t> brick_empty;
   std::vector<ObjectView> objects;
-  for (const Object& obj : scene.objects) objects.push_back(make_object_view(scene, obj, transfer));
+  for (const Object& obj : scene.objects) objects.push_back(make_object_view(scene, obj, transfer, brick_empty));
+  if (!options.empty_space_skipping) std::fill(brick_empty.begin(), brick_empty.end(), uint8_t(0));
   std::vector<VolumeView> volumes;
   std::vector<float> densities;
   for (const VolumeGrid& g : scene.volumes) {
@@ -111,6 +155,7 @@ SceneData::SceneData(const Scene& scene, Memory memory) : memory_(memory) {
   volumes_ = Buffer<VolumeView>(memory, volumes, "volumes");
   densities_ = Buffer<float>(memory, densities, "volume densities");
   transfer_ = Buffer<TransferPoint>(memory, transfer, "transfer functions");
+  brick_empty_ = Buffer<uint8_t>(memory, brick_empty, "empty bricks");
   lights_ = Buffer<LightView>(memory, lights, "lights");
   host_lights_ = lights;
 
@@ -122,6 +167,7 @@ SceneData::SceneData(const Scene& scene, Memory memory) : memory_(memory) {
   view_.volumes = volumes_.const_view();
   view_.densities = densities_.const_view();
   view_.transfer = transfer_.const_view();
+  view_.brick_empty = brick_empty_.const_view();
   view_.lights = lights_.const_view();
   view_.bounds = bounds;
   view_.diagonal = bounds.empty() ? 0.0 : glm::length(bounds.extent());

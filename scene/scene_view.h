@@ -22,7 +22,12 @@ struct ObjectView {
   int32_t transfer_first, transfer_count;
   double step;        // volume ray-marching step (world units)
   dmat4 world_to_grid;  // world position -> continuous grid index (i, j, k)
+  ivec3 bricks;         // volume: empty-space bricks per axis (kBrickCells cells each)
+  int64_t brick_offset; // volume: first flag in SceneView::brick_empty
 };
+
+// Cells per side of the bricks used for empty-space skipping (Hadwiger et al. 2006, §3).
+inline constexpr int kBrickCells = 8;
 
 struct VolumeView {
   ivec3 dims;
@@ -48,14 +53,19 @@ struct SceneView {
   View<const VolumeView> volumes;
   View<const float> densities;
   View<const TransferPoint> transfer;
+  View<const uint8_t> brick_empty;  // 1: extinction is zero everywhere in the brick
   View<const LightView> lights;
   Aabb bounds;      // world bounds of all triangles
   double diagonal;  // length of the bounds' diagonal (scale for tolerances)
 };
 
+struct SceneDataOptions {
+  bool empty_space_skipping = true;  // false: no brick is flagged empty (for comparisons)
+};
+
 class SceneData {
  public:
-  SceneData(const Scene& scene, Memory memory);
+  SceneData(const Scene& scene, Memory memory, const SceneDataOptions& options = {});
   const SceneView& view() const { return view_; }
   Memory memory() const { return memory_; }
   int64_t triangle_count() const { return triangles_.size(); }
@@ -75,6 +85,7 @@ class SceneData {
   Buffer<VolumeView> volumes_;
   Buffer<float> densities_;
   Buffer<TransferPoint> transfer_;
+  Buffer<uint8_t> brick_empty_;
   Buffer<LightView> lights_;
   std::vector<uint32_t> order_;
   std::vector<LightView> host_lights_;

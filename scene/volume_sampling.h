@@ -79,4 +79,28 @@ DV_HD inline dvec3 density_gradient(const SceneView& s, const ObjectView& o, con
   return glm::transpose(glm::dmat3(o.world_to_grid)) * grad_grid;
 }
 
+// Empty-space skipping (Hadwiger et al. 2006, §3): bricks of kBrickCells^3 cells whose samples
+// map to zero extinction under the object's transfer function are flagged when the scene is
+// flattened. Coordinates outside the grid clamp, so the first and last bricks extend to
+// infinity on their outer sides.
+DV_HD inline bool in_empty_brick(const SceneView& s, const ObjectView& o, const dvec3& g, ivec3& brick) {
+  const VolumeView& v = s.volumes[o.volume];
+  for (int a = 0; a < 3; ++a) {
+    const double c = clamp_value(g[a], 0.0, double(v.dims[a] - 1));
+    brick[a] = min_value(int(c) / kBrickCells, o.bricks[a] - 1);
+  }
+  return s.brick_empty[o.brick_offset + (int64_t(brick.z) * o.bricks.y + brick.y) * o.bricks.x + brick.x] != 0;
+}
+
+// How far along the ray (world units) from grid point g, moving gd grid units per world unit,
+// until it leaves `brick`.
+DV_HD inline double brick_exit_distance(const ObjectView& o, const ivec3& brick, const dvec3& g, const dvec3& gd) {
+  double t = 1e300;
+  for (int a = 0; a < 3; ++a) {
+    if (gd[a] > 0.0 && brick[a] < o.bricks[a] - 1) t = min_value(t, (double((brick[a] + 1) * kBrickCells) - g[a]) / gd[a]);
+    if (gd[a] < 0.0 && brick[a] > 0) t = min_value(t, (double(brick[a] * kBrickCells) - g[a]) / gd[a]);
+  }
+  return t > 0.0 ? t : 0.0;
+}
+
 }  // namespace dv

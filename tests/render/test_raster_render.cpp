@@ -82,5 +82,19 @@ TEST(RasterRender, CameraInsideAMediumAndNearPlaneCrossings) {
   EXPECT_LT(d.differing_fraction, 0.01) << "max difference " << d.max_difference;
 }
 
+TEST(RasterRender, EmptySpaceSkippingChangesNothingButTheSampleCount) {
+  Scene scene = load_scene(test::source_dir() + "/scenes/knecht-fig56.json");
+  scene.camera.width = 120;
+  scene.camera.height = 80;
+  const SceneData skipping(scene, Memory::host), plain(scene, Memory::host, {.empty_space_skipping = false});
+  auto none = shadow_registry().create("none");
+  const RasterRenderResult a = render_raster(Backend::cpu, skipping, scene.camera, *none, scene.background);
+  const RasterRenderResult b = render_raster(Backend::cpu, plain, scene.camera, *none, scene.background);
+  const ImageDifference d = compare(a.render.image, b.render.image);
+  EXPECT_LE(d.max_difference, 1e-6);
+  EXPECT_LT(a.render.counters.volume_samples, b.render.counters.volume_samples / 2);
+  EXPECT_GT(a.render.counters.volume_samples, 0u);
+}
+
 }  // namespace
 }  // namespace dv
