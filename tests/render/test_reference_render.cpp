@@ -1,11 +1,13 @@
-// The reference renderer against closed forms: a lit plane's Phong value, and the shadow of a
-// constant-extinction sphere equal to the oracle at the shaded points; plus multi-frame orbit.
+// The renderers against closed forms: a lit plane's Phong value (ray walk and rasterizer), and
+// the shadow of a constant-extinction sphere equal to the oracle at the shaded points; plus the
+// multi-frame orbit.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "oracle/transmittance.h"
 #include "renderer/camera_rays.h"
+#include "renderer/raster_render.h"
 #include "renderer/reference_render.h"
 #include "tests/support/scene_builder.h"
 
@@ -41,6 +43,7 @@ TEST(ReferenceRender, LitPlaneMatchesPhong) {
   const Camera cam = top_camera(32);
   auto none = shadow_registry().create("none");
   const RenderResult r = render_reference(Backend::cpu, data, cam, *none, dvec3(0.0));
+  const RenderResult raster = render_raster(Backend::cpu, data, cam, *none, dvec3(0.0)).render;
   for (auto [x, y] : {std::pair{16, 16}, std::pair{3, 7}, std::pair{25, 28}}) {
     const dvec3 p = floor_point(cam, x, y);
     const dvec3 n(0.0, 1.0, 0.0), to_light = glm::normalize(l.position - p);
@@ -50,11 +53,14 @@ TEST(ReferenceRender, LitPlaneMatchesPhong) {
     const double spec = 0.3 * std::pow(std::max(0.0, glm::dot(refl, to_eye)), 20.0);
     const dvec3 expected = 0.1 * floor.material.color +
                            falloff * (0.7 * glm::dot(n, to_light) * floor.material.color + dvec3(spec));
-    const dvec3 got = r.image.at(x, y);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 1e-5) << x << "," << y;
+    for (const RenderResult* image : {&r, &raster}) {
+      const dvec3 got = image->image.at(x, y);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 1e-5) << x << "," << y;
+    }
   }
   EXPECT_EQ(r.counters.overflow_pixels, 0u);
   EXPECT_EQ(r.counters.max_hits, 1u);
+  EXPECT_EQ(raster.counters.max_hits, 1u);
 }
 
 TEST(ReferenceRender, SphereShadowEqualsOracle) {
