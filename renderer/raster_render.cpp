@@ -63,7 +63,7 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   const SceneView& view = scene.view();
   const RasterProjection projection = make_camera_projection(camera, view.bounds);
   RasterRenderResult result;
-  const ShadowSourceVariant source = shadows.prepare(scene, backend);
+  const ShadowSourceVariant source = shadows.prepare(scene, backend, &camera);
   PassTimer total(backend);
   PassTimer raster_timer(backend);
   const TileLists lists = rasterize_tiles(backend, view, projection);

@@ -46,7 +46,7 @@ RenderResult render_reference(Backend backend, const SceneData& scene, const Cam
   Buffer<float> rgb(memory, int64_t(cam.width) * cam.height * 3, "image");
   Buffer<RenderCounters> counters(memory, 1, "render counters");
   counters.fill_zero();
-  const ShadowSourceVariant source = shadows.prepare(scene, backend);
+  const ShadowSourceVariant source = shadows.prepare(scene, backend, &camera);
   const auto start = std::chrono::steady_clock::now();
   std::visit([&](const auto& s) {
     render_pixels(backend, scene.view(), cam, s, background, rgb.view(), counters.data());

@@ -34,7 +34,7 @@ ProbeResults probe_transmittance(Backend backend, const SceneData& scene, Shadow
   const int lights = int(scene.view().lights.size);
   Buffer<dvec3> pts(memory, points, "probe points");
   Buffer<ProbeAnswer> out(memory, int64_t(points.size()) * lights, "probe results");
-  const ShadowSourceVariant source = method.prepare(scene, backend);
+  const ShadowSourceVariant source = method.prepare(scene, backend, nullptr);
   const auto start = std::chrono::steady_clock::now();
   std::visit([&](const auto& s) { probe_points(backend, s, lights, pts.const_view(), out.view()); }, source);
   if (backend == Backend::cuda) device_synchronize("probe_transmittance");

@@ -14,7 +14,7 @@ class ReferenceShadows final : public ShadowMethod {
             {"end_tolerance", kOracleEndTolerance},
             {"max_volume_crossings", kMaxVolumeCrossings}};
   }
-  ShadowSourceVariant prepare(const SceneData& scene, Backend) override {
+  ShadowSourceVariant prepare(const SceneData& scene, Backend, const Camera*) override {
     return ReferenceShadowSource{scene.view()};
   }
 };

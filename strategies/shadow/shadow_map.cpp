@@ -1,8 +1,14 @@
 // Shadow method "shadowmap": conventional depth shadow maps rendered with the tile rasterizer
 // from each light (see shadow_map_source.h for the lookup). Parameters: res (texels per side,
 // default 1024), pcf (kernel side, default 2; 1 = unfiltered), bias (world units, default
-// 1e-4 of the scene diagonal), slope (texel sizes added to the bias, default 1.5). Near and far planes are fitted to the casters (the scene's
+// 1e-4 of the scene diagonal), slope (texel sizes added to the bias, default 1.5), focus (1:
+// fit spot and directional maps to what the camera can see, Brabec 2003 §4.2; default 0).
+// Focusing is geometric and conservative: the map covers the part of the scene bounds inside
+// the bounding box of the camera frustum (a control render with read-back, as Brabec does,
+// would be tighter); omni faces and queries without a camera (probe) are not focused. A
+// focused map depends on the camera, so it is rebuilt when the camera moves. Near and far planes are fitted to the casters (the scene's
 // bounds); maps are rebuilt only when the scene data or backend changes.
+#include <algorithm>
 #include <cmath>
 
 #include "core/buffer.h"
@@ -16,6 +22,43 @@ namespace dv {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+// The region a camera can see: the scene bounds clipped to the bounding box of its frustum.
+Aabb visible_region(const Camera& camera, const Aabb& bounds) {
+  const RasterProjection p = make_camera_projection(camera, bounds);
+  Aabb frustum;
+  for (int corner = 0; corner < 8; ++corner)
+    frustum.extend(unproject_ndc(p, corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0, corner & 4 ? 1.0 : -1.0));
+  return {glm::max(frustum.lo, bounds.lo), glm::min(frustum.hi, bounds.hi)};
+}
+
+// Narrows a face's map to the NDC rectangle that `region` projects to (within the original
+// map): an x/y scale and bias after the projection, which leaves w and the near plane alone.
+void focus_face(ShadowFace& face, const Aabb& region) {
+  if (region.empty()) return;
+  double lo[2] = {1.0, 1.0}, hi[2] = {-1.0, -1.0};
+  for (int corner = 0; corner < 8; ++corner) {
+    const dvec3 c(corner & 1 ? region.hi.x : region.lo.x, corner & 2 ? region.hi.y : region.lo.y,
+                  corner & 4 ? region.hi.z : region.lo.z);
+    const dvec4 clip = world_to_clip_point(face.projection, c);
+    if (clip.w <= 0.0) return;  // part of the region is behind the light: keep the whole map
+    for (int a = 0; a < 2; ++a) {
+      const double ndc = std::clamp(clip[a] / clip.w, -1.0, 1.0);
+      lo[a] = std::min(lo[a], ndc);
+      hi[a] = std::max(hi[a], ndc);
+    }
+  }
+  if (!(hi[0] > lo[0] && hi[1] > lo[1])) return;
+  dmat4 narrow(1.0);
+  for (int a = 0; a < 2; ++a) {
+    narrow[a][a] = 2.0 / (hi[a] - lo[a]);
+    narrow[3][a] = -(hi[a] + lo[a]) / (hi[a] - lo[a]);
+  }
+  // x' = a x + b w in clip space is NDC' = a NDC + b for either projection.
+  face.projection.world_to_clip = narrow * face.projection.world_to_clip;
+  face.projection.clip_to_world = glm::inverse(face.projection.world_to_clip);
+  face.texel_size *= 0.5 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
+}
 
 // Nearest caster depth per texel of one face.
 void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face, View<float> depths) {
@@ -47,22 +90,28 @@ class ShadowMapMethod final : public ShadowMethod {
       : res_(p.integer("res", 1024)),
         pcf_(p.integer("pcf", 2)),
         bias_(p.number("bias", -1.0)),
-        slope_(p.number("slope", 1.5)) {
+        slope_(p.number("slope", 1.5)),
+        focus_(p.integer("focus", 0) != 0) {
     if (res_ < 1 || res_ > kMaxRasterSide) throw InputError("shadowmap res", "must lie in [1, 65536]");
     if (pcf_ < 1 || pcf_ > 16) throw InputError("shadowmap pcf", "must lie in [1, 16]");
   }
   std::string name() const override { return "shadowmap"; }
   nlohmann::json params() const override {
     return {{"res", res_}, {"pcf", pcf_}, {"bias", bias_ >= 0.0 ? nlohmann::json(bias_) : nlohmann::json("auto")},
-            {"slope", slope_}};
+            {"slope", slope_}, {"focus", focus_}};
   }
   nlohmann::json stats() const override {
     return {{"maps_built", builds_}, {"prepare_calls", prepare_calls_}, {"faces", faces_built_},
             {"bytes", depths_.bytes()}, {"last_build_ms", build_ms_}};
   }
 
-  ShadowSourceVariant prepare(const SceneData& scene, Backend backend) override {
-    if (prepared_for_ != &scene || backend_ != backend) build(scene, backend);
+  ShadowSourceVariant prepare(const SceneData& scene, Backend backend, const Camera* view) override {
+    const bool focused = focus_ && view;
+    const bool camera_moved = focused && !(has_camera_ && same_camera(*view, camera_));
+    if (prepared_for_ != &scene || backend_ != backend || camera_moved || focused != was_focused_) {
+      if (focused) camera_ = *view, has_camera_ = true;
+      build(scene, backend, focused ? view : nullptr);
+    }
     ++prepare_calls_;
     return source_;
   }
@@ -95,7 +144,12 @@ class ShadowMapMethod final : public ShadowMethod {
     return faces;
   }
 
-  void build(const SceneData& scene, Backend backend) {
+  static bool same_camera(const Camera& a, const Camera& b) {
+    return a.position == b.position && a.target == b.target && a.up == b.up && a.fov_deg == b.fov_deg &&
+           a.width == b.width && a.height == b.height && a.near_plane == b.near_plane;
+  }
+
+  void build(const SceneData& scene, Backend backend, const Camera* focus_on) {
     const SceneView& s = scene.view();
     PassTimer timer(backend);
     const std::vector<LightView>& lights = scene.host_lights();
@@ -103,6 +157,7 @@ class ShadowMapMethod final : public ShadowMethod {
     std::vector<ShadowLight> light_faces;
     for (const LightView& l : lights) {
       std::vector<ShadowFace> f = faces_for(l, s.bounds, s.diagonal);
+      if (focus_on && f.size() == 1) focus_face(f[0], visible_region(*focus_on, s.bounds));
       light_faces.push_back({int32_t(faces.size()), int32_t(f.size())});
       faces.insert(faces.end(), f.begin(), f.end());
     }
@@ -118,6 +173,7 @@ class ShadowMapMethod final : public ShadowMethod {
                               res_, pcf_, bias, slope_};
     prepared_for_ = &scene;
     backend_ = backend;
+    was_focused_ = focus_on != nullptr;
     ++builds_;
     build_ms_ = timer.stop();
     faces_built_ = int(faces.size());
@@ -125,6 +181,9 @@ class ShadowMapMethod final : public ShadowMethod {
 
   int res_, pcf_;
   double bias_, slope_;
+  bool focus_;
+  Camera camera_;
+  bool has_camera_ = false, was_focused_ = false;
   Buffer<float> depths_;
   Buffer<ShadowFace> faces_;
   Buffer<ShadowLight> light_faces_;
