@@ -62,7 +62,8 @@ DV_HD T atomic_cas(T* address, T expected, T desired) {
 #if DV_IN_DEVICE_CODE
   return atomicCAS(address, expected, desired);
 #else
-  std::atomic_ref<T>(*address).compare_exchange_strong(expected, desired, std::memory_order_relaxed);
+  std::atomic_ref<T>(*address).compare_exchange_strong(expected, desired,
+                                                       std::memory_order_relaxed);
   return expected;
 #endif
 }

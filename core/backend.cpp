@@ -4,7 +4,9 @@
 
 namespace dv {
 
-const char* to_string(Backend backend) { return backend == Backend::cuda ? "cuda" : "cpu"; }
+const char* to_string(Backend backend) {
+  return backend == Backend::cuda ? "cuda" : "cpu";
+}
 
 Backend parse_backend(const std::string& name) {
   if (name == "cpu") return Backend::cpu;
@@ -12,7 +14,9 @@ Backend parse_backend(const std::string& name) {
   throw InputError("--backend", "unknown backend '" + name + "' (known: cpu, cuda)");
 }
 
-Backend default_backend() { return cuda_device_available() ? Backend::cuda : Backend::cpu; }
+Backend default_backend() {
+  return cuda_device_available() ? Backend::cuda : Backend::cpu;
+}
 
 void require_backend(Backend backend) {
   std::string why;

@@ -32,7 +32,9 @@ class Buffer {
 
  public:
   Buffer() = default;
-  Buffer(Memory memory, int64_t count, const char* what = "buffer") { allocate(memory, count, what); }
+  Buffer(Memory memory, int64_t count, const char* what = "buffer") {
+    allocate(memory, count, what);
+  }
   Buffer(Memory memory, std::span<const T> values, const char* what = "buffer") {
     allocate(memory, int64_t(values.size()), what);
     upload(values);
@@ -86,7 +88,8 @@ class Buffer {
     if (memory == Memory::device)
       data_ = static_cast<T*>(device_allocate(bytes(), what));
     else
-      data_ = static_cast<T*>(::operator new(bytes(), std::align_val_t(alignof(T) < 64 ? 64 : alignof(T))));
+      data_ = static_cast<T*>(
+          ::operator new(bytes(), std::align_val_t(alignof(T) < 64 ? 64 : alignof(T))));
   }
   void release() noexcept {
     if (!data_) return;

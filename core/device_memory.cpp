@@ -65,13 +65,16 @@ void device_memset(void* dst, int value, size_t bytes) {
   if (bytes) DV_CUDA_CHECK(cudaMemset(dst, value, bytes));
 }
 
-void device_synchronize(const char* what) { check_cuda(cudaDeviceSynchronize(), what, __FILE__, __LINE__); }
+void device_synchronize(const char* what) {
+  check_cuda(cudaDeviceSynchronize(), what, __FILE__, __LINE__);
+}
 
 #else
 
 namespace {
 [[noreturn]] void no_cuda(const char* call) {
-  throw Error(std::string(call) + ": this deepvox was built without CUDA (-DDEEPVOX_CUDA=OFF or no nvcc)");
+  throw Error(std::string(call) +
+              ": this deepvox was built without CUDA (-DDEEPVOX_CUDA=OFF or no nvcc)");
 }
 }  // namespace
 
@@ -79,13 +82,25 @@ bool cuda_device_available(std::string* why_not) {
   if (why_not) *why_not = "deepvox was built without CUDA";
   return false;
 }
-std::string cuda_device_name() { no_cuda("cuda_device_name"); }
-void* device_allocate(size_t, const char*) { no_cuda("device_allocate"); }
+std::string cuda_device_name() {
+  no_cuda("cuda_device_name");
+}
+void* device_allocate(size_t, const char*) {
+  no_cuda("device_allocate");
+}
 void device_free(void*) noexcept {}
-void copy_to_device(void*, const void*, size_t) { no_cuda("copy_to_device"); }
-void copy_to_host(void*, const void*, size_t) { no_cuda("copy_to_host"); }
-void device_memset(void*, int, size_t) { no_cuda("device_memset"); }
-void device_synchronize(const char*) { no_cuda("device_synchronize"); }
+void copy_to_device(void*, const void*, size_t) {
+  no_cuda("copy_to_device");
+}
+void copy_to_host(void*, const void*, size_t) {
+  no_cuda("copy_to_host");
+}
+void device_memset(void*, int, size_t) {
+  no_cuda("device_memset");
+}
+void device_synchronize(const char*) {
+  no_cuda("device_synchronize");
+}
 
 #endif
 

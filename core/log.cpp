@@ -24,7 +24,11 @@ void log_info(const std::string& message) {
   std::fprintf(stderr, "deepvox: %s\n", message.c_str());
 }
 
-int warning_count() { return g_warnings; }
-void set_quiet(bool quiet) { g_quiet = quiet; }
+int warning_count() {
+  return g_warnings;
+}
+void set_quiet(bool quiet) {
+  g_quiet = quiet;
+}
 
 }  // namespace dv

@@ -12,7 +12,8 @@ int cpu_thread_count();
 
 // Runs body(begin, end) over disjoint chunks covering [0, n). Exceptions thrown by a chunk are
 // rethrown (the first one) after all workers stop.
-void cpu_parallel_for_chunks(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body);
+void cpu_parallel_for_chunks(int64_t n, int64_t grain,
+                             const std::function<void(int64_t, int64_t)>& body);
 
 template <class F>
 void cpu_parallel_for(int64_t n, F&& f, int64_t grain = 64) {

@@ -15,16 +15,19 @@
 namespace dv {
 namespace {
 
-void raster_render(benchmark::State& state, const char* scene_name, const char* shadows, Backend backend) {
+void raster_render(benchmark::State& state, const char* scene_name, const char* shadows,
+                   Backend backend) {
   std::string why;
-  if (backend == Backend::cuda && !cuda_device_available(&why)) return state.SkipWithError(why.c_str());
+  if (backend == Backend::cuda && !cuda_device_available(&why))
+    return state.SkipWithError(why.c_str());
   const Scene scene = load_scene(test::source_dir() + "/scenes/" + scene_name);
   const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
   auto method = shadow_registry().create(shadows);
   render_raster(backend, data, scene.camera, *method, scene.background);  // warm-up, builds maps
   double raster_ms = 0.0, fragment_ms = 0.0;
   for (auto _ : state) {
-    const RasterRenderResult r = render_raster(backend, data, scene.camera, *method, scene.background);
+    const RasterRenderResult r =
+        render_raster(backend, data, scene.camera, *method, scene.background);
     state.SetIterationTime((r.raster_ms + r.fragment_ms) / 1e3);
     raster_ms += r.raster_ms;
     fragment_ms += r.fragment_ms;
@@ -35,13 +38,21 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
 }
 
 BENCHMARK_CAPTURE(raster_render, fig56_none_cuda, "knecht-fig56.json", "none", Backend::cuda)
-    ->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(raster_render, fig56_shadowmap_cuda, "knecht-fig56.json", "shadowmap", Backend::cuda)
-    ->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(raster_render, fig56_reference_cuda, "knecht-fig56.json", "reference", Backend::cuda)
-    ->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(raster_render, fig56_shadowmap_cuda, "knecht-fig56.json", "shadowmap",
+                  Backend::cuda)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(raster_render, fig56_reference_cuda, "knecht-fig56.json", "reference",
+                  Backend::cuda)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK_CAPTURE(raster_render, fig56_none_cpu, "knecht-fig56.json", "none", Backend::cpu)
-    ->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(2);
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
 
 }  // namespace
 }  // namespace dv

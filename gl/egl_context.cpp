@@ -26,10 +26,11 @@ bool has_extension(const char* list, const char* name) {
 std::vector<std::pair<EGLDisplay, std::string>> candidate_displays() {
   std::vector<std::pair<EGLDisplay, std::string>> out;
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  auto get_platform_display =
-      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+      eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (get_platform_display && has_extension(client, "EGL_EXT_platform_device")) {
-    auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto query_devices =
+        reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
     EGLDeviceEXT devices[8];
     EGLint count = 0;
     if (query_devices && query_devices(8, devices, &count))
@@ -39,7 +40,8 @@ std::vector<std::pair<EGLDisplay, std::string>> candidate_displays() {
       }
   }
   if (get_platform_display && has_extension(client, "EGL_MESA_platform_surfaceless")) {
-    EGLDisplay d = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLDisplay d =
+        get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (d != EGL_NO_DISPLAY) out.emplace_back(d, "surfaceless");
   }
   EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY);
@@ -65,8 +67,12 @@ std::unique_ptr<EglContext> EglContext::create_headless(std::string* why_not) {
     EGLConfig config;
     EGLint configs = 0;
     eglChooseConfig(display, config_attribs, &config, 1, &configs);
-    const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                      4,
+                                      EGL_CONTEXT_MINOR_VERSION,
+                                      5,
+                                      EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                       EGL_NONE};
     EGLContext context = eglCreateContext(display, configs > 0 ? config : EGL_NO_CONFIG_KHR,
                                           EGL_NO_CONTEXT, context_attribs);

@@ -4,11 +4,14 @@
 
 namespace dv {
 
-bool exr_supported() { return false; }
+bool exr_supported() {
+  return false;
+}
 
 void write_exr(const std::string& path, const Image&) {
-  throw InputError(path, "EXR output needs the full build (this is the lean build without OpenImageIO); "
-                         "write .png or convert on the host");
+  throw InputError(path,
+                   "EXR output needs the full build (this is the lean build without OpenImageIO); "
+                   "write .png or convert on the host");
 }
 
 }  // namespace dv

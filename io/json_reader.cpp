@@ -14,10 +14,16 @@ JsonReader::JsonReader(const Json& object, std::string file, std::string path)
   if (!object_.is_object()) throw InputError(where(), "expected a JSON object");
 }
 
-std::string JsonReader::where() const { return file_ + ": " + (path_.empty() ? "/" : path_); }
-std::string JsonReader::where(const std::string& key) const { return file_ + ": " + path_ + "/" + key; }
+std::string JsonReader::where() const {
+  return file_ + ": " + (path_.empty() ? "/" : path_);
+}
+std::string JsonReader::where(const std::string& key) const {
+  return file_ + ": " + path_ + "/" + key;
+}
 
-bool JsonReader::has(const std::string& key) const { return object_.contains(key); }
+bool JsonReader::has(const std::string& key) const {
+  return object_.contains(key);
+}
 
 void JsonReader::fail(const std::string& key, const std::string& problem) const {
   throw InputError(key.empty() ? where() : where(key), problem);
@@ -36,7 +42,9 @@ static double finite_number(const JsonReader& r, const std::string& key, const J
   return d;
 }
 
-double JsonReader::number(const std::string& key) { return finite_number(*this, key, raw(key)); }
+double JsonReader::number(const std::string& key) {
+  return finite_number(*this, key, raw(key));
+}
 double JsonReader::number(const std::string& key, double fallback) {
   return has(key) ? number(key) : fallback;
 }

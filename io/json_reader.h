@@ -39,7 +39,7 @@ class JsonReader {
   dvec3 vec3(const std::string& key, const dvec3& fallback);
   ivec3 ivec3_value(const std::string& key);
 
-  JsonReader child(const std::string& key);           // key must hold an object
+  JsonReader child(const std::string& key);                  // key must hold an object
   std::vector<JsonReader> children(const std::string& key);  // key must hold an array of objects
 
   // Throws InputError listing keys present but never read.

@@ -32,7 +32,9 @@ bool parse_row(const std::string& line, dvec3& out) {
   return k == 3;
 }
 
-bool blank(const std::string& line) { return line.find_first_not_of(" \t\r") == std::string::npos; }
+bool blank(const std::string& line) {
+  return line.find_first_not_of(" \t\r") == std::string::npos;
+}
 
 }  // namespace
 

@@ -286,7 +286,11 @@ Scene load_scene(const std::string& path, const std::string& assets_dir) {
     scene.camera = default_camera(b);
     scene.lights.push_back(default_light(b));
   } else if (lower_extension(path) == ".json") {
-    Loader loader{scene, fs::path(path).parent_path(), assets_dir.empty() ? find_assets_dir() : assets_dir, {}, {}};
+    Loader loader{scene,
+                  fs::path(path).parent_path(),
+                  assets_dir.empty() ? find_assets_dir() : assets_dir,
+                  {},
+                  {}};
     loader.read(parse_json_file(path), path);
   } else {
     throw InputError(path, "unknown scene type '" + lower_extension(path) +

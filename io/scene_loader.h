@@ -1,6 +1,7 @@
-// Loads whatever a command is given as SCENE: a deepvox JSON scene (schema in docs/scene-format.md),
-// a glTF 2.0 file (.gltf/.glb), or a bare mesh file (.obj/.off/.ply/.stl), which becomes a
-// scene of that one opaque object with a default camera and light. The result is validated.
+// Loads whatever a command is given as SCENE: a deepvox JSON scene (schema in
+// docs/scene-format.md), a glTF 2.0 file (.gltf/.glb), or a bare mesh file (.obj/.off/.ply/.stl),
+// which becomes a scene of that one opaque object with a default camera and light. The result is
+// validated.
 #pragma once
 
 #include <string>

@@ -89,9 +89,11 @@ DV_HD inline bool make_light_segment(const SceneView& s, const LightView& light,
     return true;
   }
   const dvec3 dir = delta / len;
-  if (light.type == LightType::spot && glm::dot(dir, light.direction) < light.cos_cutoff) return false;
+  if (light.type == LightType::spot && glm::dot(dir, light.direction) < light.cos_cutoff)
+    return false;
   double back = 0.0;
-  if (box.contains(light.position)) back = max_value(box_exit_distance(box, light.position, -dir), 0.0) + margin;
+  if (box.contains(light.position))
+    back = max_value(box_exit_distance(box, light.position, -dir), 0.0) + margin;
   seg.origin = light.position - dir * back;
   seg.dir = dir;
   seg.t_light = back;
@@ -100,8 +102,9 @@ DV_HD inline bool make_light_segment(const SceneView& s, const LightView& light,
 }
 
 // Optical depth of one volume object over the ray interval [t0, t1], split at cell faces.
-DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o, const LightSegment& seg,
-                                         double t0, double t1, double tolerance, uint32_t& flags) {
+DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o,
+                                         const LightSegment& seg, double t0, double t1,
+                                         double tolerance, uint32_t& flags) {
   if (t1 <= t0) return 0.0;
   const VolumeView& v = s.volumes[o.volume];
   const dvec3 g0 = world_to_grid(o, seg.origin + seg.dir * t0);
@@ -134,7 +137,8 @@ DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o
       const double tp = t0 + (plane - g0[a]) / gd[a];
       if (tp > t && tp < t_next) t_next = tp;
     }
-    const QuadratureResult q = adaptive_simpson(sigma_at, t, t_next, tolerance * (t_next - t) / length);
+    const QuadratureResult q =
+        adaptive_simpson(sigma_at, t, t_next, tolerance * (t_next - t) / length);
     if (!q.converged) flags |= kOracleNotConverged;
     total += q.value;
     t = t_next;
@@ -142,7 +146,8 @@ DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o
   return total;
 }
 
-DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightView& light, const dvec3& p) {
+DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightView& light,
+                                              const dvec3& p) {
   LightSegment seg;
   if (!make_light_segment(s, light, p, seg)) return {0.0, 0u};
   if (seg.t_point <= seg.t_light) return {1.0, 0u};

@@ -17,7 +17,7 @@
 
 namespace dv {
 
-inline constexpr int kMaxInsideObjects = 16;  // media a ray can be inside at once
+inline constexpr int kMaxInsideObjects = 16;   // media a ray can be inside at once
 inline constexpr int kMaxHitsPerPixel = 4096;  // crossings walked per ray before it is flagged
 
 // Media the ray is inside: object ids with their nesting depth.
@@ -72,8 +72,9 @@ struct NoPayload {
 //   void segment(const InsideSet&, double t0, double t1);  only called when inside something
 //   void surface(const RayHit&, int32_t object);           a crossing at or beyond t_near
 template <class Fragments, class Payload>
-DV_HD WalkStatus walk_fragments(const SceneView& s, const Fragments& fragments, const InsideSet& inside_at_start,
-                                double t_start, double t_near, double t_far, Payload& payload) {
+DV_HD WalkStatus walk_fragments(const SceneView& s, const Fragments& fragments,
+                                const InsideSet& inside_at_start, double t_start, double t_near,
+                                double t_far, Payload& payload) {
   WalkStatus status;
   InsideSet& inside = status.inside;
   inside = inside_at_start;

@@ -21,15 +21,12 @@ struct RasterFragments {
   DV_HD bool next(double t_after, int64_t after_triangle, RayHit& out) const {
     bool found = false;
     for_each_fragment(lists, x, y, [&](uint32_t tri) {
-      const u32vec3 idx = scene->triangles[tri];
-      const dvec3 p0 = scene->vertices[idx.x];
-      const dvec3 n = glm::cross(scene->vertices[idx.y] - p0, scene->vertices[idx.z] - p0);
-      const double facing = glm::dot(n, dir);
-      if (facing == 0.0) return;  // seen edge-on: no area to cover
-      const double t = glm::dot(n, p0 - origin) / facing;
+      double t;
+      bool entering;
+      if (!triangle_plane_hit(*scene, tri, origin, dir, t, entering)) return;  // seen edge-on
       const bool after = t > t_after || (t == t_after && int64_t(tri) > after_triangle);
       if (after && (!found || t < out.t || (t == out.t && tri < out.triangle))) {
-        out = RayHit{t, tri, facing < 0.0};
+        out = RayHit{t, tri, entering};
         found = true;
       }
     });

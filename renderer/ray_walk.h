@@ -13,8 +13,8 @@
 namespace dv {
 
 template <class Source>
-DV_HD dvec3 walk_pixel(const SceneView& s, const CameraView& cam, const Source& shadows, int x, int y,
-                       const dvec3& background, RenderCounters* counters) {
+DV_HD dvec3 walk_pixel(const SceneView& s, const CameraView& cam, const Source& shadows, int x,
+                       int y, const dvec3& background, RenderCounters* counters) {
   const dvec3 dir = camera_ray_direction(cam, x, y);
   // Start outside the scene so the media containing the eye are found by their crossings.
   const Aabb box = padded_bounds(s);

@@ -12,15 +12,17 @@ namespace dv {
 namespace {
 
 template <class Source>
-void render_pixels(Backend backend, const SceneView& view, const CameraView& cam, const Source& source,
-                   const dvec3& background, View<float> rgb, RenderCounters* counters) {
-  parallel_for(backend, "render_reference", int64_t(cam.width) * cam.height, DV_KERNEL_LAMBDA(int64_t i) {
-    const int x = int(i % cam.width), y = int(i / cam.width);
-    const dvec3 c = walk_pixel(view, cam, source, x, y, background, counters);
-    rgb[3 * i + 0] = float(c.x);
-    rgb[3 * i + 1] = float(c.y);
-    rgb[3 * i + 2] = float(c.z);
-  });
+void render_pixels(Backend backend, const SceneView& view, const CameraView& cam,
+                   const Source& source, const dvec3& background, View<float> rgb,
+                   RenderCounters* counters) {
+  parallel_for(
+      backend, "render_reference", int64_t(cam.width) * cam.height, DV_KERNEL_LAMBDA(int64_t i) {
+        const int x = int(i % cam.width), y = int(i / cam.width);
+        const dvec3 c = walk_pixel(view, cam, source, x, y, background, counters);
+        rgb[3 * i + 0] = float(c.x);
+        rgb[3 * i + 1] = float(c.y);
+        rgb[3 * i + 2] = float(c.z);
+      });
 }
 
 }  // namespace
@@ -48,12 +50,15 @@ RenderResult render_reference(Backend backend, const SceneData& scene, const Cam
   counters.fill_zero();
   const ShadowSourceVariant source = shadows.prepare(scene, backend, &camera);
   const auto start = std::chrono::steady_clock::now();
-  std::visit([&](const auto& s) {
-    render_pixels(backend, scene.view(), cam, s, background, rgb.view(), counters.data());
-  }, source);
+  std::visit(
+      [&](const auto& s) {
+        render_pixels(backend, scene.view(), cam, s, background, rgb.view(), counters.data());
+      },
+      source);
   if (backend == Backend::cuda) device_synchronize("render_reference");
   RenderResult result;
-  result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.image = Image(cam.width, cam.height);
   result.image.rgb = rgb.to_vector();
   result.counters = counters.to_vector()[0];

@@ -67,7 +67,8 @@ struct ShadePayload {
         // constant media's absorption: jump over them.
         const int64_t last = min_value(steps - 1, int64_t(floor((empty_until - t0) / step - 0.5)));
         const int64_t skip_to = last > k ? last : k;
-        transmittance *= exp(-sigma_constant * (min_value(t0 + double(skip_to + 1) * step, t1) - a));
+        transmittance *=
+            exp(-sigma_constant * (min_value(t0 + double(skip_to + 1) * step, t1) - a));
         k = skip_to;
         continue;
       }
@@ -94,14 +95,16 @@ struct ShadePayload {
 
   // One volume sample of length dt at x: alpha = 1 - exp(-sigma * dt), emission from the volumes'
   // share of the extinction, shaded with the dominant volume's density gradient as normal.
-  DV_HD void volume_sample(const InsideSet& inside, double sigma_constant, const dvec3& x, double dt) {
+  DV_HD void volume_sample(const InsideSet& inside, double sigma_constant, const dvec3& x,
+                           double dt) {
     double sigma_volume = 0.0, strongest = 0.0;
     dvec3 weighted_color(0.0);
     int32_t dominant = -1;
     for (int i = 0; i < inside.count; ++i) {
       const ObjectView& o = s.objects[inside.object[i]];
       if (o.interior != InteriorKind::volume) continue;
-      const TransferSample ts = apply_transfer(s, o, density_at_grid(s, s.volumes[o.volume], world_to_grid(o, x)));
+      const TransferSample ts =
+          apply_transfer(s, o, density_at_grid(s, s.volumes[o.volume], world_to_grid(o, x)));
       sigma_volume += ts.sigma;
       weighted_color += ts.sigma * ts.color;
       if (ts.sigma > strongest) strongest = ts.sigma, dominant = inside.object[i];

@@ -51,7 +51,9 @@ DV_HD inline ShearedRay make_sheared_ray(const dvec3& origin, const dvec3& dir) 
 // oriented so the triangle's inside is on its positive side, owns the points on it when it is a
 // "top" or "left" edge. Two triangles sharing the edge see it with opposite directions, so
 // exactly one of them owns it.
-DV_HD inline bool owns_edge(double dx, double dy) { return dy > 0.0 || (dy == 0.0 && dx < 0.0); }
+DV_HD inline bool owns_edge(double dx, double dy) {
+  return dy > 0.0 || (dy == 0.0 && dx < 0.0);
+}
 
 // Intersects the ray with triangle (p0, p1, p2). On a hit writes t and whether the ray enters
 // (the triangle's counter-clockwise normal faces against the ray).
@@ -78,6 +80,21 @@ DV_HD inline bool intersect_triangle(const ShearedRay& r, const dvec3& p0, const
   // det > 0 means p0, p1, p2 run counter-clockwise seen from the ray origin looking along the
   // ray, i.e. the normal (p1-p0)x(p2-p0) points back toward the origin: the ray enters.
   entering = det > 0.0;
+  return true;
+}
+
+// Where the ray meets the plane of a triangle the rasterizer found under a pixel: the exact depth
+// of that fragment (no inside test: coverage was decided in fixed point). False when the ray
+// runs parallel to the plane; `entering` as for intersect_triangle.
+DV_HD inline bool triangle_plane_hit(const SceneView& s, uint32_t tri, const dvec3& origin,
+                                     const dvec3& dir, double& t, bool& entering) {
+  const u32vec3 idx = s.triangles[tri];
+  const dvec3 p0 = s.vertices[idx.x];
+  const dvec3 n = glm::cross(s.vertices[idx.y] - p0, s.vertices[idx.z] - p0);
+  const double facing = glm::dot(n, dir);
+  if (facing == 0.0) return false;
+  t = glm::dot(n, p0 - origin) / facing;
+  entering = facing < 0.0;
   return true;
 }
 
@@ -108,14 +125,16 @@ DV_HD inline bool ray_hits_box(const ShearedRay& r, const Aabb& box, double t_mi
 DV_HD inline bool intersect_scene_triangle(const SceneView& s, const ShearedRay& r, uint32_t tri,
                                            double& t, bool& entering) {
   const u32vec3 idx = s.triangles[tri];
-  return intersect_triangle(r, s.vertices[idx.x], s.vertices[idx.y], s.vertices[idx.z], t, entering);
+  return intersect_triangle(r, s.vertices[idx.x], s.vertices[idx.y], s.vertices[idx.z], t,
+                            entering);
 }
 
 // Depth-first BVH traversal: calls on_hit(const RayHit&) for every triangle hit inside a node
 // whose box the ray meets within [t_min, t_max]; on_hit may lower t_max (closest-hit queries)
 // and returns false to stop.
 template <class OnHit>
-DV_HD void traverse_bvh(const SceneView& s, const ShearedRay& r, double t_min, double& t_max, OnHit&& on_hit) {
+DV_HD void traverse_bvh(const SceneView& s, const ShearedRay& r, double t_min, double& t_max,
+                        OnHit&& on_hit) {
   if (s.nodes.size == 0) return;
   int32_t stack[kBvhMaxDepth + 2];
   int top = 0;
@@ -142,10 +161,10 @@ DV_HD void traverse_bvh(const SceneView& s, const ShearedRay& r, double t_min, d
 // Calls visit(const RayHit&) for every hit with t in (t_min, t_max], in no particular order.
 // visit returns false to stop early.
 template <class Visit>
-DV_HD void for_each_hit(const SceneView& s, const ShearedRay& r, double t_min, double t_max, Visit&& visit) {
-  traverse_bvh(s, r, t_min, t_max, [&](const RayHit& h) {
-    return !(h.t > t_min && h.t <= t_max) || visit(h);
-  });
+DV_HD void for_each_hit(const SceneView& s, const ShearedRay& r, double t_min, double t_max,
+                        Visit&& visit) {
+  traverse_bvh(s, r, t_min, t_max,
+               [&](const RayHit& h) { return !(h.t > t_min && h.t <= t_max) || visit(h); });
 }
 
 // The first hit strictly after (t_after, after_triangle) in (t, triangle) order, with t <= t_max:

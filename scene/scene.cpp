@@ -12,18 +12,24 @@ namespace dv {
 
 const char* to_string(LightType type) {
   switch (type) {
-    case LightType::spot: return "spot";
-    case LightType::omni: return "omni";
-    case LightType::directional: return "directional";
+    case LightType::spot:
+      return "spot";
+    case LightType::omni:
+      return "omni";
+    case LightType::directional:
+      return "directional";
   }
   return "?";
 }
 
 const char* to_string(InteriorKind kind) {
   switch (kind) {
-    case InteriorKind::none: return "none";
-    case InteriorKind::constant: return "constant";
-    case InteriorKind::volume: return "volume";
+    case InteriorKind::none:
+      return "none";
+    case InteriorKind::constant:
+      return "constant";
+    case InteriorKind::volume:
+      return "volume";
   }
   return "?";
 }
@@ -59,14 +65,17 @@ Light default_light(const Aabb& bounds) {
   Light l;
   const dvec3 center = bounds.empty() ? dvec3(0.0) : bounds.center();
   l.type = LightType::omni;
-  l.position = dvec3(center.x, (bounds.empty() ? 0.0 : bounds.hi.y) + bounding_radius(bounds), center.z);
+  l.position =
+      dvec3(center.x, (bounds.empty() ? 0.0 : bounds.hi.y) + bounding_radius(bounds), center.z);
   l.intensity = glm::dot(l.position - center, l.position - center);  // irradiance 1 at the centre
   return l;
 }
 
 namespace {
 
-bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 void validate_mesh(const std::string& where, const TriangleMesh& mesh) {
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -89,8 +98,8 @@ void validate_transfer(const std::string& where, const TransferFunction& tf) {
   for (size_t i = 0; i < tf.points.size(); ++i) {
     const TransferPoint& p = tf.points[i];
     if (!std::isfinite(p.density) || !finite(p.color) || !std::isfinite(p.sigma) || p.sigma < 0)
-      throw InputError(where, "transfer point " + std::to_string(i) +
-                                  " must have finite values and sigma >= 0");
+      throw InputError(
+          where, "transfer point " + std::to_string(i) + " must have finite values and sigma >= 0");
     if (i > 0 && p.density < tf.points[i - 1].density)
       throw InputError(where, "transfer points must be sorted by density");
   }
@@ -100,7 +109,8 @@ void validate_transfer(const std::string& where, const TransferFunction& tf) {
 
 void validate_scene(Scene& scene) {
   const std::string& src = scene.source;
-  for (size_t m = 0; m < scene.meshes.size(); ++m) validate_mesh(src + ": mesh '" + scene.meshes[m].name + "'", scene.meshes[m]);
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    validate_mesh(src + ": mesh '" + scene.meshes[m].name + "'", scene.meshes[m]);
   for (const VolumeGrid& v : scene.volumes) {
     std::string where = src + ": volume '" + v.name + "'";
     if (v.dims.x < 1 || v.dims.y < 1 || v.dims.z < 1)
@@ -115,7 +125,8 @@ void validate_scene(Scene& scene) {
     if (obj.mesh < 0 || obj.mesh >= int(scene.meshes.size()))
       throw InputError(where, "mesh index out of range");
     const Material& m = obj.material;
-    if (!(m.alpha >= 0.0 && m.alpha <= 1.0)) throw InputError(where, "material alpha must lie in [0,1]");
+    if (!(m.alpha >= 0.0 && m.alpha <= 1.0))
+      throw InputError(where, "material alpha must lie in [0,1]");
     if (!finite(m.color)) throw InputError(where, "material colour is not finite");
     if (std::abs(glm::determinant(obj.transform)) < 1e-300 ||
         !std::isfinite(glm::determinant(obj.transform)))
@@ -146,7 +157,8 @@ void validate_scene(Scene& scene) {
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     std::string where = src + ": light " + std::to_string(i);
-    if (!finite(l.position) || !finite(l.direction) || !finite(l.color) || !std::isfinite(l.intensity))
+    if (!finite(l.position) || !finite(l.direction) || !finite(l.color) ||
+        !std::isfinite(l.intensity))
       throw InputError(where, "light values must be finite");
     if (l.type != LightType::omni && glm::length(l.direction) < 1e-12)
       throw InputError(where, "light direction must not be zero");
@@ -156,8 +168,10 @@ void validate_scene(Scene& scene) {
   const Camera& c = scene.camera;
   if (c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
     throw InputError(src + ": camera", "image size must be between 1 and 16384 pixels");
-  if (!(c.fov_deg > 0.0 && c.fov_deg < 180.0)) throw InputError(src + ": camera", "fov must lie in (0, 180) degrees");
-  if (glm::length(c.target - c.position) < 1e-12) throw InputError(src + ": camera", "position equals target");
+  if (!(c.fov_deg > 0.0 && c.fov_deg < 180.0))
+    throw InputError(src + ": camera", "fov must lie in (0, 180) degrees");
+  if (glm::length(c.target - c.position) < 1e-12)
+    throw InputError(src + ": camera", "position equals target");
 }
 
 }  // namespace dv

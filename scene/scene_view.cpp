@@ -42,8 +42,10 @@ double max_sigma(const TransferFunction& tf, double lo, double hi) {
 
 // Flags the bricks of a volume whose extinction is zero everywhere: the range of the samples
 // that trilinear interpolation inside the brick can reach maps to zero extinction.
-void flag_empty_bricks(const VolumeGrid& g, const TransferFunction& tf, ObjectView& o, std::vector<uint8_t>& flags) {
-  for (int a = 0; a < 3; ++a) o.bricks[a] = std::max(1, (g.dims[a] - 1 + kBrickCells - 1) / kBrickCells);
+void flag_empty_bricks(const VolumeGrid& g, const TransferFunction& tf, ObjectView& o,
+                       std::vector<uint8_t>& flags) {
+  for (int a = 0; a < 3; ++a)
+    o.bricks[a] = std::max(1, (g.dims[a] - 1 + kBrickCells - 1) / kBrickCells);
   o.brick_offset = int64_t(flags.size());
   for (int bz = 0; bz < o.bricks.z; ++bz)
     for (int by = 0; by < o.bricks.y; ++by)
@@ -51,7 +53,8 @@ void flag_empty_bricks(const VolumeGrid& g, const TransferFunction& tf, ObjectVi
         float lo = 1e30f, hi = -1e30f;
         for (int z = bz * kBrickCells; z <= std::min((bz + 1) * kBrickCells, g.dims.z - 1); ++z)
           for (int y = by * kBrickCells; y <= std::min((by + 1) * kBrickCells, g.dims.y - 1); ++y)
-            for (int x = bx * kBrickCells; x <= std::min((bx + 1) * kBrickCells, g.dims.x - 1); ++x) {
+            for (int x = bx * kBrickCells; x <= std::min((bx + 1) * kBrickCells, g.dims.x - 1);
+                 ++x) {
               const float d = g.density[(size_t(z) * g.dims.y + y) * g.dims.x + x];
               lo = std::min(lo, d);
               hi = std::max(hi, d);
@@ -60,7 +63,8 @@ void flag_empty_bricks(const VolumeGrid& g, const TransferFunction& tf, ObjectVi
       }
 }
 
-ObjectView make_object_view(const Scene& scene, const Object& obj, std::vector<TransferPoint>& transfer,
+ObjectView make_object_view(const Scene& scene, const Object& obj,
+                            std::vector<TransferPoint>& transfer,
                             std::vector<uint8_t>& brick_empty) {
   ObjectView o{};
   const Material& m = obj.material;
@@ -75,7 +79,8 @@ ObjectView make_object_view(const Scene& scene, const Object& obj, std::vector<T
   o.volume = obj.interior.kind == InteriorKind::volume ? obj.interior.volume : -1;
   o.transfer_first = int32_t(transfer.size());
   o.transfer_count = int32_t(obj.interior.transfer.points.size());
-  transfer.insert(transfer.end(), obj.interior.transfer.points.begin(), obj.interior.transfer.points.end());
+  transfer.insert(transfer.end(), obj.interior.transfer.points.begin(),
+                  obj.interior.transfer.points.end());
   o.world_to_grid = dmat4(1.0);
   o.step = 0.0;
   if (o.volume >= 0) {
@@ -101,7 +106,8 @@ ObjectView make_object_view(const Scene& scene, const Object& obj, std::vector<T
 
 }  // namespace
 
-SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& options) : memory_(memory) {
+SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& options)
+    : memory_(memory) {
   std::vector<dvec3> vertices;
   std::vector<u32vec3> tris;
   std::vector<uint32_t> tri_object;
@@ -136,7 +142,8 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
   std::vector<TransferPoint> transfer;
   std::vector<uint8_t> brick_empty;
   std::vector<ObjectView> objects;
-  for (const Object& obj : scene.objects) objects.push_back(make_object_view(scene, obj, transfer, brick_empty));
+  for (const Object& obj : scene.objects)
+    objects.push_back(make_object_view(scene, obj, transfer, brick_empty));
   if (!options.empty_space_skipping) std::fill(brick_empty.begin(), brick_empty.end(), uint8_t(0));
   std::vector<VolumeView> volumes;
   std::vector<float> densities;

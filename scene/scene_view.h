@@ -17,13 +17,13 @@ struct ObjectView {
   double ambient, diffuse, specular, shininess;
   double alpha;  // surface opacity per crossing
   InteriorKind interior;
-  double sigma;  // constant interior
+  double sigma;    // constant interior
   int32_t volume;  // index into SceneView::volumes, or -1
   int32_t transfer_first, transfer_count;
-  double step;        // volume ray-marching step (world units)
-  dmat4 world_to_grid;  // world position -> continuous grid index (i, j, k)
-  ivec3 bricks;         // volume: empty-space bricks per axis (kBrickCells cells each)
-  int64_t brick_offset; // volume: first flag in SceneView::brick_empty
+  double step;           // volume ray-marching step (world units)
+  dmat4 world_to_grid;   // world position -> continuous grid index (i, j, k)
+  ivec3 bricks;          // volume: empty-space bricks per axis (kBrickCells cells each)
+  int64_t brick_offset;  // volume: first flag in SceneView::brick_empty
 };
 
 // Cells per side of the bricks used for empty-space skipping (Hadwiger et al. 2006, §3).
@@ -37,7 +37,7 @@ struct VolumeView {
 struct LightView {
   LightType type;
   dvec3 position;
-  dvec3 direction;  // unit; spot and directional
+  dvec3 direction;    // unit; spot and directional
   double cos_cutoff;  // spot: cos(cutoff)
   double cos_inner;   // spot: cos(cutoff - penumbra)
   dvec3 color;
@@ -45,8 +45,8 @@ struct LightView {
 };
 
 struct SceneView {
-  View<const dvec3> vertices;          // world space
-  View<const u32vec3> triangles;       // BVH order
+  View<const dvec3> vertices;     // world space
+  View<const u32vec3> triangles;  // BVH order
   View<const uint32_t> triangle_object;
   View<const BvhNode> nodes;
   View<const ObjectView> objects;

@@ -32,10 +32,14 @@ DV_HD inline double density_at_grid(const SceneView& s, const VolumeView& v, con
   const int x1 = v.dims.x > 1 ? i0[0] + 1 : i0[0];
   const int y1 = v.dims.y > 1 ? i0[1] + 1 : i0[1];
   const int z1 = v.dims.z > 1 ? i0[2] + 1 : i0[2];
-  const double c00 = sample_at(s, v, i0[0], i0[1], i0[2]) * (1 - f[0]) + sample_at(s, v, x1, i0[1], i0[2]) * f[0];
-  const double c10 = sample_at(s, v, i0[0], y1, i0[2]) * (1 - f[0]) + sample_at(s, v, x1, y1, i0[2]) * f[0];
-  const double c01 = sample_at(s, v, i0[0], i0[1], z1) * (1 - f[0]) + sample_at(s, v, x1, i0[1], z1) * f[0];
-  const double c11 = sample_at(s, v, i0[0], y1, z1) * (1 - f[0]) + sample_at(s, v, x1, y1, z1) * f[0];
+  const double c00 =
+      sample_at(s, v, i0[0], i0[1], i0[2]) * (1 - f[0]) + sample_at(s, v, x1, i0[1], i0[2]) * f[0];
+  const double c10 =
+      sample_at(s, v, i0[0], y1, i0[2]) * (1 - f[0]) + sample_at(s, v, x1, y1, i0[2]) * f[0];
+  const double c01 =
+      sample_at(s, v, i0[0], i0[1], z1) * (1 - f[0]) + sample_at(s, v, x1, i0[1], z1) * f[0];
+  const double c11 =
+      sample_at(s, v, i0[0], y1, z1) * (1 - f[0]) + sample_at(s, v, x1, y1, z1) * f[0];
   const double c0 = c00 * (1 - f[1]) + c10 * f[1];
   const double c1 = c01 * (1 - f[1]) + c11 * f[1];
   return c0 * (1 - f[2]) + c1 * f[2];
@@ -47,7 +51,8 @@ struct TransferSample {
 };
 
 // Piecewise-linear transfer function; the end points' values hold outside their range.
-DV_HD inline TransferSample apply_transfer(const SceneView& s, const ObjectView& o, double density) {
+DV_HD inline TransferSample apply_transfer(const SceneView& s, const ObjectView& o,
+                                           double density) {
   const TransferPoint* p = s.transfer.data + o.transfer_first;
   const int n = o.transfer_count;
   if (density <= p[0].density) return {p[0].color, p[0].sigma};
@@ -83,22 +88,27 @@ DV_HD inline dvec3 density_gradient(const SceneView& s, const ObjectView& o, con
 // map to zero extinction under the object's transfer function are flagged when the scene is
 // flattened. Coordinates outside the grid clamp, so the first and last bricks extend to
 // infinity on their outer sides.
-DV_HD inline bool in_empty_brick(const SceneView& s, const ObjectView& o, const dvec3& g, ivec3& brick) {
+DV_HD inline bool in_empty_brick(const SceneView& s, const ObjectView& o, const dvec3& g,
+                                 ivec3& brick) {
   const VolumeView& v = s.volumes[o.volume];
   for (int a = 0; a < 3; ++a) {
     const double c = clamp_value(g[a], 0.0, double(v.dims[a] - 1));
     brick[a] = min_value(int(c) / kBrickCells, o.bricks[a] - 1);
   }
-  return s.brick_empty[o.brick_offset + (int64_t(brick.z) * o.bricks.y + brick.y) * o.bricks.x + brick.x] != 0;
+  return s.brick_empty[o.brick_offset + (int64_t(brick.z) * o.bricks.y + brick.y) * o.bricks.x +
+                       brick.x] != 0;
 }
 
 // How far along the ray (world units) from grid point g, moving gd grid units per world unit,
 // until it leaves `brick`.
-DV_HD inline double brick_exit_distance(const ObjectView& o, const ivec3& brick, const dvec3& g, const dvec3& gd) {
+DV_HD inline double brick_exit_distance(const ObjectView& o, const ivec3& brick, const dvec3& g,
+                                        const dvec3& gd) {
   double t = 1e300;
   for (int a = 0; a < 3; ++a) {
-    if (gd[a] > 0.0 && brick[a] < o.bricks[a] - 1) t = min_value(t, (double((brick[a] + 1) * kBrickCells) - g[a]) / gd[a]);
-    if (gd[a] < 0.0 && brick[a] > 0) t = min_value(t, (double(brick[a] * kBrickCells) - g[a]) / gd[a]);
+    if (gd[a] > 0.0 && brick[a] < o.bricks[a] - 1)
+      t = min_value(t, (double((brick[a] + 1) * kBrickCells) - g[a]) / gd[a]);
+    if (gd[a] < 0.0 && brick[a] > 0)
+      t = min_value(t, (double(brick[a] * kBrickCells) - g[a]) / gd[a]);
   }
   return t > 0.0 ? t : 0.0;
 }

@@ -35,7 +35,8 @@ double StrategyParams::number(const std::string& key, double fallback) const {
 
 int StrategyParams::integer(const std::string& key, int fallback) const {
   const double v = number(key, fallback);
-  if (v != std::floor(v) || std::abs(v) > 2e9) throw InputError("--param " + key, "expected an integer");
+  if (v != std::floor(v) || std::abs(v) > 2e9)
+    throw InputError("--param " + key, "expected an integer");
   return int(v);
 }
 

@@ -12,7 +12,9 @@ namespace dv::cli {
 
 namespace {
 
-nlohmann::json vec(const dvec3& v) { return {v.x, v.y, v.z}; }
+nlohmann::json vec(const dvec3& v) {
+  return {v.x, v.y, v.z};
+}
 
 nlohmann::json describe(const Scene& scene) {
   nlohmann::json j;
@@ -27,14 +29,17 @@ nlohmann::json describe(const Scene& scene) {
                           {"alpha", o.material.alpha},
                           {"interior", to_string(o.interior.kind)}};
     if (o.interior.kind == InteriorKind::constant) obj["sigma"] = o.interior.sigma;
-    if (o.interior.kind == InteriorKind::volume) obj["volume"] = scene.volumes[o.interior.volume].name;
+    if (o.interior.kind == InteriorKind::volume)
+      obj["volume"] = scene.volumes[o.interior.volume].name;
     j["objects"].push_back(obj);
   }
   j["triangles"] = triangles;
   j["volumes"] = nlohmann::json::array();
   for (const VolumeGrid& v : scene.volumes)
-    j["volumes"].push_back({{"name", v.name}, {"dims", {v.dims.x, v.dims.y, v.dims.z}},
-                            {"spacing", vec(v.spacing)}, {"origin", vec(v.origin)}});
+    j["volumes"].push_back({{"name", v.name},
+                            {"dims", {v.dims.x, v.dims.y, v.dims.z}},
+                            {"spacing", vec(v.spacing)},
+                            {"origin", vec(v.origin)}});
   j["lights"] = nlohmann::json::array();
   for (const Light& l : scene.lights) {
     nlohmann::json light = {{"type", to_string(l.type)}, {"intensity", l.intensity}};
@@ -45,8 +50,11 @@ nlohmann::json describe(const Scene& scene) {
   }
   const Aabb b = world_bounds(scene);
   j["bounds"] = {{"min", vec(b.lo)}, {"max", vec(b.hi)}};
-  j["camera"] = {{"position", vec(scene.camera.position)}, {"target", vec(scene.camera.target)},
-                 {"fov", scene.camera.fov_deg}, {"width", scene.camera.width}, {"height", scene.camera.height}};
+  j["camera"] = {{"position", vec(scene.camera.position)},
+                 {"target", vec(scene.camera.target)},
+                 {"fov", scene.camera.fov_deg},
+                 {"width", scene.camera.width},
+                 {"height", scene.camera.height}};
   return j;
 }
 
@@ -58,7 +66,8 @@ Runner add_info(CLI::App& app) {
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand("info", "objects, triangles, volumes, lights and bounds of a scene");
+  CLI::App* cmd =
+      app.add_subcommand("info", "objects, triangles, volumes, lights and bounds of a scene");
   cmd->add_option("scene", opt->scene, "scene: .json, .gltf/.glb or a mesh file")->required();
   cmd->add_flag("--json", opt->json, "print JSON instead of text");
   return [opt] {
@@ -69,11 +78,12 @@ Runner add_info(CLI::App& app) {
       return 0;
     }
     std::printf("scene     %s\n", opt->scene.c_str());
-    std::printf("objects   %zu (%lld triangles)\n", scene.objects.size(), (long long)j["triangles"].get<int64_t>());
+    std::printf("objects   %zu (%lld triangles)\n", scene.objects.size(),
+                (long long)j["triangles"].get<int64_t>());
     for (const auto& o : j["objects"])
-      std::printf("  %-20s %8lld triangles  alpha %.3g  interior %s\n", o["name"].get<std::string>().c_str(),
-                  (long long)o["triangles"].get<int64_t>(), o["alpha"].get<double>(),
-                  o["interior"].get<std::string>().c_str());
+      std::printf("  %-20s %8lld triangles  alpha %.3g  interior %s\n",
+                  o["name"].get<std::string>().c_str(), (long long)o["triangles"].get<int64_t>(),
+                  o["alpha"].get<double>(), o["interior"].get<std::string>().c_str());
     std::printf("volumes   %zu\n", scene.volumes.size());
     for (const VolumeGrid& v : scene.volumes)
       std::printf("  %-20s %d x %d x %d\n", v.name.c_str(), v.dims.x, v.dims.y, v.dims.z);

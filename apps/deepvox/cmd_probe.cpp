@@ -19,11 +19,14 @@ Runner add_probe(CLI::App& app) {
     std::string scene, points, out, shadows = "reference", backend;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand("probe", "transmittance of each light at given points (CSV in, CSV out)");
+  CLI::App* cmd =
+      app.add_subcommand("probe", "transmittance of each light at given points (CSV in, CSV out)");
   cmd->add_option("scene", opt->scene, "scene: .json, .gltf/.glb or a mesh file")->required();
-  cmd->add_option("--points", opt->points, "CSV of points, x,y,z per line (header optional)")->required();
+  cmd->add_option("--points", opt->points, "CSV of points, x,y,z per line (header optional)")
+      ->required();
   cmd->add_option("--out", opt->out, "output CSV: x,y,z,light0,light1,...")->required();
-  cmd->add_option("--shadows", opt->shadows, "shadow method (see `deepvox list`)")->capture_default_str();
+  cmd->add_option("--shadows", opt->shadows, "shadow method (see `deepvox list`)")
+      ->capture_default_str();
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   return [opt] {
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
@@ -36,11 +39,12 @@ Runner add_probe(CLI::App& app) {
     write_transmittance_csv(opt->out, points, r.transmittance, r.light_count);
     int flagged = 0;
     for (uint32_t f : r.flags) flagged += f != 0;
-    log_info("probe: " + std::to_string(points.size()) + " points x " + std::to_string(r.light_count) +
-             " lights, " + method->name() + " on " + to_string(backend) + ", " +
-             std::to_string(r.milliseconds) + " ms -> " + opt->out);
+    log_info("probe: " + std::to_string(points.size()) + " points x " +
+             std::to_string(r.light_count) + " lights, " + method->name() + " on " +
+             to_string(backend) + ", " + std::to_string(r.milliseconds) + " ms -> " + opt->out);
     if (flagged) {
-      log_warning(std::to_string(flagged) + " answers raised flags (oracle: crossing overflow or "
+      log_warning(std::to_string(flagged) +
+                  " answers raised flags (oracle: crossing overflow or "
                   "quadrature not converged); they are written but not exact");
       return 3;
     }

@@ -36,10 +36,13 @@ Runner add_render(CLI::App& app) {
     double orbit = 0.0;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand("render", "render an image with Phong shading and a shadow method");
+  CLI::App* cmd =
+      app.add_subcommand("render", "render an image with Phong shading and a shadow method");
   cmd->add_option("scene", opt->scene, "scene: .json, .gltf/.glb or a mesh file")->required();
-  cmd->add_option("--out", opt->out, "image file: .png (any build) or .exr (full build)")->required();
-  cmd->add_option("--shadows", opt->shadows, "shadow method (see `deepvox list`)")->capture_default_str();
+  cmd->add_option("--out", opt->out, "image file: .png (any build) or .exr (full build)")
+      ->required();
+  cmd->add_option("--shadows", opt->shadows, "shadow method (see `deepvox list`)")
+      ->capture_default_str();
   cmd->add_option("--renderer", opt->renderer,
                   "raster: tile rasterizer + fragment walk; raytrace: BVH ray walk (reference)")
       ->check(CLI::IsMember({"raster", "raytrace"}))
@@ -47,10 +50,13 @@ Runner add_render(CLI::App& app) {
   cmd->add_option("--param", opt->params, "shadow-method parameter key=value (repeatable)");
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   cmd->add_option("--stats", opt->stats, "write timings, counters and run metadata as JSON");
-  cmd->add_option("--frames", opt->frames, "number of frames (camera orbits the target)")->check(CLI::Range(1, 100000));
+  cmd->add_option("--frames", opt->frames, "number of frames (camera orbits the target)")
+      ->check(CLI::Range(1, 100000));
   cmd->add_option("--orbit", opt->orbit, "total orbit angle in degrees over all frames");
-  cmd->add_option("--width", opt->width, "override the camera's image width")->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", opt->height, "override the camera's image height")->check(CLI::Range(1, 16384));
+  cmd->add_option("--width", opt->width, "override the camera's image width")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", opt->height, "override the camera's image height")
+      ->check(CLI::Range(1, 16384));
   return [opt] {
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
@@ -85,10 +91,12 @@ Runner add_render(CLI::App& app) {
       frame["image"] = path;
       stats["frames"].push_back(frame);
       log_info("render: frame " + std::to_string(f) + " " + std::to_string(r.image.width) + "x" +
-               std::to_string(r.image.height) + " " + opt->renderer + " on " + to_string(backend) + " with " + method->name() +
-               " shadows: " + std::to_string(r.milliseconds) + " ms -> " + path);
+               std::to_string(r.image.height) + " " + opt->renderer + " on " + to_string(backend) +
+               " with " + method->name() + " shadows: " + std::to_string(r.milliseconds) +
+               " ms -> " + path);
       if (r.counters.overflow_pixels || r.counters.oracle_flag_pixels) {
-        log_warning("frame " + std::to_string(f) + ": " + std::to_string(r.counters.overflow_pixels) +
+        log_warning("frame " + std::to_string(f) + ": " +
+                    std::to_string(r.counters.overflow_pixels) +
                     " pixels overflowed a fixed-size walk structure, " +
                     std::to_string(r.counters.oracle_flag_pixels) + " raised oracle flags");
         exit_code = 3;

@@ -9,7 +9,9 @@ class NoShadows final : public ShadowMethod {
  public:
   std::string name() const override { return "none"; }
   nlohmann::json params() const override { return nlohmann::json::object(); }
-  ShadowSourceVariant prepare(const SceneData&, Backend, const Camera*) override { return NoShadowSource{}; }
+  ShadowSourceVariant prepare(const SceneData&, Backend, const Camera*) override {
+    return NoShadowSource{};
+  }
 };
 
 }  // namespace

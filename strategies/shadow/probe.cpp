@@ -18,11 +18,12 @@ struct ProbeAnswer {
 template <class Source>
 void probe_points(Backend backend, const Source& source, int lights, View<const dvec3> points,
                   View<ProbeAnswer> out) {
-  parallel_for(backend, "probe_transmittance", out.size, DV_KERNEL_LAMBDA(int64_t i) {
-    typename Source::Cursor cursor{};
-    const double t = source.transmittance(cursor, points[i / lights], int(i % lights));
-    out[i] = {t, cursor.flags};
-  });
+  parallel_for(
+      backend, "probe_transmittance", out.size, DV_KERNEL_LAMBDA(int64_t i) {
+        typename Source::Cursor cursor{};
+        const double t = source.transmittance(cursor, points[i / lights], int(i % lights));
+        out[i] = {t, cursor.flags};
+      });
 }
 
 }  // namespace
@@ -30,16 +31,19 @@ void probe_points(Backend backend, const Source& source, int lights, View<const 
 ProbeResults probe_transmittance(Backend backend, const SceneData& scene, ShadowMethod& method,
                                  const std::vector<dvec3>& points) {
   const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
-  if (scene.memory() != memory) throw Error("probe_transmittance: scene data is in the wrong memory");
+  if (scene.memory() != memory)
+    throw Error("probe_transmittance: scene data is in the wrong memory");
   const int lights = int(scene.view().lights.size);
   Buffer<dvec3> pts(memory, points, "probe points");
   Buffer<ProbeAnswer> out(memory, int64_t(points.size()) * lights, "probe results");
   const ShadowSourceVariant source = method.prepare(scene, backend, nullptr);
   const auto start = std::chrono::steady_clock::now();
-  std::visit([&](const auto& s) { probe_points(backend, s, lights, pts.const_view(), out.view()); }, source);
+  std::visit([&](const auto& s) { probe_points(backend, s, lights, pts.const_view(), out.view()); },
+             source);
   if (backend == Backend::cuda) device_synchronize("probe_transmittance");
   ProbeResults r;
-  r.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  r.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   r.light_count = lights;
   for (const ProbeAnswer& a : out.to_vector()) {
     r.transmittance.push_back(a.transmittance);

@@ -16,7 +16,7 @@ struct ProbeResults {
   std::vector<double> transmittance;  // [point * light_count + light]
   std::vector<uint32_t> flags;        // per answer: the method's cursor flags (oracle: OracleFlag)
   int light_count = 0;
-  double milliseconds = 0.0;          // the query kernel alone
+  double milliseconds = 0.0;  // the query kernel alone
 };
 
 // `scene` must live in the memory of `backend` (host for cpu, device for cuda).

@@ -6,14 +6,16 @@
 // Focusing is geometric and conservative: the map covers the part of the scene bounds inside
 // the bounding box of the camera frustum (a control render with read-back, as Brabec does,
 // would be tighter); omni faces and queries without a camera (probe) are not focused. A
-// focused map depends on the camera, so it is rebuilt when the camera moves. Near and far planes are fitted to the casters (the scene's
-// bounds); maps are rebuilt only when the scene data or backend changes.
+// focused map depends on the camera, so it is rebuilt when the camera moves. Near and far planes
+// are fitted to the casters (the scene's bounds); maps are rebuilt only when the scene data or
+// backend changes.
 #include <algorithm>
 #include <cmath>
 
 #include "core/buffer.h"
 #include "core/pass_timer.h"
 #include "renderer/raster/tile_raster.h"
+#include "scene/ray_query.h"
 #include "strategies/shadow/shadow_map_source.h"
 #include "strategies/shadow/shadow_method.h"
 
@@ -28,7 +30,8 @@ Aabb visible_region(const Camera& camera, const Aabb& bounds) {
   const RasterProjection p = make_camera_projection(camera, bounds);
   Aabb frustum;
   for (int corner = 0; corner < 8; ++corner)
-    frustum.extend(unproject_ndc(p, corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0, corner & 4 ? 1.0 : -1.0));
+    frustum.extend(unproject_ndc(p, corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0,
+                                 corner & 4 ? 1.0 : -1.0));
   return {glm::max(frustum.lo, bounds.lo), glm::min(frustum.hi, bounds.hi)};
 }
 
@@ -61,27 +64,28 @@ void focus_face(ShadowFace& face, const Aabb& region) {
 }
 
 // Nearest caster depth per texel of one face.
-void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face, View<float> depths) {
+void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face,
+                       View<float> depths) {
   const TileLists lists = rasterize_tiles(backend, s, face.projection);
-  if (lists.stats.overflow) throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
+  if (lists.stats.overflow)
+    throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
   const TileListsView tiles = lists.view();
   const int res = face.projection.width;
-  parallel_for(backend, "shadow_map_depth", int64_t(res) * res, DV_KERNEL_LAMBDA(int64_t i) {
-    const int x = int(i % res), y = int(i / res);
-    const PixelRay ray = pixel_ray(face.projection, x, y);
-    double nearest = 1e300;
-    for_each_fragment(tiles, x, y, [&](uint32_t tri) {
-      if (s.objects[s.triangle_object[tri]].alpha <= 0.0) return;
-      const u32vec3 idx = s.triangles[tri];
-      const dvec3 p0 = s.vertices[idx.x];
-      const dvec3 n = glm::cross(s.vertices[idx.y] - p0, s.vertices[idx.z] - p0);
-      const double facing = glm::dot(n, ray.direction);
-      if (facing == 0.0) return;
-      const double t = glm::dot(n, p0 - ray.origin) / facing;
-      nearest = min_value(nearest, shadow_depth(face, ray.origin + ray.direction * t));
-    });
-    depths[face.offset + i] = nearest >= 1e300 ? INFINITY : float(nearest);
-  });
+  parallel_for(
+      backend, "shadow_map_depth", int64_t(res) * res, DV_KERNEL_LAMBDA(int64_t i) {
+        const int x = int(i % res), y = int(i / res);
+        const PixelRay ray = pixel_ray(face.projection, x, y);
+        double nearest = 1e300;
+        for_each_fragment(tiles, x, y, [&](uint32_t tri) {
+          double t;
+          bool entering;
+          if (s.objects[s.triangle_object[tri]].alpha <= 0.0 ||
+              !triangle_plane_hit(s, tri, ray.origin, ray.direction, t, entering))
+            return;
+          nearest = min_value(nearest, shadow_depth(face, ray.origin + ray.direction * t));
+        });
+        depths[face.offset + i] = nearest >= 1e300 ? INFINITY : float(nearest);
+      });
 }
 
 class ShadowMapMethod final : public ShadowMethod {
@@ -92,20 +96,28 @@ class ShadowMapMethod final : public ShadowMethod {
         bias_(p.number("bias", -1.0)),
         slope_(p.number("slope", 1.5)),
         focus_(p.integer("focus", 0) != 0) {
-    if (res_ < 1 || res_ > kMaxRasterSide) throw InputError("shadowmap res", "must lie in [1, 65536]");
+    if (res_ < 1 || res_ > kMaxRasterSide)
+      throw InputError("shadowmap res", "must lie in [1, 65536]");
     if (pcf_ < 1 || pcf_ > 16) throw InputError("shadowmap pcf", "must lie in [1, 16]");
   }
   std::string name() const override { return "shadowmap"; }
   nlohmann::json params() const override {
-    return {{"res", res_}, {"pcf", pcf_}, {"bias", bias_ >= 0.0 ? nlohmann::json(bias_) : nlohmann::json("auto")},
-            {"slope", slope_}, {"focus", focus_}};
+    return {{"res", res_},
+            {"pcf", pcf_},
+            {"bias", bias_ >= 0.0 ? nlohmann::json(bias_) : nlohmann::json("auto")},
+            {"slope", slope_},
+            {"focus", focus_}};
   }
   nlohmann::json stats() const override {
-    return {{"maps_built", builds_}, {"prepare_calls", prepare_calls_}, {"faces", faces_built_},
-            {"bytes", depths_.bytes()}, {"last_build_ms", build_ms_}};
+    return {{"maps_built", builds_},
+            {"prepare_calls", prepare_calls_},
+            {"faces", faces_built_},
+            {"bytes", depths_.bytes()},
+            {"last_build_ms", build_ms_}};
   }
 
-  ShadowSourceVariant prepare(const SceneData& scene, Backend backend, const Camera* view) override {
+  ShadowSourceVariant prepare(const SceneData& scene, Backend backend,
+                              const Camera* view) override {
     const bool focused = focus_ && view;
     const bool camera_moved = focused && !(has_camera_ && same_camera(*view, camera_));
     if (prepared_for_ != &scene || backend_ != backend || camera_moved || focused != was_focused_) {
@@ -123,30 +135,42 @@ class ShadowMapMethod final : public ShadowMethod {
     auto perspective = [&](const dvec3& dir, const dvec3& up, double fov) {
       const double far = fit_far_plane(l.position, dir, bounds, near_min);
       const double texel = 2.0 * std::tan(0.5 * fov * kPi / 180.0) / res_;
-      ShadowFace f{make_perspective_projection(l.position, dir, up, fov, 1.0, near_min, far, res_, res_),
-                   l.position, dir, false, texel, 0};
+      ShadowFace f{
+          make_perspective_projection(l.position, dir, up, fov, 1.0, near_min, far, res_, res_),
+          l.position,
+          dir,
+          false,
+          texel,
+          0};
       faces.push_back(f);
     };
     if (l.type == LightType::spot) {
       perspective(l.direction, dvec3(0, 1, 0), 2.0 * std::acos(l.cos_cutoff) * 180.0 / kPi);
     } else if (l.type == LightType::omni) {
       const dvec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-      for (const dvec3& a : axes) perspective(a, a.y != 0.0 ? dvec3(0, 0, 1) : dvec3(0, 1, 0), 90.0);
+      for (const dvec3& a : axes)
+        perspective(a, a.y != 0.0 ? dvec3(0, 0, 1) : dvec3(0, 1, 0), 90.0);
     } else {
       // Orthographic box around the casters: centred on the bounds, as wide as their sphere.
       const double radius = 0.5 * diagonal + 1e-9;
       const dvec3 eye = bounds.center() - l.direction * (radius + 2.0 * near_min);
-      const ShadowFace f{make_orthographic_projection(eye, l.direction, dvec3(0, 1, 0), radius, radius, near_min,
-                                                      2.0 * radius + 3.0 * near_min, res_, res_),
-                         eye, l.direction, true, 2.0 * radius / res_, 0};
+      const ShadowFace f{
+          make_orthographic_projection(eye, l.direction, dvec3(0, 1, 0), radius, radius, near_min,
+                                       2.0 * radius + 3.0 * near_min, res_, res_),
+          eye,
+          l.direction,
+          true,
+          2.0 * radius / res_,
+          0};
       faces.push_back(f);
     }
     return faces;
   }
 
   static bool same_camera(const Camera& a, const Camera& b) {
-    return a.position == b.position && a.target == b.target && a.up == b.up && a.fov_deg == b.fov_deg &&
-           a.width == b.width && a.height == b.height && a.near_plane == b.near_plane;
+    return a.position == b.position && a.target == b.target && a.up == b.up &&
+           a.fov_deg == b.fov_deg && a.width == b.width && a.height == b.height &&
+           a.near_plane == b.near_plane;
   }
 
   void build(const SceneData& scene, Backend backend, const Camera* focus_on) {
@@ -169,8 +193,14 @@ class ShadowMapMethod final : public ShadowMethod {
     faces_ = Buffer<ShadowFace>(memory, faces, "shadow map faces");
     light_faces_ = Buffer<ShadowLight>(memory, light_faces, "shadow map lights");
     const double bias = bias_ >= 0.0 ? bias_ : 1e-4 * s.diagonal;
-    source_ = ShadowMapSource{s.lights, light_faces_.const_view(), faces_.const_view(), depths_.const_view(),
-                              res_, pcf_, bias, slope_};
+    source_ = ShadowMapSource{s.lights,
+                              light_faces_.const_view(),
+                              faces_.const_view(),
+                              depths_.const_view(),
+                              res_,
+                              pcf_,
+                              bias,
+                              slope_};
     prepared_for_ = &scene;
     backend_ = backend;
     was_focused_ = focus_on != nullptr;
@@ -197,7 +227,8 @@ class ShadowMapMethod final : public ShadowMethod {
 }  // namespace
 
 void register_shadow_maps(Registry<ShadowMethod>& registry) {
-  registry.add("shadowmap", "depth shadow maps from the tile rasterizer, PCF (params: res, pcf, bias)",
+  registry.add("shadowmap",
+               "depth shadow maps from the tile rasterizer, PCF (params: res, pcf, bias)",
                [](const StrategyParams& p) { return std::make_unique<ShadowMapMethod>(p); });
 }
 

@@ -23,8 +23,8 @@ struct ShadowFace {
   dvec3 eye;                    // perspective: the light; orthographic: a point on the axis
   dvec3 axis;                   // unit viewing direction
   bool orthographic;
-  double texel_size;            // world size of a texel: per unit depth (perspective) or absolute
-  int64_t offset;               // first texel in ShadowMapSource::depths
+  double texel_size;  // world size of a texel: per unit depth (perspective) or absolute
+  int64_t offset;     // first texel in ShadowMapSource::depths
 };
 
 // Depth that the map stores and compares: distance from the light (perspective faces) or along
@@ -76,7 +76,8 @@ struct ShadowMapSource {
     const double own = shadow_depth(f, p);
     const double texel = f.orthographic ? f.texel_size : own * f.texel_size;
     const double depth = own - bias - slope_bias * texel * 0.5 * double(pcf + 1);
-    const int x0 = int(floor(u - 0.5 * (pcf - 1) + 0.5)), y0 = int(floor(v - 0.5 * (pcf - 1) + 0.5));
+    const int x0 = int(floor(u - 0.5 * (pcf - 1) + 0.5)),
+              y0 = int(floor(v - 0.5 * (pcf - 1) + 0.5));
     int lit = 0, taps = 0;
     for (int j = 0; j < pcf; ++j)
       for (int i = 0; i < pcf; ++i) {

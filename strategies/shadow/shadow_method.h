@@ -24,7 +24,8 @@ class ShadowMethod {
   // `scene` lives in the memory of `backend`; the returned source refers into it (and into
   // whatever the method built), so it stays valid while both live. `view` is the camera the
   // answers are for (methods that focus on what it sees use it), or null for queries anywhere.
-  virtual ShadowSourceVariant prepare(const SceneData& scene, Backend backend, const Camera* view) = 0;
+  virtual ShadowSourceVariant prepare(const SceneData& scene, Backend backend,
+                                      const Camera* view) = 0;
 };
 
 Registry<ShadowMethod>& shadow_registry();

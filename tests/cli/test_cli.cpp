@@ -52,7 +52,8 @@ class Cli : public ::testing::Test {
     EXPECT_NE(r.exit_code, 0) << r.output;
     EXPECT_LT(r.exit_code, 128) << "crashed: " << r.output;
     EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
-    for (const std::string& f : fragments) EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+    for (const std::string& f : fragments)
+      EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
   }
   fs::path dir_;
 };
@@ -75,7 +76,8 @@ TEST_F(Cli, HelpAndList) {
   }
   const CommandResult list = run("list");
   EXPECT_EQ(list.exit_code, 0);
-  for (const char* name : {"reference", "none", "storage", "voxelizer", "icosphere", "shepp_logan", "cpu"})
+  for (const char* name :
+       {"reference", "none", "storage", "voxelizer", "icosphere", "shepp_logan", "cpu"})
     EXPECT_NE(list.output.find(name), std::string::npos) << name;
   EXPECT_NE(run("").exit_code, 0);
 }
@@ -83,7 +85,8 @@ TEST_F(Cli, HelpAndList) {
 TEST_F(Cli, ProbeMatchesTheOracle) {
   const std::string scene = write("scene.json", kSmallScene);
   write("points.csv", "x,y,z\n0,0,0\n0.1,0.6,0.05\n1.5,0,1.5\n0,-1,0\n");
-  const CommandResult r = run("probe " + scene + " --points " + path("points.csv") + " --out " + path("t.csv") + " --backend cpu");
+  const CommandResult r = run("probe " + scene + " --points " + path("points.csv") + " --out " +
+                              path("t.csv") + " --backend cpu");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(path("t.csv"));
   std::string header;
@@ -96,21 +99,23 @@ TEST_F(Cli, ProbeMatchesTheOracle) {
   while (std::getline(in, line)) {
     double x, y, z, t;
     ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &z, &t), 4) << line;
-    const double expected = exact_transmittance(data.view(), data.view().lights[0], {x, y, z}).transmittance;
+    const double expected =
+        exact_transmittance(data.view(), data.view().lights[0], {x, y, z}).transmittance;
     EXPECT_DOUBLE_EQ(t, expected);
     ++rows;
   }
   EXPECT_EQ(rows, 4);
   // The point inside the glass cube sees its top face and part of its medium.
-  const double inside = exact_transmittance(data.view(), data.view().lights[0], {0.1, 0.6, 0.05}).transmittance;
+  const double inside =
+      exact_transmittance(data.view(), data.view().lights[0], {0.1, 0.6, 0.05}).transmittance;
   EXPECT_GT(inside, 0.0);
   EXPECT_LT(inside, 0.6);
 }
 
 TEST_F(Cli, RenderWritesImagesAndStats) {
   const std::string scene = write("scene.json", kSmallScene);
-  const CommandResult r = run("render " + scene + " --backend cpu --out " + path("img.png") + " --stats " + path("s.json") +
-                    " --frames 2 --orbit 30");
+  const CommandResult r = run("render " + scene + " --backend cpu --out " + path("img.png") +
+                              " --stats " + path("s.json") + " --frames 2 --orbit 30");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(path("img_0000.png")));
   EXPECT_TRUE(fs::exists(path("img_0001.png")));
@@ -127,7 +132,8 @@ TEST_F(Cli, RenderWritesImagesAndStats) {
 }
 
 TEST_F(Cli, MeshFileIsASceneOfOneObject) {
-  const std::string mesh = std::string(DEEPVOX_SOURCE_DIR) + "/assets/meshes/stanford-bunny-lowres.obj";
+  const std::string mesh =
+      std::string(DEEPVOX_SOURCE_DIR) + "/assets/meshes/stanford-bunny-lowres.obj";
   const CommandResult r = run("info " + mesh + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(r.output);
@@ -137,29 +143,36 @@ TEST_F(Cli, MeshFileIsASceneOfOneObject) {
 }
 
 TEST_F(Cli, BadInputGivesClearErrors) {
-  const std::string probe_tail = " --points " + write("p.csv", "0,0,0\n") + " --out " + path("o.csv");
+  const std::string probe_tail =
+      " --points " + write("p.csv", "0,0,0\n") + " --out " + path("o.csv");
   expect_error("info " + path("missing.json"), {"missing.json", "not found"});
   expect_error("info " + write("bad.json", "{\"objects\": [}"), {"bad.json", "malformed JSON"});
   expect_error("info " + write("key.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
-      "objects": [{"mesh": {"generator": "box"}, "colour": [1,0,0]}]})"), {"key.json", "colour"});
+      "objects": [{"mesh": {"generator": "box"}, "colour": [1,0,0]}]})"),
+               {"key.json", "colour"});
   expect_error("info " + write("gen.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
-      "objects": [{"mesh": {"generator": "dodecahedron"}}]})"), {"gen.json", "dodecahedron", "icosphere"});
+      "objects": [{"mesh": {"generator": "dodecahedron"}}]})"),
+               {"gen.json", "dodecahedron", "icosphere"});
   expect_error("info " + write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n"), {"nan.obj"});
   expect_error("info " + write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), {"range.obj"});
   expect_error("info " + write("zero.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
       "volumes": {"v": {"generator": "block", "dims": [0, 4, 4]}},
-      "objects": [{"mesh": {"generator": "box"}}]})"), {"zero.json", "zero-size"});
+      "objects": [{"mesh": {"generator": "box"}}]})"),
+               {"zero.json", "zero-size"});
   expect_error("info " + write("open.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
       "objects": [{"mesh": {"generator": "quad"}, "interior": {"type": "constant", "sigma": 1}}]})"),
                {"open.json", "not closed", "open edge"});
   expect_error("info " + write("light.json", R"({"lights": [{"type": "area", "position": [0,1,0]}],
-      "objects": [{"mesh": {"generator": "box"}}]})"), {"light.json", "area", "spot"});
+      "objects": [{"mesh": {"generator": "box"}}]})"),
+               {"light.json", "area", "spot"});
   const std::string scene = write("scene.json", kSmallScene);
   expect_error("probe " + scene + " --shadows magic" + probe_tail, {"magic", "reference"});
-  expect_error("probe " + scene + " --points " + write("garbage.csv", "x,y,z\n1,2,3\n1,two,3\n") + " --out " + path("o.csv"),
+  expect_error("probe " + scene + " --points " + write("garbage.csv", "x,y,z\n1,2,3\n1,two,3\n") +
+                   " --out " + path("o.csv"),
                {"garbage.csv:3"});
   expect_error("probe " + scene + probe_tail + " --backend opencl", {"opencl"});
-  expect_error("render " + scene + " --out " + path("img.bmp") + " --backend cpu", {"img.bmp", ".png"});
+  expect_error("render " + scene + " --out " + path("img.bmp") + " --backend cpu",
+               {"img.bmp", ".png"});
   expect_error("info " + write("scene.txt", "hello"), {"scene.txt", ".json"});
 }
 

@@ -15,17 +15,19 @@ namespace dv {
 namespace {
 
 // Fills out[i] = i * i + 1 and counts visits, on the given backend.
-void square_plus_one(Backend backend, int64_t n, std::vector<int64_t>& values, unsigned long long& visits) {
+void square_plus_one(Backend backend, int64_t n, std::vector<int64_t>& values,
+                     unsigned long long& visits) {
   const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
   Buffer<int64_t> out(memory, n, "test values");
   Buffer<unsigned long long> count(memory, 1, "test counter");
   count.fill_zero();
   const View<int64_t> o = out.view();
   unsigned long long* c = count.data();
-  parallel_for(backend, "square_plus_one", n, DV_KERNEL_LAMBDA(int64_t i) {
-    o[i] = i * i + 1;
-    atomic_add(c, 1ull);
-  });
+  parallel_for(
+      backend, "square_plus_one", n, DV_KERNEL_LAMBDA(int64_t i) {
+        o[i] = i * i + 1;
+        atomic_add(c, 1ull);
+      });
   if (backend == Backend::cuda) device_synchronize("square_plus_one");
   values = out.to_vector();
   visits = count.to_vector()[0];
@@ -41,21 +43,26 @@ TEST(Backends, CpuParallelForVisitsEachIndexOnce) {
 }
 
 TEST(Backends, CpuParallelForRethrows) {
-  EXPECT_THROW(cpu_parallel_for(1000, [](int64_t i) {
-    if (i == 517) throw Error("boom");
-  }), Error);
+  EXPECT_THROW(cpu_parallel_for(1000,
+                                [](int64_t i) {
+                                  if (i == 517) throw Error("boom");
+                                }),
+               Error);
 }
 
 TEST(Backends, HostAtomicsAgreeWithSerialResults) {
   unsigned int bits = 0;
   int maximum = -1, minimum = 1 << 30;
   double sum = 0.0;
-  cpu_parallel_for(1024, [&](int64_t i) {
-    atomic_or(&bits, 1u << (i % 32));
-    atomic_max(&maximum, int(i));
-    atomic_min(&minimum, int(i) + 5);
-    atomic_add(&sum, 0.5);
-  }, 1);
+  cpu_parallel_for(
+      1024,
+      [&](int64_t i) {
+        atomic_or(&bits, 1u << (i % 32));
+        atomic_max(&maximum, int(i));
+        atomic_min(&minimum, int(i) + 5);
+        atomic_add(&sum, 0.5);
+      },
+      1);
   EXPECT_EQ(bits, 0xffffffffu);
   EXPECT_EQ(maximum, 1023);
   EXPECT_EQ(minimum, 5);

@@ -53,7 +53,8 @@ TEST(OracleSurfaces, StackedSlabsOfConstantExtinction) {
   SceneBuilder b;
   const double sigma[] = {0.7, 1.3, 0.2};
   const double lo[] = {0.0, 1.0, 3.0}, hi[] = {0.5, 2.5, 3.25};
-  for (int i = 0; i < 3; ++i) b.add(make_box({-2, lo[i], -2}, {2, hi[i], 2}), 0.0, InteriorKind::constant, sigma[i]);
+  for (int i = 0; i < 3; ++i)
+    b.add(make_box({-2, lo[i], -2}, {2, hi[i], 2}), 0.0, InteriorKind::constant, sigma[i]);
   b.omni({0.0, 10.0, 0.0});
   b.directional({0.0, -1.0, 0.0});
   const SceneData data = b.build();

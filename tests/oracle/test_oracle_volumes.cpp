@@ -31,7 +31,9 @@ Object& add_ramp(SceneBuilder& b, int n, double h, std::vector<TransferPoint> tr
   return o;
 }
 
-TransferPoint tp(double density, double sigma) { return {density, dvec3(1.0), sigma}; }
+TransferPoint tp(double density, double sigma) {
+  return {density, dvec3(1.0), sigma};
+}
 
 TEST(OracleVolumes, LinearRampIsExact) {
   SceneBuilder b;

@@ -20,12 +20,15 @@ std::vector<RayHit> brute_force_hits(const SceneView& s, const ShearedRay& r, do
   for (uint32_t i = 0; i < uint32_t(s.triangles.size); ++i) {
     double t;
     bool entering;
-    if (intersect_scene_triangle(s, r, i, t, entering) && t > 0.0 && t <= t_max) hits.push_back({t, i, entering});
+    if (intersect_scene_triangle(s, r, i, t, entering) && t > 0.0 && t <= t_max)
+      hits.push_back({t, i, entering});
   }
   return hits;
 }
 
-bool by_t(const RayHit& a, const RayHit& b) { return a.t < b.t || (a.t == b.t && a.triangle < b.triangle); }
+bool by_t(const RayHit& a, const RayHit& b) {
+  return a.t < b.t || (a.t == b.t && a.triangle < b.triangle);
+}
 
 TEST(RayQueries, EnteringFollowsOutwardNormals) {
   SceneBuilder b;

@@ -36,7 +36,8 @@ TEST_P(Parity, OracleAndRenderAgree) {
   std::vector<dvec3> points;
   for (int i = 0; i < 2000; ++i) {
     dvec3 p;
-    for (int a = 0; a < 3; ++a) p[a] = std::uniform_real_distribution<double>(b.lo[a], b.hi[a])(rng);
+    for (int a = 0; a < 3; ++a)
+      p[a] = std::uniform_real_distribution<double>(b.lo[a], b.hi[a])(rng);
     points.push_back(p);
   }
   auto reference = shadow_registry().create("reference");
@@ -47,19 +48,24 @@ TEST_P(Parity, OracleAndRenderAgree) {
     EXPECT_NEAR(c.transmittance[i], g.transmittance[i], 1e-12) << i;
     EXPECT_EQ(c.flags[i], g.flags[i]) << i;
   }
-  const RenderResult rc = render_reference(Backend::cpu, host, scene.camera, *reference, scene.background);
-  const RenderResult rg = render_reference(Backend::cuda, device, scene.camera, *reference, scene.background);
+  const RenderResult rc =
+      render_reference(Backend::cpu, host, scene.camera, *reference, scene.background);
+  const RenderResult rg =
+      render_reference(Backend::cuda, device, scene.camera, *reference, scene.background);
   ASSERT_EQ(rc.image.rgb.size(), rg.image.rgb.size());
   double worst = 0.0;
-  for (size_t i = 0; i < rc.image.rgb.size(); ++i) worst = std::max(worst, double(std::abs(rc.image.rgb[i] - rg.image.rgb[i])));
+  for (size_t i = 0; i < rc.image.rgb.size(); ++i)
+    worst = std::max(worst, double(std::abs(rc.image.rgb[i] - rg.image.rgb[i])));
   EXPECT_LE(worst, 1e-6);
   EXPECT_EQ(rc.counters.hits, rg.counters.hits);
   EXPECT_EQ(rc.counters.volume_samples, rg.counters.volume_samples);
   EXPECT_EQ(rc.counters.max_hits, rg.counters.max_hits);
   EXPECT_EQ(rc.counters.overflow_pixels, rg.counters.overflow_pixels);
   // The rasterizing renderer: identical tile lists (integer coverage), images as above.
-  const RasterRenderResult xc = render_raster(Backend::cpu, host, scene.camera, *reference, scene.background);
-  const RasterRenderResult xg = render_raster(Backend::cuda, device, scene.camera, *reference, scene.background);
+  const RasterRenderResult xc =
+      render_raster(Backend::cpu, host, scene.camera, *reference, scene.background);
+  const RasterRenderResult xg =
+      render_raster(Backend::cuda, device, scene.camera, *reference, scene.background);
   EXPECT_EQ(xc.raster.entries, xg.raster.entries);
   EXPECT_EQ(xc.raster.pieces, xg.raster.pieces);
   EXPECT_EQ(xc.raster.max_entries_per_tile, xg.raster.max_entries_per_tile);
@@ -71,12 +77,15 @@ TEST_P(Parity, OracleAndRenderAgree) {
   EXPECT_LE(worst, 1e-6);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, Parity, ::testing::Values("demo.json", "ct-phantom.json", "intersecting-volumes.json",
-                                                           "translucent-boxes.json", "many-objects.json"),
+INSTANTIATE_TEST_SUITE_P(Scenes, Parity,
+                         ::testing::Values("demo.json", "ct-phantom.json",
+                                           "intersecting-volumes.json", "translucent-boxes.json",
+                                           "many-objects.json"),
                          [](const auto& info) {
                            std::string n = info.param;
                            n = n.substr(0, n.find('.'));
-                           for (char& ch : n) ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                           for (char& ch : n)
+                             ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
                            return n;
                          });
 

@@ -24,7 +24,8 @@ ImageDifference compare(const Image& a, const Image& b) {
   double worst = 0.0;
   for (int i = 0; i < a.width * a.height; ++i) {
     double d = 0.0;
-    for (int c = 0; c < 3; ++c) d = std::max(d, double(std::abs(a.rgb[3 * i + c] - b.rgb[3 * i + c])));
+    for (int c = 0; c < 3; ++c)
+      d = std::max(d, double(std::abs(a.rgb[3 * i + c] - b.rgb[3 * i + c])));
     worst = std::max(worst, d);
     differing += d > 1e-4;
   }
@@ -34,8 +35,10 @@ ImageDifference compare(const Image& a, const Image& b) {
 ImageDifference raster_vs_raytrace(const Scene& scene, const char* shadows) {
   const SceneData data(scene, Memory::host);
   auto method = shadow_registry().create(shadows);
-  const RasterRenderResult raster = render_raster(Backend::cpu, data, scene.camera, *method, scene.background);
-  const RenderResult ray = render_reference(Backend::cpu, data, scene.camera, *method, scene.background);
+  const RasterRenderResult raster =
+      render_raster(Backend::cpu, data, scene.camera, *method, scene.background);
+  const RenderResult ray =
+      render_reference(Backend::cpu, data, scene.camera, *method, scene.background);
   EXPECT_EQ(raster.render.counters.overflow_pixels, 0u);
   EXPECT_FALSE(raster.raster.overflow);
   return compare(raster.render.image, ray.image);
@@ -52,12 +55,13 @@ TEST_P(RasterMatchesRaytrace, OnlyEdgePixelsDiffer) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, RasterMatchesRaytrace,
-                         ::testing::Values("demo.json", "translucent-boxes.json", "many-objects.json",
-                                           "intersecting-volumes.json"),
+                         ::testing::Values("demo.json", "translucent-boxes.json",
+                                           "many-objects.json", "intersecting-volumes.json"),
                          [](const auto& info) {
                            std::string n = info.param;
                            n = n.substr(0, n.find('.'));
-                           for (char& ch : n) ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                           for (char& ch : n)
+                             ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
                            return n;
                          });
 
@@ -86,10 +90,13 @@ TEST(RasterRender, EmptySpaceSkippingChangesNothingButTheSampleCount) {
   Scene scene = load_scene(test::source_dir() + "/scenes/knecht-fig56.json");
   scene.camera.width = 120;
   scene.camera.height = 80;
-  const SceneData skipping(scene, Memory::host), plain(scene, Memory::host, {.empty_space_skipping = false});
+  const SceneData skipping(scene, Memory::host),
+      plain(scene, Memory::host, {.empty_space_skipping = false});
   auto none = shadow_registry().create("none");
-  const RasterRenderResult a = render_raster(Backend::cpu, skipping, scene.camera, *none, scene.background);
-  const RasterRenderResult b = render_raster(Backend::cpu, plain, scene.camera, *none, scene.background);
+  const RasterRenderResult a =
+      render_raster(Backend::cpu, skipping, scene.camera, *none, scene.background);
+  const RasterRenderResult b =
+      render_raster(Backend::cpu, plain, scene.camera, *none, scene.background);
   const ImageDifference d = compare(a.render.image, b.render.image);
   EXPECT_LE(d.max_difference, 1e-6);
   EXPECT_LT(a.render.counters.volume_samples, b.render.counters.volume_samples / 2);

@@ -51,8 +51,9 @@ TEST(ReferenceRender, LitPlaneMatchesPhong) {
     const double falloff = l.intensity / glm::dot(l.position - p, l.position - p);
     const dvec3 refl = 2.0 * glm::dot(n, to_light) * n - to_light;
     const double spec = 0.3 * std::pow(std::max(0.0, glm::dot(refl, to_eye)), 20.0);
-    const dvec3 expected = 0.1 * floor.material.color +
-                           falloff * (0.7 * glm::dot(n, to_light) * floor.material.color + dvec3(spec));
+    const dvec3 expected =
+        0.1 * floor.material.color +
+        falloff * (0.7 * glm::dot(n, to_light) * floor.material.color + dvec3(spec));
     for (const RenderResult* image : {&r, &raster}) {
       const dvec3 got = image->image.at(x, y);
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 1e-5) << x << "," << y;

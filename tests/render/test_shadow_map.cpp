@@ -89,7 +89,8 @@ TEST(ShadowMap, MapsAreBuiltOncePerScene) {
   EXPECT_EQ(method->stats()["prepare_calls"], 2);
   EXPECT_EQ(method->stats()["bytes"], 64 * 64 * 4);
   EXPECT_THROW(shadow_registry().create("shadowmap", StrategyParams::parse({"res=0"})), InputError);
-  EXPECT_THROW(shadow_registry().create("shadowmap", StrategyParams::parse({"pcf=2", "eps=1"})), InputError);
+  EXPECT_THROW(shadow_registry().create("shadowmap", StrategyParams::parse({"pcf=2", "eps=1"})),
+               InputError);
 }
 
 TEST(ShadowMap, FocusingOnTheCameraSharpensWhatItSees) {
@@ -104,7 +105,8 @@ TEST(ShadowMap, FocusingOnTheCameraSharpensWhatItSees) {
   const SceneData data = b.build();
   auto reference = shadow_registry().create("reference");
   auto plain = shadow_registry().create("shadowmap", StrategyParams::parse({"res=128", "pcf=1"}));
-  auto focused = shadow_registry().create("shadowmap", StrategyParams::parse({"res=128", "pcf=1", "focus=1"}));
+  auto focused =
+      shadow_registry().create("shadowmap", StrategyParams::parse({"res=128", "pcf=1", "focus=1"}));
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> u(-1.2, 1.2);
   std::vector<dvec3> points;

@@ -18,7 +18,8 @@ struct SceneBuilder {
 
   SceneBuilder() { scene.source = "test-scene"; }
 
-  Object& add(TriangleMesh mesh, double alpha = 1.0, InteriorKind kind = InteriorKind::none, double sigma = 0.0) {
+  Object& add(TriangleMesh mesh, double alpha = 1.0, InteriorKind kind = InteriorKind::none,
+              double sigma = 0.0) {
     scene.meshes.push_back(std::move(mesh));
     Object o;
     o.name = "object" + std::to_string(scene.objects.size());
