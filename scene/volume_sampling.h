@@ -17,32 +17,64 @@ DV_HD inline double sample_at(const SceneView& s, const VolumeView& v, int x, in
   return double(s.densities[v.offset + (int64_t(z) * v.dims.y + y) * v.dims.x + x]);
 }
 
-// Trilinear density at continuous grid coordinates g (sample i sits at g = i).
-DV_HD inline double density_at_grid(const SceneView& s, const VolumeView& v, const dvec3& g) {
-  int i0[3];
+// The cell of a volume around continuous grid coordinates g (sample i sits at g = i): its eight
+// corner samples (bit 0: +x, bit 1: +y, bit 2: +z), the fractions inside it, and which axes
+// were not clamped (outside the grid the density is constant along a clamped axis).
+struct GridCell {
+  double corner[8];
   double f[3];
+  bool varies[3];
+};
+
+DV_HD inline GridCell grid_cell(const SceneView& s, const VolumeView& v, const dvec3& g) {
+  GridCell cell;
+  int i0[3], i1[3];
   for (int a = 0; a < 3; ++a) {
     const double hi = double(v.dims[a] - 1);
     const double c = clamp_value(g[a], 0.0, hi);
     int i = int(c);  // c >= 0, so truncation is floor
     if (i > v.dims[a] - 2) i = v.dims[a] - 2 < 0 ? 0 : v.dims[a] - 2;
     i0[a] = i;
-    f[a] = v.dims[a] > 1 ? c - double(i) : 0.0;
+    i1[a] = v.dims[a] > 1 ? i + 1 : i;
+    cell.f[a] = v.dims[a] > 1 ? c - double(i) : 0.0;
+    cell.varies[a] = v.dims[a] > 1 && g[a] >= 0.0 && g[a] <= hi;
   }
-  const int x1 = v.dims.x > 1 ? i0[0] + 1 : i0[0];
-  const int y1 = v.dims.y > 1 ? i0[1] + 1 : i0[1];
-  const int z1 = v.dims.z > 1 ? i0[2] + 1 : i0[2];
-  const double c00 =
-      sample_at(s, v, i0[0], i0[1], i0[2]) * (1 - f[0]) + sample_at(s, v, x1, i0[1], i0[2]) * f[0];
-  const double c10 =
-      sample_at(s, v, i0[0], y1, i0[2]) * (1 - f[0]) + sample_at(s, v, x1, y1, i0[2]) * f[0];
-  const double c01 =
-      sample_at(s, v, i0[0], i0[1], z1) * (1 - f[0]) + sample_at(s, v, x1, i0[1], z1) * f[0];
-  const double c11 =
-      sample_at(s, v, i0[0], y1, z1) * (1 - f[0]) + sample_at(s, v, x1, y1, z1) * f[0];
-  const double c0 = c00 * (1 - f[1]) + c10 * f[1];
-  const double c1 = c01 * (1 - f[1]) + c11 * f[1];
-  return c0 * (1 - f[2]) + c1 * f[2];
+  for (int k = 0; k < 8; ++k)
+    cell.corner[k] =
+        sample_at(s, v, k & 1 ? i1[0] : i0[0], k & 2 ? i1[1] : i0[1], k & 4 ? i1[2] : i0[2]);
+  return cell;
+}
+
+DV_HD inline double trilinear(const GridCell& c) {
+  const double* v = c.corner;
+  const double c00 = v[0] * (1 - c.f[0]) + v[1] * c.f[0];
+  const double c10 = v[2] * (1 - c.f[0]) + v[3] * c.f[0];
+  const double c01 = v[4] * (1 - c.f[0]) + v[5] * c.f[0];
+  const double c11 = v[6] * (1 - c.f[0]) + v[7] * c.f[0];
+  const double c0 = c00 * (1 - c.f[1]) + c10 * c.f[1];
+  const double c1 = c01 * (1 - c.f[1]) + c11 * c.f[1];
+  return c0 * (1 - c.f[2]) + c1 * c.f[2];
+}
+
+// The exact derivative of the trilinear interpolant inside the cell, per grid unit.
+DV_HD inline dvec3 trilinear_gradient(const GridCell& c) {
+  dvec3 grad(0.0);
+  for (int a = 0; a < 3; ++a) {
+    if (!c.varies[a]) continue;
+    const int b = (a + 1) % 3, d = (a + 2) % 3;  // the other two axes
+    for (int k = 0; k < 8; ++k) {
+      if (k & (1 << a)) continue;
+      const double wb = k & (1 << b) ? c.f[b] : 1 - c.f[b];
+      const double wd = k & (1 << d) ? c.f[d] : 1 - c.f[d];
+      grad[a] += (c.corner[k | (1 << a)] - c.corner[k]) * wb * wd;
+    }
+  }
+  return grad;
+}
+
+// Trilinear density at continuous grid coordinates g, clamped at the grid's edges.
+DV_HD inline double density_at_grid(const SceneView& s, const VolumeView& v, const dvec3& g) {
+  return trilinear(grid_cell(s, v, g));
 }
 
 struct TransferSample {
@@ -70,18 +102,10 @@ DV_HD inline double volume_sigma(const SceneView& s, const ObjectView& o, const 
   return apply_transfer(s, o, density_at_grid(s, v, world_to_grid(o, world))).sigma;
 }
 
-// World-space density gradient by central differences of one grid cell.
-DV_HD inline dvec3 density_gradient(const SceneView& s, const ObjectView& o, const dvec3& world) {
-  const VolumeView& v = s.volumes[o.volume];
-  const dvec3 g = world_to_grid(o, world);
-  dvec3 grad_grid;
-  for (int a = 0; a < 3; ++a) {
-    dvec3 d(0.0);
-    d[a] = 0.5;
-    grad_grid[a] = density_at_grid(s, v, g + d) - density_at_grid(s, v, g - d);
-  }
-  // d(density)/d(world) = J^T d(density)/d(grid), J the linear part of world_to_grid.
-  return glm::transpose(glm::dmat3(o.world_to_grid)) * grad_grid;
+// World-space gradient from a gradient in grid units: d(density)/d(world) = J^T d/d(grid), J the
+// linear part of world_to_grid.
+DV_HD inline dvec3 world_gradient(const ObjectView& o, const dvec3& grid_gradient) {
+  return glm::transpose(glm::dmat3(o.world_to_grid)) * grid_gradient;
 }
 
 // Empty-space skipping (Hadwiger et al. 2006, §3): bricks of kBrickCells^3 cells whose samples
