@@ -1,0 +1,122 @@
+// The binary voxel grid every voxelizer fills: W x H x D voxels over a world box, bit-packed
+// along depth so that one 32-bit word holds 32 consecutive slices of one (x, y) column, the way
+// a slicemap texel does (Eisemann & Decoret 2006; Buchacher 2014 §3).
+//
+// Conventions (grid coordinates are world coordinates mapped so that voxel (i, j, k) is the unit
+// cube [i, i+1] x [j, j+1] x [k, k+1]):
+//   - Voxel (i, j, k) covers [lo + i*unit, lo + (i+1)*unit) on each axis, half-open, except that
+//     the last voxel of each axis also holds the box's closed upper face (a point exactly on
+//     hi.x lands in voxel W-1). Points outside the closed box belong to no voxel.
+//   - Conservative voxelizers (exact, sat) set every voxel whose CLOSED box meets a triangle, so
+//     a face lying exactly on a voxel boundary sets the voxels on both sides of it.
+//   - Memory layout: word (x, y, k) holds z = 32k .. 32k+31 (bit z & 31) and sits at index
+//     (k * H + y) * W + x: a stack of D/32 slices of W x H words, like a layered integer texture.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/atomic.h"
+#include "core/buffer.h"
+#include "core/execute.h"
+#include "core/math.h"
+
+namespace dv {
+
+// Limits checked by validate_grid_spec: D any multiple of 32 up to kMaxGridDepth, W and H up to
+// kMaxGridSide, and at most kMaxGridVoxels voxels (2 GiB of words).
+inline constexpr int kMaxGridSide = 16384;
+inline constexpr int kMaxGridDepth = 4096;
+inline constexpr int64_t kMaxGridVoxels = int64_t(1) << 34;
+
+// Only axis-aligned boxes so far; light frustums (orthographic and perspective, depth along the
+// view direction) join as further kinds when the shadow source needs them.
+enum class GridKind : uint8_t { box };
+
+struct GridSpec {
+  GridKind kind = GridKind::box;
+  ivec3 res{0, 0, 0};  // W (x), H (y), D (z)
+  Aabb bounds;         // world box the grid covers
+
+  dvec3 voxel_size() const { return bounds.extent() / dvec3(res); }
+  int words_per_column() const { return res.z / 32; }
+  int64_t word_count() const { return int64_t(res.x) * res.y * words_per_column(); }
+  int64_t voxel_count() const { return int64_t(res.x) * res.y * res.z; }
+};
+
+// Throws InputError(where, ...) when the resolution breaks the limits above or the bounds are
+// empty, flat or not finite.
+void validate_grid_spec(const GridSpec& spec, const std::string& where);
+// A validated axis-aligned box grid.
+GridSpec make_box_grid(const ivec3& res, const Aabb& bounds, const std::string& where = "grid");
+
+// World -> grid coordinates ((p - lo) * scale per axis): voxel (i, j, k) is [i, i+1]^3 there.
+struct GridTransform {
+  dvec3 lo{0.0};
+  dvec3 scale{1.0};
+  DV_HD dvec3 apply(const dvec3& p) const {
+    return dvec3((p.x - lo.x) * scale.x, (p.y - lo.y) * scale.y, (p.z - lo.z) * scale.z);
+  }
+};
+GridTransform grid_transform(const GridSpec& spec);
+
+// What kernels receive: the words and the sizes. Setting bits is atomic (many threads write
+// the same words); reads are plain.
+struct VoxelGridView {
+  uint32_t* words = nullptr;
+  int width = 0, height = 0, depth = 0;
+
+  DV_HD int64_t word_index(int x, int y, int k) const {
+    return (int64_t(k) * height + y) * width + x;
+  }
+  DV_HD bool get(int x, int y, int z) const {
+    return (words[word_index(x, y, z >> 5)] >> (z & 31)) & 1u;
+  }
+  DV_HD void set(int x, int y, int z) const {
+    atomic_or(&words[word_index(x, y, z >> 5)], 1u << (z & 31));
+  }
+  DV_HD void set_bits(int x, int y, int k, uint32_t mask) const {
+    if (mask) atomic_or(&words[word_index(x, y, k)], mask);
+  }
+};
+
+class VoxelGrid {
+ public:
+  VoxelGrid() = default;
+  // A cleared grid in host or device memory; the spec must be valid (validate_grid_spec).
+  VoxelGrid(const GridSpec& spec, Memory memory);
+
+  const GridSpec& spec() const { return spec_; }
+  Memory memory() const { return words_.memory(); }
+  // The backend that can run kernels on this grid's memory.
+  Backend backend() const { return memory() == Memory::device ? Backend::cuda : Backend::cpu; }
+  VoxelGridView view() const;
+
+  void clear() { words_.fill_zero(); }
+  // Set voxels (copies device grids to the host to count them).
+  int64_t popcount() const;
+  std::vector<uint32_t> words() const { return words_.to_vector(); }
+  // A copy of the grid in `memory`.
+  VoxelGrid copy_to(Memory memory) const;
+
+  // Single-voxel access for host grids (throws Error for device grids or outside the grid).
+  bool get(int x, int y, int z) const;
+  void set(int x, int y, int z);
+
+ private:
+  void check_host_voxel(int x, int y, int z, const char* what) const;
+
+  GridSpec spec_;
+  Buffer<uint32_t> words_;
+};
+
+// One MIP level down (Buchacher §3.5): texel (x, y) of the result ORs texels 2x..2x+1,
+// 2y..2y+1 of `finer` with all depth bits kept. Odd sizes round up, so the last row and
+// column are never lost: the result is ceil(W/2) x ceil(H/2) x D and its bounds grow to
+// lo + 2 * ceil(W/2) * unit so its voxels are exactly twice as wide. Runs where the grid lives.
+VoxelGrid mip_down(const VoxelGrid& finer);
+// Levels 1, 2, ... down to 1 x 1 (level 0, the grid itself, is not repeated).
+std::vector<VoxelGrid> mip_chain(const VoxelGrid& base);
+
+}  // namespace dv
