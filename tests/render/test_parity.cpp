@@ -81,13 +81,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Parity,
                          ::testing::Values("demo.json", "ct-phantom.json",
                                            "intersecting-volumes.json", "translucent-boxes.json",
                                            "many-objects.json"),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           n = n.substr(0, n.find('.'));
-                           for (char& ch : n)
-                             ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-                           return n;
-                         });
+                         test::SceneFileName());
 
 }  // namespace
 }  // namespace dv

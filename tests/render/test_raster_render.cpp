@@ -57,13 +57,7 @@ TEST_P(RasterMatchesRaytrace, OnlyEdgePixelsDiffer) {
 INSTANTIATE_TEST_SUITE_P(Scenes, RasterMatchesRaytrace,
                          ::testing::Values("demo.json", "translucent-boxes.json",
                                            "many-objects.json", "intersecting-volumes.json"),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           n = n.substr(0, n.find('.'));
-                           for (char& ch : n)
-                             ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-                           return n;
-                         });
+                         test::SceneFileName());
 
 TEST(RasterRender, CameraInsideAMediumAndNearPlaneCrossings) {
   // The camera sits inside an absorbing box whose walls cross the near plane; a floor and a
