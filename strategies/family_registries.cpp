@@ -11,7 +11,12 @@ Registry<DsmStorage>& storage_registry() {
 }
 
 Registry<Voxelizer>& voxelizer_registry() {
-  static Registry<Voxelizer> registry("voxelizer");
+  static Registry<Voxelizer> registry = [] {
+    Registry<Voxelizer> r("voxelizer");
+    register_exact_voxelizer(r);
+    register_sat_voxelizer(r);
+    return r;
+  }();
   return registry;
 }
 

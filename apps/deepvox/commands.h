@@ -14,5 +14,6 @@ Runner add_probe(CLI::App& app);
 Runner add_render(CLI::App& app);
 Runner add_info(CLI::App& app);
 Runner add_list(CLI::App& app);
+Runner add_voxelize(CLI::App& app);
 
 }  // namespace dv::cli

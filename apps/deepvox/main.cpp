@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   runners["render"] = dv::cli::add_render(app);
   runners["info"] = dv::cli::add_info(app);
   runners["list"] = dv::cli::add_list(app);
+  runners["voxelize"] = dv::cli::add_voxelize(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

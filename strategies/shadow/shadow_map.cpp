@@ -228,7 +228,7 @@ class ShadowMapMethod final : public ShadowMethod {
 
 void register_shadow_maps(Registry<ShadowMethod>& registry) {
   registry.add("shadowmap",
-               "depth shadow maps from the tile rasterizer, PCF (params: res, pcf, bias)",
+               "depth shadow maps from the tile rasterizer, PCF (params: res, pcf, bias, slope, focus)",
                [](const StrategyParams& p) { return std::make_unique<ShadowMapMethod>(p); });
 }
 

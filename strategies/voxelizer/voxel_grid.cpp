@@ -11,7 +11,8 @@ namespace dv {
 
 void validate_grid_spec(const GridSpec& spec, const std::string& where) {
   const ivec3 r = spec.res;
-  const std::string res = std::to_string(r.x) + "x" + std::to_string(r.y) + "x" + std::to_string(r.z);
+  const std::string res =
+      std::to_string(r.x) + "x" + std::to_string(r.y) + "x" + std::to_string(r.z);
   if (r.x <= 0 || r.y <= 0 || r.z <= 0)
     throw InputError(where, "resolution " + res + " must be positive on every axis");
   if (r.z % 32 != 0)
@@ -43,7 +44,8 @@ GridSpec make_box_grid(const ivec3& res, const Aabb& bounds, const std::string& 
 GridTransform grid_transform(const GridSpec& spec) {
   GridTransform t;
   t.lo = spec.bounds.lo;
-  for (int a = 0; a < 3; ++a) t.scale[a] = double(spec.res[a]) / (spec.bounds.hi[a] - spec.bounds.lo[a]);
+  for (int a = 0; a < 3; ++a)
+    t.scale[a] = double(spec.res[a]) / (spec.bounds.hi[a] - spec.bounds.lo[a]);
   return t;
 }
 
@@ -100,7 +102,8 @@ VoxelGrid mip_down(const VoxelGrid& finer) {
         const int x = int(i % dst.width);
         const int y = int((i / dst.width) % dst.height);
         const int k = int(i / (int64_t(dst.width) * dst.height));
-        const int x1 = min_value(2 * x + 1, src.width - 1), y1 = min_value(2 * y + 1, src.height - 1);
+        const int x1 = min_value(2 * x + 1, src.width - 1),
+                  y1 = min_value(2 * y + 1, src.height - 1);
         uint32_t bits = 0;
         for (int sy = 2 * y; sy <= y1; ++sy)
           for (int sx = 2 * x; sx <= x1; ++sx) bits |= src.words[src.word_index(sx, sy, k)];

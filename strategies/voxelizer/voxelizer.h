@@ -1,22 +1,50 @@
-// Host side of the voxelizer family (slicemap, atlas, sat, atlas-compute, exact arrive with the
-// voxelization work): a named strategy with its parameters that fills a binary grid.
+// Host side of the voxelizer family (slicemap, atlas, sat, atlas-compute, exact): a named
+// strategy with its parameters that fills a binary grid (voxel_grid.h) from a triangle soup.
+// Registered so far: `exact` (CPU reference, exact_voxelizer.h) and `sat` (conservative,
+// CPU and CUDA, sat_kernels.h).
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/execute.h"
 #include "strategies/registry.h"
+#include "strategies/voxelizer/triangle_soup.h"
+#include "strategies/voxelizer/voxel_grid.h"
 
 namespace dv {
+
+struct VoxelizePass {
+  std::string name;
+  double milliseconds = 0.0;
+};
+
+struct VoxelizeResult {
+  VoxelGrid grid;  // host memory on the CPU backend, device memory on CUDA
+  std::vector<VoxelizePass> passes;
+  nlohmann::json counters = nlohmann::json::object();  // strategy-specific figures
+
+  double total_milliseconds() const;
+  nlohmann::json passes_json() const;  // [{"pass": name, "ms": t}, ...]
+};
 
 class Voxelizer {
  public:
   virtual ~Voxelizer() = default;
   virtual std::string name() const = 0;
   virtual nlohmann::json params() const = 0;
+  virtual bool supports(Backend backend) const = 0;
+  // Voxelizes every triangle of `soup` into a fresh grid of `spec` (validated here). Throws
+  // InputError when the backend is not supported.
+  virtual VoxelizeResult voxelize(Backend backend, const TriangleSoup& soup,
+                                  const GridSpec& spec) = 0;
 };
 
 Registry<Voxelizer>& voxelizer_registry();
+
+void register_exact_voxelizer(Registry<Voxelizer>& registry);
+void register_sat_voxelizer(Registry<Voxelizer>& registry);
 
 }  // namespace dv

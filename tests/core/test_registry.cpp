@@ -28,7 +28,8 @@ TEST(Registry, UnknownNameListsKnownOnes) {
     EXPECT_NE(msg.find("none"), std::string::npos);
   }
   EXPECT_THROW(storage_registry().create("chunked"), InputError);
-  EXPECT_THROW(voxelizer_registry().create("sat"), InputError);
+  EXPECT_THROW(voxelizer_registry().create("no-such-voxelizer"), InputError);
+  EXPECT_NO_THROW(voxelizer_registry().create("sat"));
 }
 
 TEST(Registry, UnreadParametersAreErrors) {

@@ -1,0 +1,49 @@
+// `deepvox voxelize MESH_OR_SCENE --method NAME [--backend cpu|cuda] --res 512x512x32
+//  [--bounds x0,y0,z0,x1,y1,z1] --out grid.binvox [--stats stats.json] [--compare-exact]`:
+// a binary surface voxel grid of every triangle of the scene, written as binvox, with counts,
+// pass timings and (optionally) the metrics against `exact` in the stats JSON. The work itself
+// is run_voxelize_job (strategies/voxelizer/voxelize_job.h).
+#include <cstdio>
+
+#include "apps/deepvox/commands.h"
+#include "apps/deepvox/run_metadata.h"
+#include "core/log.h"
+#include "strategies/voxelizer/voxelize_job.h"
+
+namespace dv::cli {
+
+Runner add_voxelize(CLI::App& app) {
+  auto job = std::make_shared<VoxelizeJob>();
+  CLI::App* cmd = app.add_subcommand("voxelize", "binary surface voxel grid of a mesh or scene");
+  cmd->add_option("scene", job->input, "mesh file or scene (.json, .gltf/.glb, .obj/.off/...)")
+      ->required();
+  cmd->add_option("--method", job->method, "voxelizer (see `deepvox list`)")->capture_default_str();
+  cmd->add_option("--param", job->params, "voxelizer parameter key=value (repeatable)");
+  cmd->add_option("--backend", job->backend, "cpu or cuda (default: cuda when a GPU is present)");
+  cmd->add_option("--res", job->res, "grid size WxHxD, D a multiple of 32")->capture_default_str();
+  cmd->add_option("--bounds", job->bounds,
+                  "grid box x0,y0,z0,x1,y1,z1 (default: the scene's bounds made cubic)");
+  cmd->add_option("--out", job->out, "binvox file to write")->required();
+  cmd->add_option("--stats", job->stats, "write counts, timings and run metadata as JSON");
+  cmd->add_flag("--compare-exact", job->compare_exact,
+                "also run `exact` on the CPU and report missing/extra voxels");
+  return [job] {
+    const Backend backend = job->backend.empty() ? default_backend() : parse_backend(job->backend);
+    const nlohmann::json stats = run_voxelize_job(*job, run_metadata(backend));
+    log_info("voxelize: " + stats["method"].get<std::string>() + " on " +
+             stats["backend"].get<std::string>() + ": " +
+             std::to_string(stats["filled"].get<int64_t>()) + " voxels set in " +
+             std::to_string(stats["total_ms"].get<double>()) + " ms -> " + job->out);
+    if (stats.contains("exact")) {
+      const nlohmann::json& m = stats["exact"]["metrics"];
+      std::printf("vs exact: missing %lld (%lld outside the band), extra %lld (%lld outside)\n",
+                  (long long)m["missing"].get<int64_t>(),
+                  (long long)m["missing_outside_band"].get<int64_t>(),
+                  (long long)m["extra"].get<int64_t>(),
+                  (long long)m["extra_outside_band"].get<int64_t>());
+    }
+    return 0;
+  };
+}
+
+}  // namespace dv::cli

@@ -1,0 +1,40 @@
+// What `deepvox voxelize` does, as library functions the tests can call: parse the resolution
+// and bounds options, voxelize a mesh or scene with a registered voxelizer, optionally measure
+// it against `exact`, write the binvox grid and the stats JSON.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/math.h"
+
+namespace dv {
+
+struct VoxelizeJob {
+  std::string input;                // mesh file or scene (anything load_scene takes)
+  std::string method = "sat";       // registered voxelizer
+  std::vector<std::string> params;  // key=value for the voxelizer
+  std::string backend;              // "cpu" | "cuda"; empty: CUDA when a GPU is present
+  std::string res = "512x512x32";   // WxHxD, D a multiple of 32
+  std::string bounds;               // "x0,y0,z0,x1,y1,z1"; empty: the scene's bounds made cubic
+  std::string out;                  // binvox path; empty: none written
+  std::string stats;                // stats JSON path; empty: none written
+  bool compare_exact = false;       // add metrics against `exact` (CPU) to the stats
+};
+
+// "WxHxD" (or "N" for N x N x N); every size is checked against the grid limits. Throws
+// InputError(where, ...) with the reason.
+ivec3 parse_voxel_resolution(const std::string& text, const std::string& where = "--res");
+// "x0,y0,z0,x1,y1,z1" with x1 > x0, y1 > y0, z1 > z0, all finite.
+Aabb parse_voxel_bounds(const std::string& text, const std::string& where = "--bounds");
+// The cube with the same centre whose side is the box's largest extent; InputError(where)
+// when the box is empty or has no extent at all.
+Aabb cubic_bounds(const Aabb& box, const std::string& where);
+
+// Runs the job and returns its stats (also written to job.stats with `meta` under "meta").
+nlohmann::json run_voxelize_job(const VoxelizeJob& job,
+                                const nlohmann::json& meta = nlohmann::json::object());
+
+}  // namespace dv

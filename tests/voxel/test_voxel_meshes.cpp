@@ -1,0 +1,124 @@
+// sat against the exact reference on whole meshes (icosphere, torus, the shared bunny, a
+// subdivided quad lying on a voxel plane) at 64^3 and 128x128x32: no voxel missing outside
+// the borderline band; extra voxels are reported. Then CPU == CUDA grids, bit for bit
+// (skipped without a GPU).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "core/device_memory.h"
+#include "generators/mesh_generators.h"
+#include "strategies/voxelizer/sat_voxelizer.h"
+#include "strategies/voxelizer/voxel_metrics.h"
+#include "strategies/voxelizer/voxelize_job.h"
+#include "tests/support/paths.h"
+
+namespace dv {
+namespace {
+
+struct MeshCase {
+  const char* name;
+  TriangleMesh (*make)();
+};
+
+TriangleMesh bunny() {
+  return make_bunny(test::source_dir() + "/assets", 0);
+}
+TriangleMesh icosphere() {
+  return make_icosphere(0.5, 3);
+}
+TriangleMesh torus() {
+  return make_torus(0.35, 0.15, 48, 24);
+}
+TriangleMesh quad() {
+  return make_subdivided_quad(1.0, 11858);
+}
+TriangleMesh cube() {
+  return make_box(dvec3(-0.5), dvec3(0.5));
+}
+
+const MeshCase kMeshes[] = {
+    {"icosphere", icosphere}, {"torus", torus}, {"bunny", bunny}, {"subdivided_quad", quad}};
+
+class SatVersusExact : public ::testing::TestWithParam<MeshCase> {};
+
+TEST_P(SatVersusExact, NothingMissingOutsideTheBand) {
+  const TriangleSoup soup = triangle_soup(GetParam().make());
+  const Aabb bounds = cubic_bounds(soup.bounds(), GetParam().name);
+  for (const ivec3 res : {ivec3(64, 64, 64), ivec3(128, 128, 32)}) {
+    const GridSpec spec = make_box_grid(res, bounds);
+    const ExactVoxelization exact = voxelize_exact(soup, spec, true);
+    const VoxelizeResult sat = voxelize_sat(Backend::cpu, soup, spec);
+    const VoxelMetrics m = compare_with_exact(sat.grid, exact);
+    std::printf(
+        "%-16s %3dx%3dx%3d  triangles %6lld  exact %7lld  sat %7lld  missing %lld "
+        "(outside band %lld)  extra %lld (outside band %lld)  band %lld\n",
+        GetParam().name, res.x, res.y, res.z, (long long)soup.triangle_count(),
+        (long long)m.reference_filled, (long long)m.filled, (long long)m.missing,
+        (long long)m.missing_outside_band, (long long)m.extra, (long long)m.extra_outside_band,
+        (long long)m.borderline);
+    EXPECT_GT(m.reference_filled, 1000);
+    EXPECT_EQ(m.missing_outside_band, 0);
+    EXPECT_EQ(m.extra_outside_band, 0);
+    // Both compute in double: any disagreement is a rounding tie inside the band.
+    EXPECT_LE(m.missing + m.extra, m.borderline);
+    EXPECT_EQ(m.filled, sat.grid.popcount());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, SatVersusExact, ::testing::ValuesIn(kMeshes),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(SatVersusExact, QuadOnAVoxelPlaneSetsBothLayers) {
+  // The quad lies in y = 0, the middle plane of its cubic box: grid y = 32 exactly, so the
+  // closed voxel boxes of both layers y = 31 and y = 32 meet it.
+  const TriangleSoup soup = triangle_soup(quad());
+  const GridSpec spec = make_box_grid({64, 64, 64}, cubic_bounds(soup.bounds(), "quad"));
+  const VoxelizeResult sat = voxelize_sat(Backend::cpu, soup, spec);
+  EXPECT_EQ(sat.grid.popcount(), 2 * 64 * 64);
+  EXPECT_TRUE(sat.grid.get(0, 31, 0) && sat.grid.get(63, 32, 63));
+}
+
+class CpuCudaParity : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string why;
+    if (!cuda_device_available(&why)) GTEST_SKIP() << "CPU/CUDA parity needs a GPU: " << why;
+  }
+};
+
+TEST_F(CpuCudaParity, IdenticalGrids) {
+  std::vector<std::pair<const char*, TriangleSoup>> cases;
+  cases.emplace_back("bunny", triangle_soup(bunny()));
+  cases.emplace_back("cube", triangle_soup(cube()));
+  cases.emplace_back("quad", triangle_soup(quad()));
+  TriangleSoup degenerate;
+  degenerate.add({0.1, 0.2, 0.3}, {-0.4, 0.3, -0.2}, {0.1, 0.2, 0.3});
+  degenerate.add({0.25, 0.25, 0.25}, {0.25, 0.25, 0.25}, {0.25, 0.25, 0.25});
+  cases.emplace_back("degenerate", degenerate);
+  for (const auto& [name, soup] : cases) {
+    const Aabb bounds = cubic_bounds(triangle_soup(cube()).bounds(), name);
+    for (const ivec3 res : {ivec3(64, 64, 64), ivec3(256, 256, 32), ivec3(100, 37, 96)}) {
+      const GridSpec spec = make_box_grid(res, bounds);
+      const VoxelizeResult c = voxelize_sat(Backend::cpu, soup, spec);
+      const VoxelizeResult g = voxelize_sat(Backend::cuda, soup, spec);
+      EXPECT_EQ(g.grid.memory(), Memory::device);
+      EXPECT_EQ(c.grid.words(), g.grid.words()) << name << " " << res.x << "x" << res.y;
+      EXPECT_EQ(c.counters, g.counters) << name;
+      EXPECT_GT(c.grid.popcount(), 0) << name;
+    }
+  }
+}
+
+TEST_F(CpuCudaParity, MipOnTheDevice) {
+  const TriangleSoup soup = triangle_soup(bunny());
+  const GridSpec spec = make_box_grid({77, 51, 64}, cubic_bounds(soup.bounds(), "bunny"));
+  const VoxelizeResult c = voxelize_sat(Backend::cpu, soup, spec);
+  const VoxelizeResult g = voxelize_sat(Backend::cuda, soup, spec);
+  const std::vector<VoxelGrid> host = mip_chain(c.grid), device = mip_chain(g.grid);
+  ASSERT_EQ(host.size(), device.size());
+  for (size_t i = 0; i < host.size(); ++i) EXPECT_EQ(host[i].words(), device[i].words()) << i;
+}
+
+}  // namespace
+}  // namespace dv
