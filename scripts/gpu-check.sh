@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs on a GPU node from the repository root, with a CUDA build's bin/ carried along: the
-# CUDA smoke test, CPU/CUDA parity, the oracle, raster and render tests, renders of the
+# CUDA smoke test, CPU/CUDA parity, the oracle, raster, render, voxel and DSM tests, renders of the
 # committed scenes on both backends, and the benchmarks. Logs and outputs are packed into
 # $OUT/gpu-check.tar.gz (the device tool returns few files); the summary goes to stdout.
 # Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]
@@ -13,7 +13,7 @@ export DEEPVOX_SOURCE_DIR="$PWD" DEEPVOX_ASSETS="$PWD/assets"
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem --format=csv > "$work/gpu.txt" 2>&1
 cat "$work/gpu.txt"
 status=0
-for t in test_core test_render test_oracle test_raster; do
+for t in test_core test_render test_oracle test_raster test_voxel test_dsm; do
   [ -x "$build/bin/$t" ] || continue
   "$build/bin/$t" --gtest_output="json:$work/$t.json" > "$work/$t.log" 2>&1 || status=1
   echo "$t: $(grep -E '^\[  (PASSED|FAILED|SKIPPED) ' "$work/$t.log" | tr '\n' ' ')"
