@@ -8,7 +8,7 @@ packages=(
   libglm-dev libglfw3-dev libopenimageio-dev python3-imath libcgal-dev libeigen3-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   libgtest-dev libbenchmark-dev
-  libegl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
+  libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
 )
 
 missing=()
