@@ -30,7 +30,7 @@ for scene in demo ct-phantom intersecting-volumes knecht-fig56; do
   done
 done
 grep -h "deepvox: render" "$work/render.log"
-for bench in bench_oracle bench_renderer; do
+for bench in bench_oracle bench_renderer bench_voxelizer; do
   "$build/bin/$bench" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
     --benchmark_out="$work/$bench.json" --benchmark_out_format=json > "$work/$bench.log" 2>&1 || status=1
   grep -E "median|stddev" "$work/$bench.log"
