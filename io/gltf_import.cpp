@@ -27,6 +27,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/text.h"
 #include "generators/mesh_topology.h"
 
 namespace dv {
@@ -93,10 +94,7 @@ void check_glb_header(const std::string& path, const std::vector<unsigned char>&
 Model parse_model(const std::string& path) {
   std::vector<unsigned char> bytes = read_whole_file(path);
   bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  if (!binary && ext == ".glb")
+  if (!binary && lowercase_extension(path) == ".glb")
     throw InputError(path, "not a binary glTF: the file does not start with 'glTF'");
   if (binary) check_glb_header(path, bytes);
 
@@ -657,9 +655,7 @@ Scene load_gltf_scene(const std::string& path) {
 }
 
 bool is_gltf_file(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowercase_extension(path);
   return ext == ".gltf" || ext == ".glb";
 }
 

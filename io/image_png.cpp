@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "io/image.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -30,18 +31,8 @@ void write_png(const std::string& path, const Image& image) {
     throw InputError(path, "cannot write PNG file");
 }
 
-namespace {
-
-std::string image_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-}  // namespace
-
 void check_image_path(const std::string& path) {
-  const std::string ext = image_extension(path);
+  const std::string ext = lowercase_extension(path);
   if (ext == ".exr" && !exr_supported()) write_exr(path, Image());  // throws the reason
   if (ext != ".png" && ext != ".exr")
     throw InputError(path, "unknown image type '" + ext + "' (known: .png, .exr)");
@@ -49,7 +40,7 @@ void check_image_path(const std::string& path) {
 
 void write_image(const std::string& path, const Image& image) {
   check_image_path(path);
-  if (image_extension(path) == ".png") return write_png(path, image);
+  if (lowercase_extension(path) == ".png") return write_png(path, image);
   write_exr(path, image);
 }
 

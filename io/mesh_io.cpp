@@ -19,6 +19,7 @@
 #include <CGAL/IO/polygon_soup_io.h>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "generators/mesh_topology.h"
 
 namespace dv {
@@ -27,13 +28,6 @@ namespace {
 using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
 
 constexpr std::array<const char*, 4> kSupportedExtensions = {".obj", ".off", ".ply", ".stl"};
-
-std::string lowercase_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 std::string supported_list() {
   std::string list;

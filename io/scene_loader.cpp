@@ -7,6 +7,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "generators/mesh_generators.h"
 #include "generators/volume_generators.h"
 #include "io/gltf_import.h"
@@ -260,12 +261,6 @@ struct Loader {
   }
 };
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 }  // namespace
 
 Scene load_scene(const std::string& path, const std::string& assets_dir) {
@@ -285,7 +280,7 @@ Scene load_scene(const std::string& path, const std::string& assets_dir) {
     const Aabb b = world_bounds(scene);
     scene.camera = default_camera(b);
     scene.lights.push_back(default_light(b));
-  } else if (lower_extension(path) == ".json") {
+  } else if (lowercase_extension(path) == ".json") {
     Loader loader{scene,
                   fs::path(path).parent_path(),
                   assets_dir.empty() ? find_assets_dir() : assets_dir,
@@ -293,7 +288,7 @@ Scene load_scene(const std::string& path, const std::string& assets_dir) {
                   {}};
     loader.read(parse_json_file(path), path);
   } else {
-    throw InputError(path, "unknown scene type '" + lower_extension(path) +
+    throw InputError(path, "unknown scene type '" + lowercase_extension(path) +
                                "' (known: .json, .gltf, .glb, .obj, .off, .ply, .stl)");
   }
   scene.source = path;

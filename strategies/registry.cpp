@@ -6,11 +6,6 @@
 
 namespace dv {
 
-std::string lowercase(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 StrategyParams StrategyParams::parse(const std::vector<std::string>& items) {
   std::map<std::string, std::string> values;
   for (const std::string& item : items) {

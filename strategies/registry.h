@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace dv {
 
@@ -40,8 +41,6 @@ class StrategyParams {
   std::map<std::string, std::string> values_;
   mutable std::set<std::string> read_;
 };
-
-std::string lowercase(std::string s);
 
 template <class Base>
 class Registry {
