@@ -89,8 +89,7 @@ DV_HD inline bool make_light_segment(const SceneView& s, const LightView& light,
     return true;
   }
   const dvec3 dir = delta / len;
-  if (light.type == LightType::spot && glm::dot(dir, light.direction) < light.cos_cutoff)
-    return false;
+  if (outside_spot_cone(light, dir)) return false;
   double back = 0.0;
   if (box.contains(light.position))
     back = max_value(box_exit_distance(box, light.position, -dir), 0.0) + margin;

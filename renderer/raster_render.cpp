@@ -15,34 +15,37 @@ namespace dv {
 namespace {
 
 template <class Source>
-void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& projection, const TileListsView lists,
-                  const Source& source, const dvec3& background, const InsideSet* eye_media, View<float> rgb,
-                  RenderCounters* counters) {
+void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& projection,
+                  const TileListsView lists, const Source& source, const dvec3& background,
+                  const InsideSet* eye_media, View<float> rgb, RenderCounters* counters) {
   const int width = projection.width;
-  parallel_for(backend, "raster_fragment_pass", int64_t(width) * projection.height, DV_KERNEL_LAMBDA(int64_t i) {
-    const int x = int(i % width), y = int(i / width);
-    const PixelRay ray = pixel_ray(projection, x, y);
-    // Where the near plane cuts this ray (the signed distance to it is affine along the ray):
-    // fragments before it were clipped by the rasterizer.
-    const double d0 = near_plane_distance(projection, world_to_clip_point(projection, ray.origin));
-    const double d1 = near_plane_distance(projection, world_to_clip_point(projection, ray.origin + ray.direction));
-    const double t_clip = d1 > d0 ? max_value(0.0, -d0 / (d1 - d0)) : 0.0;
-    NoPayload none;
-    const BvhFragments before_near{&s, make_sheared_ray(ray.origin, ray.direction), t_clip};
-    const WalkStatus front = walk_fragments(s, before_near, *eye_media, 0.0, t_clip, t_clip, none);
-    ShadePayload<Source> payload{s, source, ray.origin, ray.direction};
-    const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
-    const WalkStatus status = walk_fragments(s, fragments, front.inside, t_clip, t_clip, 1e300, payload);
-    const dvec3 c = payload.color + payload.transmittance * background;
-    rgb[3 * i + 0] = float(c.x);
-    rgb[3 * i + 1] = float(c.y);
-    rgb[3 * i + 2] = float(c.z);
-    atomic_add(&counters->hits, status.crossings);
-    atomic_add(&counters->volume_samples, payload.samples);
-    atomic_max(&counters->max_hits, status.crossings);
-    if (status.overflow || front.overflow) atomic_add(&counters->overflow_pixels, 1ull);
-    if (payload.cursor.flags) atomic_add(&counters->oracle_flag_pixels, 1ull);
-  });
+  parallel_for(
+      backend, "raster_fragment_pass", int64_t(width) * projection.height,
+      DV_KERNEL_LAMBDA(int64_t i) {
+        const int x = int(i % width), y = int(i / width);
+        const PixelRay ray = pixel_ray(projection, x, y);
+        // Where the near plane cuts this ray (the signed distance to it is affine along the ray):
+        // fragments before it were clipped by the rasterizer.
+        const double d0 =
+            near_plane_distance(projection, world_to_clip_point(projection, ray.origin));
+        const double d1 = near_plane_distance(
+            projection, world_to_clip_point(projection, ray.origin + ray.direction));
+        const double t_clip = d1 > d0 ? max_value(0.0, -d0 / (d1 - d0)) : 0.0;
+        NoPayload none;
+        const BvhFragments before_near{&s, make_sheared_ray(ray.origin, ray.direction), t_clip};
+        const WalkStatus front =
+            walk_fragments(s, before_near, *eye_media, 0.0, t_clip, t_clip, none);
+        ShadePayload<Source> payload{s, source, ray.origin, ray.direction};
+        const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
+        const WalkStatus status =
+            walk_fragments(s, fragments, front.inside, t_clip, t_clip, 1e300, payload);
+        const dvec3 c = payload.color + payload.transmittance * background;
+        rgb[3 * i + 0] = float(c.x);
+        rgb[3 * i + 1] = float(c.y);
+        rgb[3 * i + 2] = float(c.z);
+        count_pixel(counters, status.crossings, payload.samples, status.overflow || front.overflow,
+                    payload.cursor.flags);
+      });
 }
 
 }  // namespace
@@ -70,19 +73,25 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   result.raster_ms = raster_timer.stop();
   result.raster = lists.stats;
   if (lists.stats.overflow)
-    throw Error("render_raster: tile lists overflowed (" + std::to_string(lists.stats.entries_needed) +
+    throw Error("render_raster: tile lists overflowed (" +
+                std::to_string(lists.stats.entries_needed) +
                 " entries needed); nothing was shaded");
   Buffer<InsideSet> eye_media(memory, 1, "eye media");
   const View<InsideSet> eye = eye_media.view();
   const dvec3 eye_position = camera.position;
-  parallel_for(backend, "eye_media", 1, DV_KERNEL_LAMBDA(int64_t) { eye[0] = media_containing(view, eye_position).inside; });
+  parallel_for(
+      backend, "eye_media", 1,
+      DV_KERNEL_LAMBDA(int64_t) { eye[0] = media_containing(view, eye_position).inside; });
   Buffer<float> rgb(memory, int64_t(projection.width) * projection.height * 3, "image");
   Buffer<RenderCounters> counters(memory, 1, "render counters");
   counters.fill_zero();
   PassTimer fragment_timer(backend);
-  std::visit([&](const auto& s) {
-    shade_pixels(backend, view, projection, lists.view(), s, background, eye_media.data(), rgb.view(), counters.data());
-  }, source);
+  std::visit(
+      [&](const auto& s) {
+        shade_pixels(backend, view, projection, lists.view(), s, background, eye_media.data(),
+                     rgb.view(), counters.data());
+      },
+      source);
   result.fragment_ms = fragment_timer.stop();
   result.render.milliseconds = total.stop();
   result.render.image = Image(projection.width, projection.height);

@@ -27,13 +27,8 @@ DV_HD dvec3 walk_pixel(const SceneView& s, const CameraView& cam, const Source& 
   ShadePayload<Source> payload{s, shadows, origin, dir};
   const BvhFragments fragments{&s, make_sheared_ray(origin, dir)};
   const WalkStatus status = walk_fragments(s, fragments, InsideSet{}, 0.0, t_near, t_far, payload);
-  if (counters) {
-    atomic_add(&counters->hits, status.crossings);
-    atomic_add(&counters->volume_samples, payload.samples);
-    atomic_max(&counters->max_hits, status.crossings);
-    if (status.overflow) atomic_add(&counters->overflow_pixels, 1ull);
-    if (payload.cursor.flags) atomic_add(&counters->oracle_flag_pixels, 1ull);
-  }
+  if (counters)
+    count_pixel(counters, status.crossings, payload.samples, status.overflow, payload.cursor.flags);
   return payload.color + payload.transmittance * background;
 }
 

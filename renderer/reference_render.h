@@ -10,7 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/atomic.h"
 #include "core/execute.h"
+#include "core/hd.h"
 #include "io/image.h"
 #include "renderer/fragment_walk.h"
 #include "scene/scene.h"
@@ -26,6 +28,16 @@ struct RenderCounters {
   unsigned long long overflow_pixels = 0;  // pixels that hit kMaxHitsPerPixel or kMaxInsideObjects
   unsigned long long oracle_flag_pixels = 0;  // pixels whose shadow queries raised oracle flags
 };
+
+// Adds one pixel's walk to the counters; any thread of either backend may call it.
+DV_HD inline void count_pixel(RenderCounters* c, unsigned long long crossings,
+                              unsigned long long samples, bool overflow, uint32_t shadow_flags) {
+  atomic_add(&c->hits, crossings);
+  atomic_add(&c->volume_samples, samples);
+  atomic_max(&c->max_hits, crossings);
+  if (overflow) atomic_add(&c->overflow_pixels, 1ull);
+  if (shadow_flags) atomic_add(&c->oracle_flag_pixels, 1ull);
+}
 
 struct RenderResult {
   Image image;

@@ -26,8 +26,8 @@ DV_HD inline LightArrival light_arrival(const LightView& l, const dvec3& p) {
   const dvec3 to_light = d / sqrt(dist2);
   double fade = 1.0;
   if (l.type == LightType::spot) {
+    if (outside_spot_cone(l, -to_light)) return {to_light, 0.0};
     const double c = -glm::dot(to_light, l.direction);
-    if (c < l.cos_cutoff) return {to_light, 0.0};
     if (l.cos_inner > l.cos_cutoff && c < l.cos_inner) {
       const double x = (c - l.cos_cutoff) / (l.cos_inner - l.cos_cutoff);
       fade = x * x * (3.0 - 2.0 * x);

@@ -1,6 +1,8 @@
 // Flattening of a Scene into world-space arrays plus a BVH (see scene_view.h).
 #include "scene/scene_view.h"
 
+#include "scene/volume_sampling.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,14 +27,7 @@ namespace {
 // interval's ends or at a control point inside it.
 double max_sigma(const TransferFunction& tf, double lo, double hi) {
   auto sigma_at = [&](double d) {
-    const auto& p = tf.points;
-    if (d <= p.front().density) return p.front().sigma;
-    if (d >= p.back().density) return p.back().sigma;
-    size_t k = 0;
-    while (k + 2 < p.size() && p[k + 1].density <= d) ++k;
-    const double span = p[k + 1].density - p[k].density;
-    const double w = span > 0.0 ? (d - p[k].density) / span : 1.0;
-    return p[k].sigma * (1.0 - w) + p[k + 1].sigma * w;
+    return evaluate_transfer(tf.points.data(), int(tf.points.size()), d).sigma;
   };
   double m = std::max(sigma_at(lo), sigma_at(hi));
   for (const TransferPoint& p : tf.points)

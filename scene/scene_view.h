@@ -44,6 +44,12 @@ struct LightView {
   double intensity;
 };
 
+// Whether unit direction `from_light` (from a spot light's position toward a point) leaves the
+// light's cone; the boundary is inside. Lights of other types have no cone.
+DV_HD inline bool outside_spot_cone(const LightView& l, const dvec3& from_light) {
+  return l.type == LightType::spot && glm::dot(from_light, l.direction) < l.cos_cutoff;
+}
+
 struct SceneView {
   View<const dvec3> vertices;     // world space
   View<const u32vec3> triangles;  // BVH order

@@ -82,11 +82,9 @@ struct TransferSample {
   double sigma;
 };
 
-// Piecewise-linear transfer function; the end points' values hold outside their range.
-DV_HD inline TransferSample apply_transfer(const SceneView& s, const ObjectView& o,
-                                           double density) {
-  const TransferPoint* p = s.transfer.data + o.transfer_first;
-  const int n = o.transfer_count;
+// Piecewise-linear transfer function over n >= 1 points sorted by density; the end points'
+// values hold outside their range.
+DV_HD inline TransferSample evaluate_transfer(const TransferPoint* p, int n, double density) {
   if (density <= p[0].density) return {p[0].color, p[0].sigma};
   if (density >= p[n - 1].density) return {p[n - 1].color, p[n - 1].sigma};
   int k = 0;
@@ -94,6 +92,12 @@ DV_HD inline TransferSample apply_transfer(const SceneView& s, const ObjectView&
   const double span = p[k + 1].density - p[k].density;
   const double w = span > 0.0 ? (density - p[k].density) / span : 1.0;
   return {p[k].color * (1.0 - w) + p[k + 1].color * w, p[k].sigma * (1.0 - w) + p[k + 1].sigma * w};
+}
+
+// An object's transfer function at a density.
+DV_HD inline TransferSample apply_transfer(const SceneView& s, const ObjectView& o,
+                                           double density) {
+  return evaluate_transfer(s.transfer.data + o.transfer_first, o.transfer_count, density);
 }
 
 // Extinction of a volume object at a world point.

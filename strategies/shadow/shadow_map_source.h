@@ -66,7 +66,7 @@ struct ShadowMapSource {
     if (l.type == LightType::spot) {
       const dvec3 d = p - l.position;
       const double len = glm::length(d);
-      if (len > 0.0 && glm::dot(d / len, l.direction) < l.cos_cutoff) return 0.0;
+      if (len > 0.0 && outside_spot_cone(l, d / len)) return 0.0;
     }
     const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
     const dvec4 clip = world_to_clip_point(f.projection, p);
