@@ -68,4 +68,31 @@ DV_HD T atomic_cas(T* address, T expected, T desired) {
 #endif
 }
 
+// A load that sees other threads' atomic writes (spin-waits read through it).
+template <class T>
+DV_HD T atomic_load(const T* address) {
+#if DV_IN_DEVICE_CODE
+  return *static_cast<const volatile T*>(address);
+#else
+  return std::atomic_ref<T>(*const_cast<T*>(address)).load(std::memory_order_acquire);
+#endif
+}
+
+// Returns the previous value.
+template <class T>
+DV_HD T atomic_exchange(T* address, T value) {
+#if DV_IN_DEVICE_CODE
+  return atomicExch(address, value);
+#else
+  return std::atomic_ref<T>(*address).exchange(value, std::memory_order_acq_rel);
+#endif
+}
+
+// Lets other threads run while this one spin-waits (a short sleep on the device).
+DV_HD inline void spin_pause() {
+#if DV_IN_DEVICE_CODE
+  __nanosleep(32);
+#endif
+}
+
 }  // namespace dv

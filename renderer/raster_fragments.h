@@ -5,6 +5,8 @@
 #pragma once
 
 #include "core/hd.h"
+#include "renderer/fragment_walk.h"
+#include "renderer/raster/raster_projection.h"
 #include "renderer/raster/tile_raster.h"
 #include "scene/ray_query.h"
 #include "scene/scene_view.h"
@@ -33,5 +35,27 @@ struct RasterFragments {
     return found;
   }
 };
+
+// Where a pixel ray of a rasterized view starts being walked: the near plane cuts it at `t` (the
+// rasterizer clipped what lies before), and the crossings before that point, found through the
+// BVH from the media containing the ray's origin, give the media it is inside there.
+struct NearPlaneStart {
+  double t;
+  WalkStatus status;  // status.inside: the media at t
+};
+
+DV_HD inline NearPlaneStart start_at_near_plane(const SceneView& s,
+                                                const RasterProjection& projection,
+                                                const PixelRay& ray,
+                                                const InsideSet& origin_media) {
+  // The signed distance to the near plane is affine along the ray.
+  const double d0 = near_plane_distance(projection, world_to_clip_point(projection, ray.origin));
+  const double d1 =
+      near_plane_distance(projection, world_to_clip_point(projection, ray.origin + ray.direction));
+  const double t_clip = d1 > d0 ? max_value(0.0, -d0 / (d1 - d0)) : 0.0;
+  NoPayload none;
+  const BvhFragments before_near{&s, make_sheared_ray(ray.origin, ray.direction), t_clip};
+  return {t_clip, walk_fragments(s, before_near, origin_media, 0.0, t_clip, t_clip, none)};
+}
 
 }  // namespace dv

@@ -24,27 +24,17 @@ void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& p
       DV_KERNEL_LAMBDA(int64_t i) {
         const int x = int(i % width), y = int(i / width);
         const PixelRay ray = pixel_ray(projection, x, y);
-        // Where the near plane cuts this ray (the signed distance to it is affine along the ray):
-        // fragments before it were clipped by the rasterizer.
-        const double d0 =
-            near_plane_distance(projection, world_to_clip_point(projection, ray.origin));
-        const double d1 = near_plane_distance(
-            projection, world_to_clip_point(projection, ray.origin + ray.direction));
-        const double t_clip = d1 > d0 ? max_value(0.0, -d0 / (d1 - d0)) : 0.0;
-        NoPayload none;
-        const BvhFragments before_near{&s, make_sheared_ray(ray.origin, ray.direction), t_clip};
-        const WalkStatus front =
-            walk_fragments(s, before_near, *eye_media, 0.0, t_clip, t_clip, none);
+        const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
         ShadePayload<Source> payload{s, source, ray.origin, ray.direction};
         const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
         const WalkStatus status =
-            walk_fragments(s, fragments, front.inside, t_clip, t_clip, 1e300, payload);
+            walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
         const dvec3 c = payload.color + payload.transmittance * background;
         rgb[3 * i + 0] = float(c.x);
         rgb[3 * i + 1] = float(c.y);
         rgb[3 * i + 2] = float(c.z);
-        count_pixel(counters, status.crossings, payload.samples, status.overflow || front.overflow,
-                    payload.cursor.flags);
+        count_pixel(counters, status.crossings, payload.samples,
+                    status.overflow || front.status.overflow, payload.cursor.flags);
       });
 }
 

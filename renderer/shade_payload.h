@@ -7,6 +7,7 @@
 
 #include "core/hd.h"
 #include "renderer/fragment_walk.h"
+#include "renderer/media_march.h"
 #include "renderer/shading.h"
 #include "scene/volume_sampling.h"
 
@@ -43,54 +44,19 @@ struct ShadePayload {
     transmittance *= 1.0 - o.alpha;
   }
 
-  // Media over [t0, t1]: constant ones only absorb (exact exp of the chord); volumes are sampled
-  // at step midpoints with the smallest step of those the ray is inside, the last step shortened.
+  // Media over [t0, t1], stepped by march_media (renderer/media_march.h).
   DV_HD void segment(const InsideSet& inside, double t0, double t1) {
-    double sigma_constant = 0.0, step = 1e300;
-    bool any_volume = false;
-    for (int i = 0; i < inside.count; ++i) {
-      const ObjectView& o = s.objects[inside.object[i]];
-      if (o.interior == InteriorKind::constant) sigma_constant += o.sigma;
-      if (o.interior == InteriorKind::volume) any_volume = true, step = min_value(step, o.step);
-    }
-    if (!any_volume) {
-      transmittance *= exp(-sigma_constant * (t1 - t0));
-      return;
-    }
-    const int64_t steps = int64_t(ceil((t1 - t0) / step));
-    for (int64_t k = 0; k < steps && !done(); ++k) {
-      const double a = t0 + double(k) * step, b = min_value(a + step, t1);
-      const double mid = 0.5 * (a + b);
-      const double empty_until = empty_run_end(inside, mid);
-      if (empty_until > mid) {
-        // Samples whose midpoints lie in empty bricks of every volume would add nothing but the
-        // constant media's absorption: jump over them.
-        const int64_t last = min_value(steps - 1, int64_t(floor((empty_until - t0) / step - 0.5)));
-        const int64_t skip_to = last > k ? last : k;
-        transmittance *=
-            exp(-sigma_constant * (min_value(t0 + double(skip_to + 1) * step, t1) - a));
-        k = skip_to;
-        continue;
-      }
-      volume_sample(inside, sigma_constant, origin + dir * mid, b - a);
-    }
+    march_media(s, inside, origin, dir, t0, t1, *this);
   }
 
-  // The ray parameter up to which every volume the ray is inside stays in empty bricks, from
-  // the sample at t; t itself when some volume is not empty there.
-  DV_HD double empty_run_end(const InsideSet& inside, double t) const {
-    double until = 1e300;
-    const dvec3 x = origin + dir * t;
-    for (int i = 0; i < inside.count; ++i) {
-      const ObjectView& o = s.objects[inside.object[i]];
-      if (o.interior != InteriorKind::volume) continue;
-      const dvec3 g = world_to_grid(o, x);
-      ivec3 brick;
-      if (!in_empty_brick(s, o, g, brick)) return t;
-      const dvec3 gd = dvec3(o.world_to_grid * dvec4(dir, 0.0));
-      until = min_value(until, t + brick_exit_distance(o, brick, g, gd));
-    }
-    return until;
+  // Constant media only over [a, b]: they absorb, exactly.
+  DV_HD void absorb(double sigma_constant, double a, double b) {
+    transmittance *= exp(-sigma_constant * (b - a));
+  }
+
+  DV_HD void sample(const InsideSet& inside, double sigma_constant, const dvec3& x, double a,
+                    double b) {
+    volume_sample(inside, sigma_constant, x, b - a);
   }
 
   // One volume sample of length dt at x: alpha = 1 - exp(-sigma * dt), emission from the volumes'

@@ -1,12 +1,18 @@
-// The storage and voxelizer registries. Their strategies register here as they are written;
-// until then the families are empty and `deepvox list` says so.
+// The storage and voxelizer registries: every strategy of the two families registers here.
 #include "strategies/storage/dsm_storage.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv {
 
 Registry<DsmStorage>& storage_registry() {
-  static Registry<DsmStorage> registry("storage");
+  static Registry<DsmStorage> registry = [] {
+    Registry<DsmStorage> r("storage");
+    register_compact_storage(r);
+    register_texture3d_storage(r);
+    register_chunked_storage(r);
+    register_blocked_storage(r);
+    return r;
+  }();
   return registry;
 }
 

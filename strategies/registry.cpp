@@ -42,6 +42,17 @@ std::string StrategyParams::string(const std::string& key, const std::string& fa
   return it->second;
 }
 
+StrategyParams StrategyParams::prefixed(const std::string& prefix) const {
+  std::map<std::string, std::string> inner;
+  const std::string head = prefix + ".";
+  for (const auto& [key, value] : values_)
+    if (key.size() > head.size() && key.compare(0, head.size(), head) == 0) {
+      inner[key.substr(head.size())] = value;
+      read_.insert(key);
+    }
+  return StrategyParams(std::move(inner));
+}
+
 void StrategyParams::finish(const std::string& strategy) const {
   std::string unknown;
   for (const auto& [key, value] : values_)

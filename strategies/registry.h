@@ -34,6 +34,10 @@ class StrategyParams {
   int integer(const std::string& key, int fallback) const;
   std::string string(const std::string& key, const std::string& fallback) const;
 
+  // The parameters "prefix.key" as "key" (marked read here): how a strategy passes parameters
+  // on to a strategy of another family it is built from (the dsm method's storage.* keys).
+  StrategyParams prefixed(const std::string& prefix) const;
+
   // Throws InputError naming the strategy and the unread keys.
   void finish(const std::string& strategy) const;
 

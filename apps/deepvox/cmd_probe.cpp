@@ -1,9 +1,11 @@
-// `deepvox probe SCENE --points P.csv --out T.csv [--shadows reference] [--backend cpu|cuda]`:
+// `deepvox probe SCENE --points P.csv --out T.csv [--shadows NAME --param k=v ...] [--backend
+// cpu|cuda]` (dsm: --storage --dsm-res --eps --filter):
 // the transmittance of every light at every point. Points whose answer raised an oracle flag
 // are still written (nothing computed is lost), reported, and make the exit code 3.
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
+#include "apps/deepvox/shadow_options.h"
 #include "core/device_memory.h"
 #include "core/execute.h"
 #include "core/log.h"
@@ -16,7 +18,8 @@ namespace dv::cli {
 
 Runner add_probe(CLI::App& app) {
   struct Options {
-    std::string scene, points, out, shadows = "reference", backend;
+    std::string scene, points, out, backend;
+    ShadowOptions shadows;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd =
@@ -25,13 +28,12 @@ Runner add_probe(CLI::App& app) {
   cmd->add_option("--points", opt->points, "CSV of points, x,y,z per line (header optional)")
       ->required();
   cmd->add_option("--out", opt->out, "output CSV: x,y,z,light0,light1,...")->required();
-  cmd->add_option("--shadows", opt->shadows, "shadow method (see `deepvox list`)")
-      ->capture_default_str();
+  add_shadow_options(cmd, opt->shadows);
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   return [opt] {
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
-    auto method = shadow_registry().create(opt->shadows);
+    auto method = make_shadow_method(opt->shadows);
     const Scene scene = load_scene(opt->scene);
     const std::vector<dvec3> points = read_points_csv(opt->points);
     const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);

@@ -7,6 +7,7 @@
 
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/run_metadata.h"
+#include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
 #include "io/image.h"
 #include "io/scene_loader.h"
@@ -30,8 +31,8 @@ std::string frame_path(const std::string& path, int frame, int frames) {
 
 Runner add_render(CLI::App& app) {
   struct Options {
-    std::string scene, out, stats, shadows = "reference", backend, renderer = "raster";
-    std::vector<std::string> params;
+    std::string scene, out, stats, backend, renderer = "raster";
+    ShadowOptions shadows;
     int frames = 1, width = 0, height = 0;
     double orbit = 0.0;
   };
@@ -41,13 +42,11 @@ Runner add_render(CLI::App& app) {
   cmd->add_option("scene", opt->scene, "scene: .json, .gltf/.glb or a mesh file")->required();
   cmd->add_option("--out", opt->out, "image file: .png (any build) or .exr (full build)")
       ->required();
-  cmd->add_option("--shadows", opt->shadows, "shadow method (see `deepvox list`)")
-      ->capture_default_str();
+  add_shadow_options(cmd, opt->shadows);
   cmd->add_option("--renderer", opt->renderer,
                   "raster: tile rasterizer + fragment walk; raytrace: BVH ray walk (reference)")
       ->check(CLI::IsMember({"raster", "raytrace"}))
       ->capture_default_str();
-  cmd->add_option("--param", opt->params, "shadow-method parameter key=value (repeatable)");
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   cmd->add_option("--stats", opt->stats, "write timings, counters and run metadata as JSON");
   cmd->add_option("--frames", opt->frames, "number of frames (camera orbits the target)")
@@ -60,7 +59,7 @@ Runner add_render(CLI::App& app) {
   return [opt] {
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
-    auto method = shadow_registry().create(opt->shadows, StrategyParams::parse(opt->params));
+    auto method = make_shadow_method(opt->shadows);
     Scene scene = load_scene(opt->scene);
     if (opt->width) scene.camera.width = opt->width;
     if (opt->height) scene.camera.height = opt->height;

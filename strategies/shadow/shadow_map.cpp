@@ -10,7 +10,6 @@
 // are fitted to the casters (the scene's bounds); maps are rebuilt only when the scene data or
 // backend changes.
 #include <algorithm>
-#include <cmath>
 
 #include "core/buffer.h"
 #include "core/pass_timer.h"
@@ -22,8 +21,6 @@
 namespace dv {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The region a camera can see: the scene bounds clipped to the bounding box of its frustum.
 Aabb visible_region(const Camera& camera, const Aabb& bounds) {
@@ -129,44 +126,6 @@ class ShadowMapMethod final : public ShadowMethod {
   }
 
  private:
-  std::vector<ShadowFace> faces_for(const LightView& l, const Aabb& bounds, double diagonal) const {
-    const double near_min = 1e-4 * diagonal + 1e-9;
-    std::vector<ShadowFace> faces;
-    auto perspective = [&](const dvec3& dir, const dvec3& up, double fov) {
-      const double far = fit_far_plane(l.position, dir, bounds, near_min);
-      const double texel = 2.0 * std::tan(0.5 * fov * kPi / 180.0) / res_;
-      ShadowFace f{
-          make_perspective_projection(l.position, dir, up, fov, 1.0, near_min, far, res_, res_),
-          l.position,
-          dir,
-          false,
-          texel,
-          0};
-      faces.push_back(f);
-    };
-    if (l.type == LightType::spot) {
-      perspective(l.direction, dvec3(0, 1, 0), 2.0 * std::acos(l.cos_cutoff) * 180.0 / kPi);
-    } else if (l.type == LightType::omni) {
-      const dvec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-      for (const dvec3& a : axes)
-        perspective(a, a.y != 0.0 ? dvec3(0, 0, 1) : dvec3(0, 1, 0), 90.0);
-    } else {
-      // Orthographic box around the casters: centred on the bounds, as wide as their sphere.
-      const double radius = 0.5 * diagonal + 1e-9;
-      const dvec3 eye = bounds.center() - l.direction * (radius + 2.0 * near_min);
-      const ShadowFace f{
-          make_orthographic_projection(eye, l.direction, dvec3(0, 1, 0), radius, radius, near_min,
-                                       2.0 * radius + 3.0 * near_min, res_, res_),
-          eye,
-          l.direction,
-          true,
-          2.0 * radius / res_,
-          0};
-      faces.push_back(f);
-    }
-    return faces;
-  }
-
   static bool same_camera(const Camera& a, const Camera& b) {
     return a.position == b.position && a.target == b.target && a.up == b.up &&
            a.fov_deg == b.fov_deg && a.width == b.width && a.height == b.height &&
@@ -176,22 +135,17 @@ class ShadowMapMethod final : public ShadowMethod {
   void build(const SceneData& scene, Backend backend, const Camera* focus_on) {
     const SceneView& s = scene.view();
     PassTimer timer(backend);
-    const std::vector<LightView>& lights = scene.host_lights();
-    std::vector<ShadowFace> faces;
-    std::vector<ShadowLight> light_faces;
-    for (const LightView& l : lights) {
-      std::vector<ShadowFace> f = faces_for(l, s.bounds, s.diagonal);
-      if (focus_on && f.size() == 1) focus_face(f[0], visible_region(*focus_on, s.bounds));
-      light_faces.push_back({int32_t(faces.size()), int32_t(f.size())});
-      faces.insert(faces.end(), f.begin(), f.end());
-    }
-    const int64_t texels = int64_t(res_) * res_;
-    for (size_t i = 0; i < faces.size(); ++i) faces[i].offset = int64_t(i) * texels;
+    LightMapLayout layout = light_map_layout(scene.host_lights(), s.bounds, s.diagonal, res_);
+    std::vector<ShadowFace>& faces = layout.faces;
+    if (focus_on)
+      for (const ShadowLight& l : layout.lights)
+        if (l.face_count == 1) focus_face(faces[l.first_face], visible_region(*focus_on, s.bounds));
+    const int64_t texels = layout.texels_per_face;
     const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
     depths_ = Buffer<float>(memory, texels * int64_t(faces.size()), "shadow map depths");
     for (const ShadowFace& f : faces) render_depth_face(backend, s, f, depths_.view());
     faces_ = Buffer<ShadowFace>(memory, faces, "shadow map faces");
-    light_faces_ = Buffer<ShadowLight>(memory, light_faces, "shadow map lights");
+    light_faces_ = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");
     const double bias = bias_ >= 0.0 ? bias_ : 1e-4 * s.diagonal;
     source_ = ShadowMapSource{s.lights,
                               light_faces_.const_view(),
@@ -227,9 +181,10 @@ class ShadowMapMethod final : public ShadowMethod {
 }  // namespace
 
 void register_shadow_maps(Registry<ShadowMethod>& registry) {
-  registry.add("shadowmap",
-               "depth shadow maps from the tile rasterizer, PCF (params: res, pcf, bias, slope, focus)",
-               [](const StrategyParams& p) { return std::make_unique<ShadowMapMethod>(p); });
+  registry.add(
+      "shadowmap",
+      "depth shadow maps from the tile rasterizer, PCF (params: res, pcf, bias, slope, focus)",
+      [](const StrategyParams& p) { return std::make_unique<ShadowMapMethod>(p); });
 }
 
 }  // namespace dv

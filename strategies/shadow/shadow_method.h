@@ -34,5 +34,6 @@ Registry<ShadowMethod>& shadow_registry();
 void register_no_shadows(Registry<ShadowMethod>& registry);
 void register_reference_shadows(Registry<ShadowMethod>& registry);
 void register_shadow_maps(Registry<ShadowMethod>& registry);
+void register_dsm_shadows(Registry<ShadowMethod>& registry);
 
 }  // namespace dv

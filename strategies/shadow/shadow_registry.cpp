@@ -9,6 +9,7 @@ Registry<ShadowMethod>& shadow_registry() {
     register_no_shadows(r);
     register_reference_shadows(r);
     register_shadow_maps(r);
+    register_dsm_shadows(r);
     return r;
   }();
   return registry;

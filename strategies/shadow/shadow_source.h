@@ -13,6 +13,7 @@
 #include "core/hd.h"
 #include "oracle/transmittance.h"
 #include "scene/scene_view.h"
+#include "strategies/shadow/dsm_source.h"
 #include "strategies/shadow/shadow_map_source.h"
 
 namespace dv {
@@ -38,6 +39,7 @@ struct ReferenceShadowSource {
   }
 };
 
-using ShadowSourceVariant = std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource>;
+using ShadowSourceVariant =
+    std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource, DsmSource>;
 
 }  // namespace dv

@@ -1,0 +1,27 @@
+// The shadow-method options `render` and `probe` share: --shadows NAME, --param key=value, and
+// the deep-shadow-map shortcuts --storage, --dsm-res, --eps, --filter (the dsm method's
+// storage, res, eps and filter parameters; any other method rejects them as unknown).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "strategies/shadow/shadow_method.h"
+
+namespace dv::cli {
+
+struct ShadowOptions {
+  std::string name = "reference";
+  std::vector<std::string> params;
+  std::string storage, filter;
+  int dsm_res = 0;
+  double eps = -1.0;
+};
+
+void add_shadow_options(CLI::App* cmd, ShadowOptions& options);
+std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& options);
+
+}  // namespace dv::cli

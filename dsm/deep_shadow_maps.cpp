@@ -1,0 +1,47 @@
+// DeepShadowMaps (see deep_shadow_maps.h).
+#include "dsm/deep_shadow_maps.h"
+
+#include "core/error.h"
+#include "strategies/storage/ensure_buffer.h"
+
+namespace dv {
+
+DeepShadowMaps::DeepShadowMaps(DsmSettings settings) : settings_(std::move(settings)) {
+  if (settings_.resolution < 1 || settings_.resolution > kMaxRasterSide)
+    throw InputError("dsm res", "must lie in [1, 65536]");
+  if (!(settings_.eps >= 0.0f)) throw InputError("dsm eps", "must be a number >= 0");
+  storage_ = storage_registry().create(settings_.storage, settings_.storage_params);
+}
+
+void DeepShadowMaps::generate(const SceneData& scene, Backend backend) {
+  passes_.clear();
+  {
+    PassTimer timer(backend);
+    generation_ = std::make_unique<DsmGeneration>(scene, backend, settings_.resolution);
+    passes_.push_back({"raster", timer.stop()});
+  }
+  const DsmGenerator& g = generation_->generator();
+  ensure_buffer(records_, memory_of(backend), g.texel_count(), "dsm texel records");
+  const DsmGenerationContext context{backend, g, settings_.eps, records_.view(), &passes_};
+  storage_->generate(context);
+  host_records_ = records_.to_vector();
+  figures_ = dsm_figures(*storage_, host_records_);
+  const SceneView& s = scene.view();
+  source_ = DsmSource{s.lights,
+                      generation_->lights(),
+                      generation_->faces(),
+                      storage_->reader(),
+                      settings_.resolution,
+                      settings_.bias >= 0.0 ? settings_.bias : 1e-4 * s.diagonal,
+                      settings_.slope_bias,
+                      settings_.bilinear};
+  ++generations_;
+}
+
+double DeepShadowMaps::generation_milliseconds() const {
+  double total = 0.0;
+  for (const DsmPass& p : passes_) total += p.milliseconds;
+  return total;
+}
+
+}  // namespace dv

@@ -1,0 +1,65 @@
+// Deep shadow maps of every light of a scene, end to end: generation (dsm/dsm_generation.h) into
+// a storage strategy chosen by name (strategies/storage/), figures, and the kernel-side source
+// the renderer and probe query (strategies/shadow/dsm_source.h). The `dsm` shadow method wraps
+// it; `deepvox dsm` (export) and the tests use it directly.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/buffer.h"
+#include "core/execute.h"
+#include "dsm/dsm_generation.h"
+#include "scene/scene_view.h"
+#include "strategies/registry.h"
+#include "strategies/shadow/dsm_source.h"
+#include "strategies/storage/dsm_storage.h"
+
+namespace dv {
+
+struct DsmSettings {
+  std::string storage = "compact";
+  StrategyParams storage_params;
+  int resolution = 512;
+  float eps = 0.05f;
+  bool bilinear = false;
+  double bias = -1.0;  // world units; < 0: 1e-4 of the scene diagonal
+  double slope_bias = 1.5;
+};
+
+class DeepShadowMaps {
+ public:
+  // Creates the storage strategy (unknown names and parameters throw InputError).
+  explicit DeepShadowMaps(DsmSettings settings);
+
+  // Generates every light's maps for `scene`, which lives in the memory of `backend`.
+  void generate(const SceneData& scene, Backend backend);
+
+  // Valid after generate(), while this object and the scene live.
+  DsmSource source() const { return source_; }
+  const DsmSettings& settings() const { return settings_; }
+  const DsmStorage& storage() const { return *storage_; }
+  const LightMapLayout& layout() const { return generation_->layout(); }
+  const std::vector<DsmPass>& passes() const { return passes_; }
+  double generation_milliseconds() const;  // all passes, rasterization included
+  const std::vector<DsmTexelRecord>& records() const { return host_records_; }
+  const nlohmann::json& figures() const { return figures_; }
+  int64_t fragments() const { return generation_->fragments(); }
+  int generations() const { return generations_; }
+
+ private:
+  DsmSettings settings_;
+  std::unique_ptr<DsmStorage> storage_;
+  std::unique_ptr<DsmGeneration> generation_;
+  Buffer<DsmTexelRecord> records_;
+  std::vector<DsmTexelRecord> host_records_;
+  std::vector<DsmPass> passes_;
+  nlohmann::json figures_;
+  DsmSource source_{};
+  int generations_ = 0;
+};
+
+}  // namespace dv

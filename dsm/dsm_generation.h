@@ -1,0 +1,44 @@
+// Host side of deep-shadow-map generation that does not depend on the storage strategy: the
+// faces of every light (strategies/shadow/light_faces.h; fitted to the casters only, never to a
+// camera, so a camera move never forces regeneration), the tile lists of each face from the
+// shared rasterizer, the media containing each face's ray origins, and the per-texel records.
+// Storage strategies run their passes over DsmGeneration::generator() (dsm/dsm_generator.h).
+#pragma once
+
+#include <vector>
+
+#include "core/buffer.h"
+#include "core/execute.h"
+#include "dsm/dsm_generator.h"
+#include "renderer/raster/tile_raster.h"
+#include "scene/scene_view.h"
+#include "strategies/shadow/light_faces.h"
+
+namespace dv {
+
+class DsmGeneration {
+ public:
+  // Rasterizes every face of every light at res x res; throws if a tile list overflows.
+  DsmGeneration(const SceneData& scene, Backend backend, int res);
+
+  const DsmGenerator& generator() const { return generator_; }
+  const LightMapLayout& layout() const { return layout_; }
+  View<const ShadowFace> faces() const { return faces_.const_view(); }
+  View<const ShadowLight> lights() const { return lights_.const_view(); }
+  Backend backend() const { return backend_; }
+  double raster_milliseconds() const { return raster_ms_; }
+  int64_t fragments() const;  // tile-list entries over all faces
+
+ private:
+  Backend backend_;
+  LightMapLayout layout_;
+  Buffer<ShadowFace> faces_;
+  Buffer<ShadowLight> lights_;
+  std::vector<TileLists> lists_;
+  Buffer<TileListsView> list_views_;
+  Buffer<InsideSet> ray_media_;
+  DsmGenerator generator_;
+  double raster_ms_ = 0.0;
+};
+
+}  // namespace dv

@@ -1,0 +1,135 @@
+// Kernel side of deep-shadow-map generation: per texel of every light's faces, the ray through
+// the texel centre is walked with the renderer's fragment walk over the face's tile lists
+// (renderer/raster_fragments.h) and the visibility payload (dsm/visibility_payload.h), and the
+// streaming compressor (dsm/visibility_compressor.h) writes the nodes into a storage strategy's
+// sink. Threads are numbered tile by tile: 64 consecutive threads are one 8x8 texel tile, which
+// is the rasterizer's tile (one tile list per warp) and the chunked storage's block.
+// Host and device code; dsm/dsm_generation.h builds it.
+#pragma once
+
+#include <cstdint>
+
+#include "core/buffer.h"
+#include "core/hd.h"
+#include "dsm/visibility_compressor.h"
+#include "dsm/visibility_payload.h"
+#include "renderer/raster_fragments.h"
+#include "strategies/shadow/light_faces.h"
+
+namespace dv {
+
+inline constexpr int kDsmBlockSide = 8;  // texels per side of a generation block (= raster tile)
+
+// What generation left in one texel, for figures, heatmaps and the overflow report.
+struct DsmTexelRecord {
+  int32_t nodes = 0;   // nodes the compressed function needs
+  int32_t stored = 0;  // nodes the storage holds (fewer after an overflow)
+  float error = 0.0f;  // bound on max |V' - V| reached (above eps only after an overflow)
+  uint32_t flags = 0;  // DsmTexelFlag bits
+};
+
+enum DsmTexelFlag : uint32_t {
+  kDsmStorageOverflow = 1u,  // the storage refused nodes: it holds a prefix of V'
+  kDsmWalkOverflow = 2u,     // the walk hit kMaxHitsPerPixel or kMaxInsideObjects
+  kDsmRecompressed = 4u,     // stored with a larger eps than asked (texture3d's policy)
+};
+
+struct DsmTexel {
+  int face, x, y;
+  int64_t index;  // face * res^2 + y * res + x: the texel's place in every per-texel array
+};
+
+// A sink wrapper that remembers how much was stored and the last stored value.
+template <class Sink>
+struct TrackingSink {
+  Sink inner;
+  int stored = 0;
+  float last_v = 1.0f;
+  DV_HD bool emit(float z, float v) {
+    if (!inner.emit(z, v)) return false;
+    ++stored, last_v = v;
+    return true;
+  }
+};
+
+template <class Sink>
+struct DsmTexelResult {
+  Sink sink;  // the sink after the texel (storages read their state from it)
+  DsmTexelRecord record;
+};
+
+struct DsmGenerator {
+  SceneView scene;
+  View<const ShadowFace> faces;
+  View<const TileListsView> lists;  // per face
+  View<const InsideSet> ray_media;  // per face: media containing its rays' origin
+  int resolution = 0;
+  int blocks_per_side = 0;  // ceil(resolution / 8)
+
+  DV_HD int64_t texel_count() const { return faces.size * int64_t(resolution) * resolution; }
+  DV_HD int64_t blocks_per_face() const { return int64_t(blocks_per_side) * blocks_per_side; }
+  DV_HD int64_t thread_count() const {
+    return faces.size * blocks_per_face() * kDsmBlockSide * kDsmBlockSide;
+  }
+  // The generation block (8x8 tile, over all faces) thread i belongs to.
+  DV_HD int64_t block_of_thread(int64_t i) const { return i / (kDsmBlockSide * kDsmBlockSide); }
+
+  // False for the padding threads of tiles that stick out of the map.
+  DV_HD bool texel_of_thread(int64_t i, DsmTexel& t) const {
+    const int64_t block = block_of_thread(i);
+    const int local = int(i % (kDsmBlockSide * kDsmBlockSide));
+    t.face = int(block / blocks_per_face());
+    const int64_t b = block % blocks_per_face();
+    t.x = int(b % blocks_per_side) * kDsmBlockSide + local % kDsmBlockSide;
+    t.y = int(b / blocks_per_side) * kDsmBlockSide + local / kDsmBlockSide;
+    if (t.x >= resolution || t.y >= resolution) return false;
+    t.index = faces[t.face].offset + int64_t(t.y) * resolution + t.x;
+    return true;
+  }
+
+  // Walks texel t's ray into `target` (push / push_step), sampling constant media for error
+  // bound eps; returns the walk's status and the visibility where it ended.
+  template <class Target>
+  DV_HD WalkStatus walk(const DsmTexel& t, double eps, Target& target,
+                        double& final_visibility) const {
+    const ShadowFace& f = faces[t.face];
+    const PixelRay ray = pixel_ray(f.projection, t.x, t.y);
+    const NearPlaneStart front = start_at_near_plane(scene, f.projection, ray, ray_media[t.face]);
+    VisibilityPayload<Target> payload{scene, target, ray.origin, ray.direction, eps};
+    const RasterFragments fragments{&scene, lists[t.face], t.x, t.y, ray.origin, ray.direction};
+    WalkStatus status =
+        walk_fragments(scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
+    status.overflow |= front.status.overflow;
+    final_visibility = payload.visibility;
+    return status;
+  }
+
+  // Generates texel t's compressed function with error bound eps into `sink`. The walk samples
+  // constant media for `sample_eps` (default: eps), so that a texel compressed again with a
+  // larger bound keeps the same samples.
+  template <class Sink>
+  DV_HD DsmTexelResult<Sink> generate(const DsmTexel& t, float eps, Sink sink,
+                                      float sample_eps = -1.0f) const {
+    VisibilityCompressor<TrackingSink<Sink>> compressor(eps, TrackingSink<Sink>{sink});
+    double final_visibility = 1.0;
+    const WalkStatus status =
+        walk(t, sample_eps >= 0.0f ? sample_eps : eps, compressor, final_visibility);
+    compressor.finish();
+    const VisibilityCompressionStats& stats = compressor.stats();
+    const TrackingSink<Sink>& tracked = compressor.sink();
+    DsmTexelRecord r;
+    r.nodes = stats.nodes;
+    r.stored = tracked.stored;
+    r.error = stats.max_error;
+    if (stats.overflow) {
+      // The prefix is within the bound; beyond it V' stays at the last stored value while V
+      // falls to where the walk ended.
+      r.flags |= kDsmStorageOverflow;
+      r.error = max_value(r.error, tracked.last_v - float(final_visibility));
+    }
+    if (status.overflow) r.flags |= kDsmWalkOverflow;
+    return {tracked.inner, r};
+  }
+};
+
+}  // namespace dv

@@ -1,0 +1,69 @@
+// Kernel side of the `dsm` shadow method: the transmittance of a light at a point from that
+// light's deep shadow maps. The point's face and texel-centre coordinates come from the shared
+// light-face helpers (light_faces.h), its depth (distance from the light, or from an
+// orthographic map's near plane) less a bias against self-shadowing: a constant plus `slope_bias`
+// texel sizes at the point's depth, widened by the filter's reach, since the lookup knows no
+// surface normal. Unfiltered: the nearest texel's V'(z). Bilinear (Knecht eq. 4.18/4.19): the
+// four texels around the point, V' of each weighted bilinearly, so attenuation is filtered, not
+// optical depth. Texels outside the map count as lit; points outside a spot cone get nothing.
+// The per-ray cursor keeps each (light, tap)'s last node index for the coherent search.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "core/buffer.h"
+#include "core/hd.h"
+#include "strategies/shadow/light_faces.h"
+#include "strategies/storage/dsm_reader.h"
+
+namespace dv {
+
+inline constexpr int kDsmCursorLights = 8;  // lights with coherent-search state per ray
+
+struct DsmSource {
+  View<const LightView> lights;
+  View<const ShadowLight> light_faces;
+  View<const ShadowFace> faces;
+  DsmReader reader;
+  int resolution;
+  double bias;
+  double slope_bias;
+  bool bilinear;
+
+  struct Cursor {
+    uint32_t flags = 0;
+    int hint[kDsmCursorLights * 4];  // per (light, tap): node index, -1 for none yet
+    DV_HD Cursor() {
+      for (int& h : hint) h = -1;
+    }
+  };
+
+  DV_HD float texel_visibility(const ShadowFace& f, int x, int y, float z, int& hint) const {
+    if (x < 0 || y < 0 || x >= resolution || y >= resolution) return 1.0f;
+    return reader.visibility(f.offset + int64_t(y) * resolution + x, z, hint);
+  }
+
+  DV_HD double transmittance(Cursor& cursor, const dvec3& p, int light) const {
+    const LightView& l = lights[light];
+    if (outside_light_cone(l, p)) return 0.0;
+    const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
+    FacePoint fp;
+    if (!project_to_face(f, resolution, p, fp)) return 1.0;
+    const float z = float(biased_depth(f, fp.depth, bias, slope_bias, bilinear ? 1.0 : 0.5));
+    int scratch[4] = {-1, -1, -1, -1};
+    int* hint = light < kDsmCursorLights ? cursor.hint + 4 * light : scratch;
+    if (!bilinear)
+      return texel_visibility(f, int(floor(fp.u + 0.5)), int(floor(fp.v + 0.5)), z, hint[0]);
+    const double fx = floor(fp.u), fy = floor(fp.v);
+    const int x = int(fx), y = int(fy);
+    const double wx = fp.u - fx, wy = fp.v - fy;
+    const double v00 = texel_visibility(f, x, y, z, hint[0]);
+    const double v10 = texel_visibility(f, x + 1, y, z, hint[1]);
+    const double v01 = texel_visibility(f, x, y + 1, z, hint[2]);
+    const double v11 = texel_visibility(f, x + 1, y + 1, z, hint[3]);
+    return (1.0 - wy) * ((1.0 - wx) * v00 + wx * v10) + wy * ((1.0 - wx) * v01 + wx * v11);
+  }
+};
+
+}  // namespace dv

@@ -1,0 +1,23 @@
+// Reusing a storage strategy's buffers across regenerations: a buffer is reallocated only when
+// its size or memory changes, so repeated generation of same-size maps times the passes, not
+// the allocator.
+#pragma once
+
+#include <cstdint>
+
+#include "core/buffer.h"
+#include "core/execute.h"
+
+namespace dv {
+
+template <class T>
+void ensure_buffer(Buffer<T>& buffer, Memory memory, int64_t count, const char* what) {
+  if (buffer.size() != count || buffer.memory() != memory || (count > 0 && !buffer.data()))
+    buffer = Buffer<T>(memory, count, what);
+}
+
+inline Memory memory_of(Backend backend) {
+  return backend == Backend::cuda ? Memory::device : Memory::host;
+}
+
+}  // namespace dv

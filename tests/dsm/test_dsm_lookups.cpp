@@ -1,0 +1,159 @@
+// Deep-shadow-map lookups against the exact oracle: points on texel-centre rays of every face
+// (spot, omni, directional) of random scenes with translucent surfaces and constant media agree
+// within the bound (eps for the compression, eps / 2 for the sampled exponential of constant
+// media); Knecht eq. 3.7's clamps, the twin rule on surfaces, the bilinear filter; and maps are
+// generated once while the camera moves.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "dsm/deep_shadow_maps.h"
+#include "renderer/raster_render.h"
+#include "tests/dsm/dsm_test_support.h"
+
+namespace dv {
+namespace {
+
+DsmSettings exact_depth_settings(float eps, int res, bool bilinear = false) {
+  DsmSettings s;
+  s.resolution = res;
+  s.eps = eps;
+  s.bias = 0.0;  // points on texel-centre rays sit exactly at the stored depths
+  s.slope_bias = 0.0;
+  s.bilinear = bilinear;
+  return s;
+}
+
+double dsm_at(const DeepShadowMaps& maps, const dvec3& p, int light) {
+  DsmSource::Cursor cursor;
+  return maps.source().transmittance(cursor, p, light);
+}
+
+class LookupsOnRandomScenes : public ::testing::TestWithParam<unsigned> {};
+
+TEST_P(LookupsOnRandomScenes, TexelCentreRaysMatchTheOracle) {
+  Scene scene = test::random_scene(GetParam());
+  test::SceneBuilder extra;
+  scene.lights.push_back(extra.directional(glm::normalize(dvec3(0.3, -1.0, 0.2))));
+  const SceneData data(scene, Memory::host);
+  const float eps = 0.02f;
+  DeepShadowMaps maps(exact_depth_settings(eps, 24));
+  maps.generate(data, Backend::cpu);
+  const LightMapLayout& layout = maps.layout();
+  std::mt19937 rng(GetParam());
+  std::uniform_int_distribution<int> texel(0, 23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int checked = 0, shadowed = 0;
+  for (size_t li = 0; li < layout.lights.size(); ++li) {
+    const LightView& l = data.host_lights()[li];
+    for (int f = 0; f < layout.lights[li].face_count; ++f) {
+      const ShadowFace& face = layout.faces[layout.lights[li].first_face + f];
+      for (int k = 0; k < 150; ++k) {
+        const PixelRay ray = pixel_ray(face.projection, texel(rng), texel(rng));
+        const dvec3 p = ray.origin + ray.direction * (u(rng) * 1.2 * data.view().diagonal);
+        if (outside_light_cone(l, p) || face_of(layout.lights[li], l, p) != face.offset / (24 * 24))
+          continue;
+        const double exact = test::oracle_at(data, int(li), p);
+        ASSERT_NEAR(dsm_at(maps, p, int(li)), exact, 1.5 * eps + 1e-5)
+            << "light " << li << " face " << f << " point " << p.x << "," << p.y << "," << p.z;
+        ++checked;
+        shadowed += exact < 0.99;
+      }
+    }
+  }
+  EXPECT_GT(checked, 500);
+  EXPECT_GT(shadowed, checked / 20);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, LookupsOnRandomScenes, ::testing::Values(11u, 12u, 13u));
+
+// A spot light above two translucent quads at y = 1 and y = 0.
+SceneData two_quads() {
+  test::SceneBuilder b;
+  for (double y : {1.0, 0.0}) {
+    TriangleMesh q = make_quad(4.0);
+    for (dvec3& v : q.positions) v.y = y;
+    b.add(std::move(q), 0.5);
+  }
+  b.spot(dvec3(0.0, 5.0, 0.0), dvec3(0.0, -1.0, 0.0), 20.0);
+  return b.build();
+}
+
+TEST(DsmLookups, ClampsAndTwinRule) {
+  const SceneData data = two_quads();
+  DeepShadowMaps maps(exact_depth_settings(0.0f, 16));
+  maps.generate(data, Backend::cpu);
+  const ShadowFace& face = maps.layout().faces[0];
+  const PixelRay ray = pixel_ray(face.projection, 9, 6);
+  const double t_upper = 4.0 / ray.direction.y * -1.0;  // y = 1
+  const double t_lower = 5.0 / ray.direction.y * -1.0;  // y = 0
+  const auto at = [&](double t) { return dsm_at(maps, ray.origin + ray.direction * t, 0); };
+  EXPECT_EQ(at(0.5 * t_upper), 1.0);  // before the first node: lit
+  EXPECT_EQ(at(t_upper), 1.0);        // on the surface: before its step
+  EXPECT_NEAR(at(0.5 * (t_upper + t_lower)), 0.5, 1e-6);
+  EXPECT_NEAR(at(t_lower), 0.5, 1e-6);
+  EXPECT_NEAR(at(2.0 * t_lower), 0.25, 1e-6);  // after the last node: the last value
+  EXPECT_EQ(test::oracle_at(data, 0, ray.origin + ray.direction * t_upper), 1.0);
+}
+
+TEST(DsmLookups, BilinearFilterWeightsFourTexels) {
+  const SceneData data(test::random_scene(21), Memory::host);
+  DeepShadowMaps nearest(exact_depth_settings(0.01f, 20));
+  DeepShadowMaps filtered(exact_depth_settings(0.01f, 20, true));
+  nearest.generate(data, Backend::cpu);
+  filtered.generate(data, Backend::cpu);
+  const ShadowFace& face = nearest.layout().faces[0];
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int between = 0;
+  for (int k = 0; k < 400; ++k) {
+    const int x = 2 + int(u(rng) * 15), y = 2 + int(u(rng) * 15);
+    const PixelRay centre = pixel_ray(face.projection, x, y);
+    const dvec3 p = centre.origin + centre.direction * (u(rng) * data.view().diagonal);
+    if (outside_light_cone(data.host_lights()[0], p)) continue;
+    // At a texel centre the filter reduces to that texel.
+    EXPECT_NEAR(dsm_at(filtered, p, 0), dsm_at(nearest, p, 0), 1e-6);
+    // Elsewhere it lies between the four texels' values at the same depth.
+    const dvec3 q = p + (pixel_ray(face.projection, x + 1, y + 1).direction - centre.direction) *
+                            (0.5 * glm::length(p - centre.origin));
+    FacePoint fp;
+    ASSERT_TRUE(project_to_face(face, 20, q, fp));
+    const float z = float(fp.depth);
+    const DsmSource s = nearest.source();
+    double lo = 1.0, hi = 0.0;
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        int hint = -1;
+        const double v =
+            s.texel_visibility(face, int(std::floor(fp.u)) + i, int(std::floor(fp.v)) + j, z, hint);
+        lo = std::min(lo, v), hi = std::max(hi, v);
+      }
+    const double f = dsm_at(filtered, q, 0);
+    EXPECT_GE(f, lo - 1e-6);
+    EXPECT_LE(f, hi + 1e-6);
+    between += hi - lo > 0.01;
+  }
+  EXPECT_GT(between, 5);  // some lookups straddle a shadow edge
+}
+
+TEST(DsmLookups, CameraMovesDoNotRegenerate) {
+  Scene scene = test::scene_file("translucent-boxes.json");
+  scene.camera.width = 48;
+  scene.camera.height = 32;
+  const SceneData data(scene, Memory::host);
+  auto method = shadow_registry().create("dsm", StrategyParams::parse({"res=32"}));
+  Camera camera = scene.camera;
+  for (int frame = 0; frame < 3; ++frame) {
+    camera.position.x += 0.3;
+    render_raster(Backend::cpu, data, camera, *method, dvec3(0.0));
+  }
+  EXPECT_EQ(method->stats()["maps_built"], 1);
+  EXPECT_EQ(method->stats()["prepare_calls"], 3);
+  const SceneData changed(scene, Memory::host);  // new scene data: generate again
+  render_raster(Backend::cpu, changed, camera, *method, dvec3(0.0));
+  EXPECT_EQ(method->stats()["maps_built"], 2);
+}
+
+}  // namespace
+}  // namespace dv

@@ -1,0 +1,231 @@
+// The four storage strategies, swapped by name over both backends: on scenes whose figures show
+// no overflow they return the same attenuation as `compact` (the yardstick) for the same
+// lookups and hold the same nodes; overflow of each fixed-size structure is detected, reported
+// with the error reached, and never written out of bounds; chunked allocation waste (thesis
+// against aggregated); CPU and CUDA give the same node counts per texel.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <tuple>
+
+#include "core/device_memory.h"
+#include "dsm/deep_shadow_maps.h"
+#include "strategies/shadow/probe.h"
+#include "tests/dsm/dsm_test_support.h"
+
+namespace dv {
+namespace {
+
+struct Generated {
+  std::unique_ptr<SceneData> data;
+  std::unique_ptr<DeepShadowMaps> maps;
+};
+
+Generated generate(const Scene& scene, Backend backend, const std::string& storage,
+                   const std::vector<std::string>& params = {}, float eps = 0.02f, int res = 32) {
+  DsmSettings s;
+  s.storage = storage;
+  s.storage_params = StrategyParams::parse(params);
+  s.resolution = res;
+  s.eps = eps;
+  Generated g;
+  g.data =
+      std::make_unique<SceneData>(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+  g.maps = std::make_unique<DeepShadowMaps>(s);
+  g.maps->generate(*g.data, backend);
+  return g;
+}
+
+// Visibility of every texel at a set of depths through the storage's reader, on the host.
+std::vector<float> sample_lookups(const Generated& g, Backend backend) {
+  const DsmSource source = g.maps->source();
+  const int64_t texels = int64_t(g.maps->records().size());
+  const int depths = 24;
+  Buffer<float> out(backend == Backend::cuda ? Memory::device : Memory::host, texels * depths,
+                    "lookups");
+  const View<float> o = out.view();
+  const double far = 2.0 * g.data->view().diagonal;
+  parallel_for(
+      backend, "test_dsm_lookups", texels * depths, DV_KERNEL_LAMBDA(int64_t i) {
+        int hint = -1;
+        const float z = float(far * double(i % depths) / depths);
+        o[i] = source.reader.visibility(i / depths, z, hint);
+      });
+  return out.to_vector();
+}
+
+void expect_same_lookups(const Generated& a, const Generated& b, Backend backend) {
+  const std::vector<float> va = sample_lookups(a, backend), vb = sample_lookups(b, backend);
+  ASSERT_EQ(va.size(), vb.size());
+  int64_t differing = 0;
+  for (size_t i = 0; i < va.size(); ++i) differing += std::abs(va[i] - vb[i]) > 1e-6f;
+  EXPECT_EQ(differing, 0);
+}
+
+class Storages : public ::testing::TestWithParam<std::tuple<const char*, Backend>> {
+ protected:
+  void SetUp() override {
+    std::string why;
+    if (std::get<1>(GetParam()) == Backend::cuda && !cuda_device_available(&why))
+      GTEST_SKIP() << "CUDA storages need a GPU: " << why;
+  }
+};
+
+TEST_P(Storages, SameAttenuationAsCompact) {
+  const auto [name, backend] = GetParam();
+  for (const Scene& scene : {test::scene_file("translucent-boxes.json"), test::random_scene(5),
+                             test::scene_file("demo.json")}) {
+    const Generated compact = generate(scene, backend, "compact");
+    const Generated other = generate(scene, backend, name);
+    const nlohmann::json& f = other.maps->figures();
+    ASSERT_EQ(f["overflowed_texels"], 0) << f.dump();
+    EXPECT_EQ(f["nodes"], compact.maps->figures()["nodes"]);
+    EXPECT_GT(f["nodes"].get<int64_t>(), 0);
+    EXPECT_GE(f["bytes_allocated"].get<int64_t>(), f["bytes_in_nodes"].get<int64_t>());
+    expect_same_lookups(compact, other, backend);
+  }
+}
+
+TEST_P(Storages, RenderAndProbeThroughTheShadowMethod) {
+  const auto [name, backend] = GetParam();
+  const Scene scene = test::scene_file("translucent-boxes.json");
+  const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+  auto method = shadow_registry().create(
+      "dsm", StrategyParams::parse({std::string("storage=") + name, "res=64", "eps=0.01"}));
+  std::mt19937 rng(9);
+  std::vector<dvec3> points;
+  const Aabb b = world_bounds(scene);
+  for (int i = 0; i < 500; ++i) {
+    dvec3 p;
+    for (int a = 0; a < 3; ++a)
+      p[a] = std::uniform_real_distribution<double>(b.lo[a], b.hi[a])(rng);
+    points.push_back(p);
+  }
+  const ProbeResults r = probe_transmittance(backend, data, *method, points);
+  probe_transmittance(backend, data, *method, points);
+  EXPECT_EQ(method->stats()["maps_built"], 1);  // the second query reused the maps
+  for (double t : r.transmittance) {
+    EXPECT_GE(t, 0.0);
+    EXPECT_LE(t, 1.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(NamesAndBackends, Storages,
+                         ::testing::Combine(::testing::Values("compact", "texture3d", "chunked",
+                                                              "blocked"),
+                                            ::testing::Values(Backend::cpu, Backend::cuda)),
+                         [](const auto& info) {
+                           return std::string(std::get<0>(info.param)) + "_" +
+                                  to_string(std::get<1>(info.param));
+                         });
+
+TEST(StorageOverflow, Texture3dRecompressesWithLargerEps) {
+  const Scene scene = test::scene_file("demo.json");
+  const Generated compact = generate(scene, Backend::cpu, "compact", {}, 0.001f);
+  const Generated few = generate(scene, Backend::cpu, "texture3d", {"layers=3"}, 0.001f);
+  const nlohmann::json& f = few.maps->figures();
+  ASSERT_GT(f["recompressed_texels"].get<int64_t>(), 0) << f.dump();
+  EXPECT_EQ(f["overflowed_texels"], f["recompressed_texels"]);
+  EXPECT_LE(f["max_layers"].get<int64_t>(), 3);
+  EXPECT_GT(f["overflow_max_error"].get<double>(), 0.001);
+  // Every texel still matches the exact-size function within the two bounds.
+  const std::vector<float> a = sample_lookups(compact, Backend::cpu);
+  const std::vector<float> b = sample_lookups(few, Backend::cpu);
+  const std::vector<DsmTexelRecord>& records = few.maps->records();
+  for (size_t i = 0; i < a.size(); ++i)
+    ASSERT_LE(std::abs(a[i] - b[i]), records[i / 24].error + 0.001f + 1e-5f) << i;
+}
+
+TEST(StorageOverflow, ChunkedPoolExhaustionIsReported) {
+  const Generated g =
+      generate(test::scene_file("demo.json"), Backend::cpu, "chunked", {"pool=3", "chunk=4"});
+  const nlohmann::json& f = g.maps->figures();
+  EXPECT_TRUE(f["strategy"]["pool_exhausted"].get<bool>());
+  EXPECT_EQ(f["strategy"]["chunks_allocated"], 3);
+  EXPECT_GT(f["strategy"]["refused_nodes"].get<int64_t>(), 0);
+  EXPECT_GT(f["overflowed_texels"].get<int64_t>(), 0);
+  EXPECT_LE(f["nodes"].get<int64_t>(), 12);
+  for (const DsmTexelRecord& r : g.maps->records())
+    if (r.flags & kDsmStorageOverflow) EXPECT_LE(r.stored, r.nodes);
+  sample_lookups(g, Backend::cpu);  // lookups on the prefixes stay inside the pool
+}
+
+TEST(StorageOverflow, ChunkedBlockLimitIsReported) {
+  const Generated g = generate(test::scene_file("demo.json"), Backend::cpu, "chunked",
+                               {"block_chunks=1", "chunk=8"}, 0.001f);
+  const nlohmann::json& f = g.maps->figures();
+  EXPECT_FALSE(f["strategy"]["pool_exhausted"].get<bool>());
+  EXPECT_GT(f["strategy"]["refused_nodes"].get<int64_t>(), 0);
+  EXPECT_GT(f["overflowed_texels"].get<int64_t>(), 0);
+}
+
+TEST(StorageOverflow, BlockedLayerLimitAndPoolAreReported) {
+  const Scene scene = test::scene_file("demo.json");
+  const Generated shallow = generate(scene, Backend::cpu, "blocked", {"layers=8"}, 0.001f);
+  EXPECT_GT(shallow.maps->figures()["overflowed_texels"].get<int64_t>(), 0);
+  EXPECT_LE(shallow.maps->figures()["max_layers"].get<int64_t>(), 8);
+  const Generated tiny = generate(scene, Backend::cpu, "blocked", {"pool=2"});
+  EXPECT_TRUE(tiny.maps->figures()["strategy"]["pool_exhausted"].get<bool>());
+  EXPECT_EQ(tiny.maps->figures()["strategy"]["blocks_allocated"], 2);
+  sample_lookups(tiny, Backend::cpu);
+}
+
+TEST(ChunkedAllocation, AggregatedWastesNothing) {
+  const Generated g = generate(test::scene_file("demo.json"), Backend::cpu, "chunked",
+                               {"alloc=aggregated"}, 0.01f, 64);
+  const nlohmann::json& s = g.maps->figures()["strategy"];
+  EXPECT_EQ(s["chunks_wasted"], 0);
+  EXPECT_GT(s["chunks_used"].get<int64_t>(), 0);
+}
+
+TEST(ChunkedAllocation, ThesisSchemeStoresTheSameFunctions) {
+  const Scene scene = test::scene_file("demo.json");
+  const Generated thesis = generate(scene, Backend::cpu, "chunked", {"alloc=thesis"}, 0.01f, 64);
+  const Generated compact = generate(scene, Backend::cpu, "compact", {}, 0.01f, 64);
+  ASSERT_EQ(thesis.maps->figures()["overflowed_texels"], 0);
+  const nlohmann::json& s = thesis.maps->figures()["strategy"];
+  EXPECT_EQ(s["chunks_allocated"].get<int64_t>(),
+            s["chunks_used"].get<int64_t>() + s["chunks_wasted"].get<int64_t>());
+  expect_same_lookups(compact, thesis, Backend::cpu);
+}
+
+TEST(StorageParams, BadValuesAreRejected) {
+  EXPECT_THROW(storage_registry().create("chunked", StrategyParams::parse({"alloc=greedy"})),
+               InputError);
+  EXPECT_THROW(storage_registry().create("texture3d", StrategyParams::parse({"layers=0"})),
+               InputError);
+  EXPECT_THROW(storage_registry().create("blocked", StrategyParams::parse({"layers=12"})),
+               InputError);
+  EXPECT_THROW(storage_registry().create("compact", StrategyParams::parse({"layers=12"})),
+               InputError);
+  EXPECT_THROW(shadow_registry().create("dsm", StrategyParams::parse({"storage=tiled"})),
+               InputError);
+  EXPECT_THROW(shadow_registry().create("dsm", StrategyParams::parse({"filter=cubic"})),
+               InputError);
+  EXPECT_NO_THROW(shadow_registry().create(
+      "dsm", StrategyParams::parse({"storage=chunked", "storage.alloc=thesis"})));
+}
+
+TEST(StorageBackends, CpuAndCudaNodeCountsAgree) {
+  std::string why;
+  if (!cuda_device_available(&why)) GTEST_SKIP() << "needs a GPU: " << why;
+  for (const char* file : {"demo.json", "ct-phantom.json", "intersecting-volumes.json"}) {
+    const Scene scene = test::scene_file(file);
+    const Generated cpu = generate(scene, Backend::cpu, "compact", {}, 0.02f, 48);
+    const Generated gpu = generate(scene, Backend::cuda, "compact", {}, 0.02f, 48);
+    const std::vector<DsmTexelRecord>& a = cpu.maps->records();
+    const std::vector<DsmTexelRecord>& b = gpu.maps->records();
+    ASSERT_EQ(a.size(), b.size());
+    int64_t differ = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      differ += a[i].nodes != b[i].nodes;
+      EXPECT_LE(b[i].error, 0.02f);
+    }
+    EXPECT_LE(double(differ), 1e-4 * double(a.size())) << file << ": " << differ << " texels";
+    RecordProperty(std::string("differing_texels_") + file, std::to_string(differ));
+  }
+}
+
+}  // namespace
+}  // namespace dv
