@@ -1,19 +1,28 @@
-// The sat voxelizer on the meshes and grids, per pass with CUDA events (grid clear
-// separate, triangle upload separate): the shared bunny scan midpoint-subdivided twice (58,784
-// triangles) and three times (235,136) at 512^3 and 1024^3, the 12-triangle axis-aligned cube at
-// 1024^3, two triangles covering a 512^2 x 32 grid against a thousand one-voxel triangles.
-// Reported time = setup + scan + voxelize (the kernel work after the upload), as cuda_voxelizer
-// reports its "voxelization GPU time". Run: build/bin/bench_voxelizer --benchmark_repetitions=5
+// The voxelizers on the meshes and grids, per pass with CUDA events (grid clear
+// separate, triangle upload separate). sat: the shared bunny scan midpoint-subdivided twice
+// (58,784 triangles) and three times (235,136) at 512^3 and 1024^3, the 12-triangle
+// axis-aligned cube at 1024^3, two triangles covering a 512^2 x 32 grid against a thousand
+// one-voxel triangles. slicemap, atlas and atlas-compute (default 1024^2 atlas): the bunny at
+// 512x512x32 and 512^3. Reported time = the kernel work after the upload (sat: setup + scan +
+// voxelize, as cuda_voxelizer reports its "voxelization GPU time"; the atlas's host-side packing
+// is excluded and reported as pack_ms, its atlas update as atlas_update_ms). The bandwidth floor
+// (bandwidth_floor.h): copy_GBps is the device-to-device copy bandwidth measured once in the
+// run; per modelled pass, PASS_floor_ms = its fewest bytes over that bandwidth, and for passes
+// over 100 us PASS_floor_x = PASS_ms / PASS_floor_ms (goal: at most 3).
+// Run: build/bin/bench_voxelizer --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
 #include <map>
+#include <optional>
 #include <string>
 
 #include "core/device_memory.h"
+#include "experiments/bandwidth_floor.h"
 #include "generators/mesh_generators.h"
-#include "strategies/voxelizer/sat_voxelizer.h"
+#include "strategies/voxelizer/atlas_voxelizer.h"
 #include "strategies/voxelizer/triangle_soup.h"
 #include "strategies/voxelizer/voxelize_job.h"
+#include "strategies/voxelizer/voxelizer.h"
 #include "tests/support/paths.h"
 
 namespace dv {
@@ -36,7 +45,8 @@ TriangleSoup bench_mesh(const std::string& name) {
   return soup;
 }
 
-void sat(benchmark::State& state, const char* mesh, int res_xy, int res_z) {
+void run_voxelizer(benchmark::State& state, const char* method, const char* mesh, int res_xy,
+                   int res_z) {
   std::string why;
   if (!cuda_device_available(&why)) return state.SkipWithError(why.c_str());
   const TriangleSoup soup = bench_mesh(mesh);
@@ -46,21 +56,48 @@ void sat(benchmark::State& state, const char* mesh, int res_xy, int res_z) {
                           ? cubic_bounds(box, "bench")
                           : Aabb{dvec3(0.0), dvec3(1.0)};
   const GridSpec spec = make_box_grid({res_xy, res_xy, res_z}, bounds, "bench");
-  voxelize_sat(Backend::cuda, soup, spec);  // warm-up
+  static const double bytes_per_ms = measure_copy_bandwidth();
+  auto voxelizer = voxelizer_registry().create(method);
+  VoxelizeResult r = voxelizer->voxelize(Backend::cuda, soup, spec);  // warm-up
   std::map<std::string, double> sums;
   for (auto _ : state) {
-    const VoxelizeResult r = voxelize_sat(Backend::cuda, soup, spec);
+    r = voxelizer->voxelize(Backend::cuda, soup, spec);
     double work = 0.0;
     for (const auto& p : r.passes) {
       sums[p.name] += p.milliseconds;
-      if (p.name != "clear" && p.name != "upload") work += p.milliseconds;
+      if (p.name != "clear" && p.name != "upload" && p.name != "pack") work += p.milliseconds;
     }
     state.SetIterationTime(work / 1e3);
   }
-  for (const auto& [name, sum] : sums)
-    state.counters[name + "_ms"] = sum / double(state.iterations());
+  FloorInputs floor{soup.triangle_count(), spec.word_count()};
+  for (uint32_t w : r.grid.words()) floor.set_words += w != 0;
+  if (std::string(method).rfind("atlas", 0) == 0)
+    floor.atlas_texels = int64_t(kDefaultAtlasSide) * kDefaultAtlasSide;
+  for (const auto& [name, sum] : sums) {
+    const double ms = sum / double(state.iterations());
+    state.counters[name + "_ms"] = ms;
+    const std::optional<double> bytes = pass_floor_bytes(method, name, floor);
+    if (!bytes) continue;
+    const double floor_ms = *bytes / bytes_per_ms;
+    state.counters[name + "_floor_ms"] = floor_ms;
+    if (ms > 0.1) state.counters[name + "_floor_x"] = ms / floor_ms;
+  }
+  state.counters["copy_GBps"] = bytes_per_ms / 1e6;
   state.counters["triangles"] = double(soup.triangle_count());
   state.SetLabel(cuda_device_name());
+}
+
+void sat(benchmark::State& state, const char* mesh, int res_xy, int res_z) {
+  run_voxelizer(state, "sat", mesh, res_xy, res_z);
+}
+void slicemap(benchmark::State& state, const char* mesh, int res_xy, int res_z) {
+  run_voxelizer(state, "slicemap", mesh, res_xy, res_z);
+}
+void atlas(benchmark::State& state, const char* mesh, int res_xy, int res_z) {
+  run_voxelizer(state, "atlas", mesh, res_xy, res_z);
+}
+void atlas_compute(benchmark::State& state, const char* mesh, int res_xy, int res_z) {
+  run_voxelizer(state, "atlas-compute", mesh, res_xy, res_z);
 }
 
 BENCHMARK_CAPTURE(sat, bunny2_512, "bunny2", 512, 512)
@@ -82,6 +119,25 @@ BENCHMARK_CAPTURE(sat, two_big_512x32, "two-big", 512, 32)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(sat, thousand_small_512x32, "thousand-small", 512, 32)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK_CAPTURE(slicemap, bunny2_512x32, "bunny2", 512, 32)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(slicemap, bunny2_512, "bunny2", 512, 512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(atlas, bunny2_512x32, "bunny2", 512, 32)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(atlas, bunny2_512, "bunny2", 512, 512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(atlas_compute, bunny2_512x32, "bunny2", 512, 32)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(atlas_compute, bunny2_512, "bunny2", 512, 512)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 

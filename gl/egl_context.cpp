@@ -10,6 +10,8 @@
 #include <cstring>
 #include <vector>
 
+#include "core/error.h"
+
 namespace dv::gl {
 
 namespace {
@@ -98,6 +100,11 @@ std::unique_ptr<EglContext> EglContext::create_headless(std::string* why_not) {
 EglContext::~EglContext() {
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(display_, static_cast<EGLContext>(context_));
+}
+
+void EglContext::make_current() const {
+  if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, static_cast<EGLContext>(context_)))
+    throw Error("EGL: cannot make the " + platform_ + " context current");
 }
 
 std::string EglContext::renderer() const {

@@ -17,6 +17,8 @@ class EglContext {
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;
 
+  // Makes this context current on the calling thread (again); throws dv::Error when EGL fails.
+  void make_current() const;
   std::string renderer() const;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
   std::string version() const;   // GL_VERSION
   const std::string& platform() const { return platform_; }

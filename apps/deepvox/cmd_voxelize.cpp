@@ -1,14 +1,17 @@
-// `deepvox voxelize MESH_OR_SCENE --method NAME [--backend cpu|cuda] --res 512x512x32
+// `deepvox voxelize MESH_OR_SCENE --method NAME [--backend cpu|cuda|gl] --res 512x512x32
 //  [--bounds x0,y0,z0,x1,y1,z1] --out grid.binvox [--stats stats.json] [--compare-exact]`:
 // a binary surface voxel grid of every triangle of the scene, written as binvox, with counts,
 // pass timings and (optionally) the metrics against `exact` in the stats JSON. The work itself
-// is run_voxelize_job (strategies/voxelizer/voxelize_job.h).
+// is run_voxelize_job (strategies/voxelizer/voxelize_job.h). In the full binary `--backend gl`
+// runs the OpenGL implementations (gl/gl_voxelizers.h, registered by main.cpp), headless
+// through EGL.
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/run_metadata.h"
 #include "core/log.h"
 #include "strategies/voxelizer/voxelize_job.h"
+#include "strategies/voxelizer/voxelizer.h"
 
 namespace dv::cli {
 
@@ -19,7 +22,8 @@ Runner add_voxelize(CLI::App& app) {
       ->required();
   cmd->add_option("--method", job->method, "voxelizer (see `deepvox list`)")->capture_default_str();
   cmd->add_option("--param", job->params, "voxelizer parameter key=value (repeatable)");
-  cmd->add_option("--backend", job->backend, "cpu or cuda (default: cuda when a GPU is present)");
+  cmd->add_option("--backend", job->backend,
+                  "cpu, cuda or gl (OpenGL through EGL; default: cuda when a GPU is present)");
   cmd->add_option("--res", job->res, "grid size WxHxD, D a multiple of 32")->capture_default_str();
   cmd->add_option("--bounds", job->bounds,
                   "grid box x0,y0,z0,x1,y1,z1 (default: the scene's bounds made cubic)");
@@ -28,8 +32,9 @@ Runner add_voxelize(CLI::App& app) {
   cmd->add_flag("--compare-exact", job->compare_exact,
                 "also run `exact` on the CPU and report missing/extra voxels");
   return [job] {
-    const Backend backend = job->backend.empty() ? default_backend() : parse_backend(job->backend);
-    const nlohmann::json stats = run_voxelize_job(*job, run_metadata(backend));
+    nlohmann::json meta = run_metadata(voxelize_job_backend(*job));
+    if (voxelize_job_uses_gl(*job)) meta["backend"] = "gl";
+    const nlohmann::json stats = run_voxelize_job(*job, meta);
     log_info("voxelize: " + stats["method"].get<std::string>() + " on " +
              stats["backend"].get<std::string>() + ": " +
              std::to_string(stats["filled"].get<int64_t>()) + " voxels set in " +

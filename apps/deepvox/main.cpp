@@ -8,18 +8,26 @@
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/run_metadata.h"
 #include "core/error.h"
+#if DEEPVOX_WITH_GL
+#include "gl/gl_voxelizers.h"
+#include "strategies/voxelizer/voxelizer.h"
+#endif
 
 int main(int argc, char** argv) {
   CLI::App app{"deepvox " DEEPVOX_VERSION
                ": deep shadow maps and voxelization for translucent scenes (research testbed)"};
   app.require_subcommand(1);
   dv::cli::remember_command_line(argc, argv);
+#if DEEPVOX_WITH_GL
+  dv::gl::register_gl_voxelizers(dv::gl_voxelizer_registry());  // voxelize --backend gl
+#endif
   std::map<std::string, dv::cli::Runner> runners;
   runners["probe"] = dv::cli::add_probe(app);
   runners["render"] = dv::cli::add_render(app);
   runners["info"] = dv::cli::add_info(app);
   runners["list"] = dv::cli::add_list(app);
   runners["voxelize"] = dv::cli::add_voxelize(app);
+  runners["dsm"] = dv::cli::add_dsm(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

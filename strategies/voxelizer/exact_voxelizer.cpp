@@ -104,6 +104,7 @@ bool triangle_box_overlap(const dvec3& v0, const dvec3& v1, const dvec3& v2, con
 ExactVoxelization voxelize_exact(const TriangleSoup& soup, const GridSpec& spec, bool with_band) {
   const auto start = std::chrono::steady_clock::now();
   validate_grid_spec(spec, "exact voxelizer");
+  require_affine_grid(spec, "exact voxelizer");
   ExactVoxelization out;
   out.exact = VoxelGrid(spec, Memory::host);
   if (with_band) {

@@ -1,24 +1,51 @@
 // The `sat` conservative voxelizer's passes (test and work split in sat_kernels.h), one source
 // for both backends (nvcc compiles this file when CUDA is on):
 //   clear    a fresh zeroed grid;
-//   setup    per triangle: corners to grid coordinates, bounding range, work-item count;
-//   scan     exclusive scan of the counts on the host (one int64 per triangle);
+//   upload   the triangles' corners;
+//   setup    allocation of the counts, then per triangle: corners to grid coordinates (in
+//            place), bounding range, work-item count, and a count of the degenerate ones;
+//   scan     exclusive scan of the counts where they live (core/scan.h), then one read-back of
+//            the total and the degenerate count (the total sizes the next launch);
 //   voxelize one thread per work item (a column or a slice of one triangle): it finds its
 //            triangle by binary search over the offsets, rebuilds the triangle's test from its
 //            three corners (cheaper than storing it) and ORs its voxels into the grid.
+// Per call the backend memory holds the grid, the corners and one int64 per triangle plus two.
 #include "strategies/voxelizer/sat_voxelizer.h"
 
+#include <cstring>
 #include <span>
 
+#include "core/atomic.h"
 #include "core/pass_timer.h"
+#include "core/scan.h"
 #include "strategies/voxelizer/sat_kernels.h"
+#include "strategies/voxelizer/work_items.h"
 
 namespace dv {
 
+namespace {
+
+// values[first] and values[first + 1] set to zero / copied to the host.
+void write_tail_zeros(Buffer<int64_t>& values, int64_t first) {
+  if (values.memory() == Memory::device)
+    device_memset(values.data() + first, 0, 2 * sizeof(int64_t));
+  else
+    std::memset(values.data() + first, 0, 2 * sizeof(int64_t));
+}
+void read_tail(const Buffer<int64_t>& values, int64_t first, int64_t out[2]) {
+  if (values.memory() == Memory::device)
+    copy_to_host(out, values.data() + first, 2 * sizeof(int64_t));
+  else
+    std::memcpy(out, values.data() + first, 2 * sizeof(int64_t));
+}
+
+}  // namespace
+
 VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const GridSpec& spec) {
   validate_grid_spec(spec, "sat voxelizer");
+  require_affine_grid(spec, "sat voxelizer");
   require_backend(backend);
-  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  const Memory memory = memory_of(backend);
   VoxelizeResult result;
   {
     PassTimer timer(backend);
@@ -34,72 +61,57 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
   }
 
   PassTimer upload_timer(backend);
-  const Buffer<dvec3> world(memory,
-                            std::span<const dvec3>(soup.corners.data(), size_t(3 * triangles)),
-                            "sat world corners");
+  Buffer<dvec3> corners(memory, std::span<const dvec3>(soup.corners.data(), size_t(3 * triangles)),
+                        "sat corners");
   result.passes.push_back({"upload", upload_timer.stop()});
 
-  Buffer<dvec3> corners(memory, 3 * triangles, "sat grid corners");
-  Buffer<int64_t> counts(memory, triangles, "sat work counts");
-  Buffer<uint8_t> degenerate(memory, triangles, "sat degenerate flags");
+  // counts: [0, triangles) work items per triangle, then offsets after the scan;
+  // [triangles] 0, the total after the scan; [triangles + 1] degenerate triangles.
+  Buffer<int64_t> counts;
   const GridTransform to_grid = grid_transform(spec);
   const ivec3 res = spec.res;
   {
     PassTimer timer(backend);
-    const View<const dvec3> in = world.const_view();
-    const View<dvec3> out = corners.view();
+    counts = Buffer<int64_t>(memory, triangles + 2, "sat work counts");
+    write_tail_zeros(counts, triangles);
+    const View<dvec3> corner = corners.view();
     const View<int64_t> count = counts.view();
-    const View<uint8_t> flag = degenerate.view();
+    // The slot is zeroed, added to and copied out as bytes, never read as an int64_t.
+    auto* const degenerate = reinterpret_cast<unsigned long long*>(counts.data() + triangles + 1);
     parallel_for(
         backend, "sat_setup", triangles, DV_KERNEL_LAMBDA(int64_t i) {
-          const dvec3 a = to_grid.apply(in[3 * i]), b = to_grid.apply(in[3 * i + 1]),
-                      c = to_grid.apply(in[3 * i + 2]);
-          out[3 * i] = a;
-          out[3 * i + 1] = b;
-          out[3 * i + 2] = c;
+          const dvec3 a = to_grid.apply(corner[3 * i]), b = to_grid.apply(corner[3 * i + 1]),
+                      c = to_grid.apply(corner[3 * i + 2]);
+          corner[3 * i] = a;
+          corner[3 * i + 1] = b;
+          corner[3 * i + 2] = c;
           SatTriangle t;
           sat_setup(a, b, c, res, t);
           count[i] = t.work_items;
-          flag[i] = t.work_items > 0 && t.degenerate ? 1 : 0;
+          if (t.work_items > 0 && t.degenerate) atomic_add(degenerate, 1ull);
         });
     result.passes.push_back({"setup", timer.stop()});
   }
 
-  std::vector<int64_t> offsets(size_t(triangles) + 1);
-  int64_t degenerate_count = 0;
+  int64_t tail[2];
   {
     PassTimer timer(backend);
-    const std::vector<int64_t> host_counts = counts.to_vector();
-    int64_t total = 0;
-    for (int64_t i = 0; i < triangles; ++i) {
-      offsets[size_t(i)] = total;
-      total += host_counts[size_t(i)];
-    }
-    offsets[size_t(triangles)] = total;
-    for (uint8_t f : degenerate.to_vector()) degenerate_count += f;
+    exclusive_scan_queued(backend, View<int64_t>{counts.data(), triangles + 1});
+    read_tail(counts, triangles, tail);
     result.passes.push_back({"scan", timer.stop()});
   }
-  const int64_t work_items = offsets.back();
+  const int64_t work_items = tail[0];
   result.counters["work_items"] = work_items;
-  result.counters["degenerate_triangles"] = degenerate_count;
+  result.counters["degenerate_triangles"] = tail[1];
 
-  const Buffer<int64_t> offset_buffer(memory, std::span<const int64_t>(offsets), "sat offsets");
   {
     PassTimer timer(backend);
     const View<const dvec3> in = corners.const_view();
-    const View<const int64_t> first = offset_buffer.const_view();
+    const View<const int64_t> first = counts.const_view();
     const VoxelGridView grid = result.grid.view();
     parallel_for(
         backend, "sat_voxelize", work_items, DV_KERNEL_LAMBDA(int64_t i) {
-          // The last triangle whose first item is <= i (triangles without items share offsets).
-          int64_t lo = 0, hi = triangles - 1;
-          while (lo < hi) {
-            const int64_t mid = (lo + hi + 1) / 2;
-            if (first[mid] <= i)
-              lo = mid;
-            else
-              hi = mid - 1;
-          }
+          const int64_t lo = work_item_owner(first, triangles, i);
           SatTriangle t;
           sat_setup(in[3 * lo], in[3 * lo + 1], in[3 * lo + 2], res, t);
           sat_work_item(t, i - first[lo], grid);

@@ -1,7 +1,8 @@
 // Geometry both conservative voxelizers share, in grid coordinates (voxel (i, j, k) is the
 // closed unit cube [i, i+1] x [j, j+1] x [k, k+1]): the triangle normal, the one rule that
 // calls a triangle degenerate, and the range of voxels a closed interval touches. exact and sat
-// use these same functions so that they agree on which triangles have a usable normal.
+// use these same functions so that they agree on which triangles have a usable normal. The
+// point methods (slicemap, atlas) share the half-open cell rule for points at the end.
 #pragma once
 
 #include <cmath>
@@ -71,6 +72,21 @@ DV_HD inline VoxelRange voxel_range(double lo, double hi, int res, double grow) 
   r.first = max_value(int(first), 0);
   r.last = min_value(int(last), res - 1);
   return r;
+}
+
+// The voxel along an axis of `res` voxels holding grid coordinate g for the point methods
+// (slicemap, atlas): the half-open cell [k, k+1) with k = floor(g), and the last voxel for g ==
+// res exactly (the grid's closed upper face, voxel_grid.h); -1 outside [0, res] or for NaN.
+DV_HD inline int point_voxel(double g, int res) {
+  if (!(g >= 0.0 && g <= double(res))) return -1;
+  return min_value(int(g), res - 1);
+}
+
+// The voxel holding grid-space point g (each axis as point_voxel); false when g lies outside
+// the grid's closed box.
+DV_HD inline bool point_voxel_index(const dvec3& g, const ivec3& res, ivec3& out) {
+  out = ivec3(point_voxel(g.x, res.x), point_voxel(g.y, res.y), point_voxel(g.z, res.z));
+  return out.x >= 0 && out.y >= 0 && out.z >= 0;
 }
 
 }  // namespace dv

@@ -30,6 +30,23 @@ void validate_grid_spec(const GridSpec& spec, const std::string& where) {
     if (!(spec.bounds.hi[a] > spec.bounds.lo[a]))
       throw InputError(where, "grid bounds must have max > min on every axis");
   }
+  if (spec.kind == GridKind::box) return;
+  const GridFrustum& f = spec.frustum;
+  if (!std::isfinite(f.near) || !std::isfinite(f.far) || !(f.far > f.near))
+    throw InputError(where, "frustum grid depth range must be finite with far > near");
+  if (spec.kind == GridKind::perspective && !(f.near > 0.0))
+    throw InputError(where, "perspective grid must start in front of its eye (near > 0)");
+  if (f.projection.width != r.x || f.projection.height != r.y ||
+      f.projection.orthographic != (spec.kind == GridKind::orthographic))
+    throw InputError(where, "frustum grid projection does not match its kind and resolution");
+}
+
+void require_affine_grid(const GridSpec& spec, const std::string& where) {
+  if (!spec.affine())
+    throw InputError(where,
+                     "perspective (spot or omni light) grids are not supported: its cells are "
+                     "frustum-shaped, not boxes; use a point method (slicemap, atlas, "
+                     "atlas-compute)");
 }
 
 GridSpec make_box_grid(const ivec3& res, const Aabb& bounds, const std::string& where) {
@@ -43,6 +60,17 @@ GridSpec make_box_grid(const ivec3& res, const Aabb& bounds, const std::string& 
 
 GridTransform grid_transform(const GridSpec& spec) {
   GridTransform t;
+  if (spec.kind != GridKind::box) {
+    const GridFrustum& f = spec.frustum;
+    t.frustum = true;
+    t.world_to_clip = f.projection.world_to_clip;
+    t.scale = dvec3(spec.res);
+    t.eye = f.eye;
+    t.axis = f.axis;
+    t.near = f.near;
+    t.depth_scale = double(spec.res.z) / (f.far - f.near);
+    return t;
+  }
   t.lo = spec.bounds.lo;
   for (int a = 0; a < 3; ++a)
     t.scale[a] = double(spec.res[a]) / (spec.bounds.hi[a] - spec.bounds.lo[a]);
@@ -89,6 +117,8 @@ void VoxelGrid::set(int x, int y, int z) {
 
 VoxelGrid mip_down(const VoxelGrid& finer) {
   const GridSpec& f = finer.spec();
+  if (f.kind != GridKind::box)
+    throw InputError("voxel MIP levels", "only box grids have MIP levels, not light frustums");
   GridSpec coarse = f;
   coarse.res = ivec3((f.res.x + 1) / 2, (f.res.y + 1) / 2, f.res.z);
   const dvec3 unit = f.voxel_size();

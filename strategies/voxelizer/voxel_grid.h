@@ -9,10 +9,18 @@
 //     hi.x lands in voxel W-1). Points outside the closed box belong to no voxel.
 //   - Conservative voxelizers (exact, sat) set every voxel whose CLOSED box meets a triangle, so
 //     a face lying exactly on a voxel boundary sets the voxels on both sides of it.
+//   - Light-frustum grids (kinds orthographic and perspective, built from a light's map face by
+//     strategies/voxelizer/frustum_grid.h): grid x and y are the face's image coordinates
+//     (pixel (x, y) of a W x H image is the column [x, x+1) x [y, y+1)), grid z is the depth
+//     along the view axis, dot(p - eye, axis), mapped linearly from [near, far] to [0, D]: slices
+//     are planes at equal distances along the axis. Orthographic grids are an affine image of
+//     world space (cells are boxes in grid space); perspective ones are not (x and y divide by
+//     the depth), so only the point methods can fill them.
 //   - Memory layout: word (x, y, k) holds z = 32k .. 32k+31 (bit z & 31) and sits at index
 //     (k * H + y) * W + x: a stack of D/32 slices of W x H words, like a layered integer texture.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -21,6 +29,7 @@
 #include "core/buffer.h"
 #include "core/execute.h"
 #include "core/math.h"
+#include "renderer/raster/raster_projection.h"
 
 namespace dv {
 
@@ -30,16 +39,28 @@ inline constexpr int kMaxGridSide = 16384;
 inline constexpr int kMaxGridDepth = 4096;
 inline constexpr int64_t kMaxGridVoxels = int64_t(1) << 34;
 
-// Only axis-aligned boxes so far; light frustums (orthographic and perspective, depth along the
-// view direction) join as further kinds when the shadow source needs them.
-enum class GridKind : uint8_t { box };
+// An axis-aligned box, or a light's frustum (see the file comment).
+enum class GridKind : uint8_t { box, orthographic, perspective };
+
+// The frustum of the light-frustum kinds: the face's projection (image res.x x res.y), the
+// origin and unit axis of the depth, and the depth range the slices divide.
+struct GridFrustum {
+  RasterProjection projection;
+  dvec3 eye{0.0};
+  dvec3 axis{0.0, 0.0, 1.0};
+  double near = 0.0, far = 1.0;
+};
 
 struct GridSpec {
   GridKind kind = GridKind::box;
-  ivec3 res{0, 0, 0};  // W (x), H (y), D (z)
-  Aabb bounds;         // world box the grid covers
+  ivec3 res{0, 0, 0};   // W (x), H (y), D (z)
+  Aabb bounds;          // world box the grid covers (frustum kinds: its bounding box)
+  GridFrustum frustum;  // frustum kinds only
 
+  // Box kind: the world size of a voxel.
   dvec3 voxel_size() const { return bounds.extent() / dvec3(res); }
+  // Whether grid coordinates are an affine image of world space (box and orthographic).
+  bool affine() const { return kind != GridKind::perspective; }
   int words_per_column() const { return res.z / 32; }
   int64_t word_count() const { return int64_t(res.x) * res.y * words_per_column(); }
   int64_t voxel_count() const { return int64_t(res.x) * res.y * res.z; }
@@ -51,12 +72,35 @@ void validate_grid_spec(const GridSpec& spec, const std::string& where);
 // A validated axis-aligned box grid.
 GridSpec make_box_grid(const ivec3& res, const Aabb& bounds, const std::string& where = "grid");
 
-// World -> grid coordinates ((p - lo) * scale per axis): voxel (i, j, k) is [i, i+1]^3 there.
+// Throws InputError(where) for a perspective grid: the conservative voxelizers (exact, sat) test
+// box-shaped cells, and a perspective grid's cells are frustum-shaped in world space.
+void require_affine_grid(const GridSpec& spec, const std::string& where);
+
+// World -> grid coordinates: voxel (i, j, k) is [i, i+1]^3 there. Box grids: (p - lo) * scale
+// per axis. Frustum grids: x and y from the projection (pixel units, rows down), z = (dot(p -
+// eye, axis) - near) * depth_scale; NaN for points behind a perspective grid's eye.
 struct GridTransform {
+  bool frustum = false;
   dvec3 lo{0.0};
   dvec3 scale{1.0};
+  dmat4 world_to_clip{1.0};
+  dvec3 eye{0.0}, axis{0.0, 0.0, 1.0};
+  double near = 0.0, depth_scale = 1.0;
+
+  // Frustum grids: the world depth along the axis, and grid z.
+  DV_HD double axial_depth(const dvec3& p) const {
+    return (p.x - eye.x) * axis.x + (p.y - eye.y) * axis.y + (p.z - eye.z) * axis.z;
+  }
+  DV_HD double depth(const dvec3& p) const { return (axial_depth(p) - near) * depth_scale; }
   DV_HD dvec3 apply(const dvec3& p) const {
-    return dvec3((p.x - lo.x) * scale.x, (p.y - lo.y) * scale.y, (p.z - lo.z) * scale.z);
+    if (!frustum)
+      return dvec3((p.x - lo.x) * scale.x, (p.y - lo.y) * scale.y, (p.z - lo.z) * scale.z);
+    const dmat4& m = world_to_clip;
+    const double x = ((m[0][0] * p.x + m[1][0] * p.y) + m[2][0] * p.z) + m[3][0];
+    const double y = ((m[0][1] * p.x + m[1][1] * p.y) + m[2][1] * p.z) + m[3][1];
+    const double w = ((m[0][3] * p.x + m[1][3] * p.y) + m[2][3] * p.z) + m[3][3];
+    if (!(w > 0.0)) return dvec3(NAN);
+    return dvec3((x / w * 0.5 + 0.5) * scale.x, (0.5 - y / w * 0.5) * scale.y, depth(p));
   }
 };
 GridTransform grid_transform(const GridSpec& spec);
@@ -78,6 +122,20 @@ struct VoxelGridView {
   }
   DV_HD void set_bits(int x, int y, int k, uint32_t mask) const {
     if (mask) atomic_or(&words[word_index(x, y, k)], mask);
+  }
+  // Set voxels of column (x, y) in slices 0 .. z-1 (z in [0, depth]).
+  DV_HD int count_below(int x, int y, int z) const {
+    int count = 0;
+    for (int k = 0; k < (z >> 5); ++k) count += bit_count(words[word_index(x, y, k)]);
+    if (z & 31) count += bit_count(words[word_index(x, y, z >> 5)] & ((1u << (z & 31)) - 1u));
+    return count;
+  }
+  DV_HD static int bit_count(uint32_t v) {
+#if defined(__CUDA_ARCH__)
+    return __popc(v);
+#else
+    return std::popcount(v);
+#endif
   }
 };
 
@@ -111,10 +169,11 @@ class VoxelGrid {
   Buffer<uint32_t> words_;
 };
 
-// One MIP level down (Buchacher §3.5): texel (x, y) of the result ORs texels 2x..2x+1,
-// 2y..2y+1 of `finer` with all depth bits kept. Odd sizes round up, so the last row and
-// column are never lost: the result is ceil(W/2) x ceil(H/2) x D and its bounds grow to
-// lo + 2 * ceil(W/2) * unit so its voxels are exactly twice as wide. Runs where the grid lives.
+// One MIP level down (Buchacher §3.5; box grids only, frustum grids throw InputError): texel (x, y)
+// of the result ORs texels 2x..2x+1, 2y..2y+1 of `finer` with all depth bits kept. Odd sizes round
+// up, so the last row and column are never lost: the result is ceil(W/2) x ceil(H/2) x D and its
+// bounds grow to lo + 2 * ceil(W/2) * unit so its voxels are exactly twice as wide. Runs where the
+// grid lives.
 VoxelGrid mip_down(const VoxelGrid& finer);
 // Levels 1, 2, ... down to 1 x 1 (level 0, the grid itself, is not repeated).
 std::vector<VoxelGrid> mip_chain(const VoxelGrid& base);

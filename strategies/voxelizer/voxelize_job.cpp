@@ -90,9 +90,24 @@ Aabb cubic_bounds(const Aabb& box, const std::string& where) {
   return {c - 0.5 * side, c + 0.5 * side};
 }
 
+bool voxelize_job_uses_gl(const VoxelizeJob& job) {
+  return job.backend == "gl";
+}
+
+Backend voxelize_job_backend(const VoxelizeJob& job) {
+  if (voxelize_job_uses_gl(job)) return Backend::cpu;
+  return job.backend.empty() ? default_backend() : parse_backend(job.backend);
+}
+
 nlohmann::json run_voxelize_job(const VoxelizeJob& job, const nlohmann::json& meta) {
-  const Backend backend = job.backend.empty() ? default_backend() : parse_backend(job.backend);
-  auto method = voxelizer_registry().create(job.method, StrategyParams::parse(job.params));
+  const bool gl = voxelize_job_uses_gl(job);
+  const Backend backend = voxelize_job_backend(job);
+  const Registry<Voxelizer>& registry = gl ? gl_voxelizer_registry() : voxelizer_registry();
+  if (gl && registry.names().empty())
+    throw InputError("--backend",
+                     "gl: this program has no OpenGL voxelizers (built without "
+                     "DEEPVOX_GL, or EGL/OpenGL missing at build time)");
+  auto method = registry.create(job.method, StrategyParams::parse(job.params));
   if (!method->supports(backend))
     throw InputError("--backend", "voxelizer '" + method->name() + "' does not run on " +
                                       to_string(backend) + " in this build");
@@ -110,7 +125,7 @@ nlohmann::json run_voxelize_job(const VoxelizeJob& job, const nlohmann::json& me
   nlohmann::json stats = {{"input", job.input},
                           {"method", method->name()},
                           {"params", method->params()},
-                          {"backend", to_string(backend)},
+                          {"backend", gl ? "gl" : to_string(backend)},
                           {"res", {res.x, res.y, res.z}},
                           {"bounds", {{"min", vec(bounds.lo)}, {"max", vec(bounds.hi)}}},
                           {"voxel_size", vec(spec.voxel_size())},

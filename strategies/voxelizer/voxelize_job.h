@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/execute.h"
 #include "core/math.h"
 
 namespace dv {
@@ -16,7 +17,7 @@ struct VoxelizeJob {
   std::string input;                // mesh file or scene (anything load_scene takes)
   std::string method = "sat";       // registered voxelizer
   std::vector<std::string> params;  // key=value for the voxelizer
-  std::string backend;              // "cpu" | "cuda"; empty: CUDA when a GPU is present
+  std::string backend;              // "cpu" | "cuda" | "gl"; empty: CUDA when a GPU is present
   std::string res = "512x512x32";   // WxHxD, D a multiple of 32
   std::string bounds;               // "x0,y0,z0,x1,y1,z1"; empty: the scene's bounds made cubic
   std::string out;                  // binvox path; empty: none written
@@ -32,6 +33,12 @@ Aabb parse_voxel_bounds(const std::string& text, const std::string& where = "--b
 // The cube with the same centre whose side is the box's largest extent; InputError(where)
 // when the box is empty or has no extent at all.
 Aabb cubic_bounds(const Aabb& box, const std::string& where);
+
+// Whether the job asks for the OpenGL implementation (backend "gl", gl_voxelizer_registry()).
+bool voxelize_job_uses_gl(const VoxelizeJob& job);
+// The Backend whose memory receives the grid: Backend::cpu for "gl", else the parsed name
+// (InputError for unknown names) or the default backend.
+Backend voxelize_job_backend(const VoxelizeJob& job);
 
 // Runs the job and returns its stats (also written to job.stats with `meta` under "meta").
 nlohmann::json run_voxelize_job(const VoxelizeJob& job,

@@ -1,7 +1,9 @@
 // Host side of the voxelizer family (slicemap, atlas, sat, atlas-compute, exact): a named
 // strategy with its parameters that fills a binary grid (voxel_grid.h) from a triangle soup.
-// Registered so far: `exact` (CPU reference, exact_voxelizer.h) and `sat` (conservative,
-// CPU and CUDA, sat_kernels.h).
+// Registered: `exact` (CPU reference, exact_voxelizer.h), `sat` (conservative, CPU and CUDA,
+// sat_kernels.h), `slicemap` (slicemap_voxelizer.h), `atlas` and `atlas-compute`
+// (atlas_voxelizer.h). OpenGL implementations (gl/gl_voxelizers.h) sit in a registry of their
+// own, filled only by programs that link the GL library.
 #pragma once
 
 #include <string>
@@ -46,5 +48,13 @@ Registry<Voxelizer>& voxelizer_registry();
 
 void register_exact_voxelizer(Registry<Voxelizer>& registry);
 void register_sat_voxelizer(Registry<Voxelizer>& registry);
+void register_slicemap_voxelizer(Registry<Voxelizer>& registry);
+void register_atlas_voxelizers(Registry<Voxelizer>& registry);  // atlas, atlas-compute
+
+// The OpenGL implementations of registered methods, under the same names (`deepvox voxelize
+// --backend gl`). GL is not a Backend (execute.h: kernels run on CPU threads or CUDA): these
+// voxelizers support Backend::cpu only, meaning that their grids come back in host memory.
+// Empty unless the program called gl::register_gl_voxelizers (gl/gl_voxelizers.h).
+Registry<Voxelizer>& gl_voxelizer_registry();
 
 }  // namespace dv

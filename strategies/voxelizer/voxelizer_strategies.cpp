@@ -1,10 +1,14 @@
-// The registered voxelizers `exact` and `sat` (neither takes parameters) and the pass
-// bookkeeping of VoxelizeResult.
+// The registered voxelizers `exact`, `sat`, `slicemap` (no parameters), `atlas` and
+// `atlas-compute` (parameter atlas: texels per atlas side), the (empty) registry of GL
+// implementations, and the pass bookkeeping of VoxelizeResult.
 #include <chrono>
 #include <memory>
 
+#include "strategies/voxelizer/atlas_packing.h"
+#include "strategies/voxelizer/atlas_voxelizer.h"
 #include "strategies/voxelizer/exact_voxelizer.h"
 #include "strategies/voxelizer/sat_voxelizer.h"
+#include "strategies/voxelizer/slicemap_voxelizer.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv {
@@ -54,7 +58,50 @@ class SatVoxelizer : public Voxelizer {
   }
 };
 
+class SlicemapVoxelizer : public Voxelizer {
+ public:
+  std::string name() const override { return "slicemap"; }
+  nlohmann::json params() const override { return nlohmann::json::object(); }
+  bool supports(Backend backend) const override {
+    return backend == Backend::cpu || kBuiltWithCuda;
+  }
+  VoxelizeResult voxelize(Backend backend, const TriangleSoup& soup,
+                          const GridSpec& spec) override {
+    return voxelize_slicemap(backend, soup, spec);
+  }
+};
+
+class AtlasVoxelizer : public Voxelizer {
+ public:
+  AtlasVoxelizer(bool compute, const StrategyParams& params)
+      : compute_(compute), side_(params.integer("atlas", kDefaultAtlasSide)) {
+    if (side_ < 1 || side_ > kMaxAtlasSide)
+      throw InputError("voxelizer '" + name() + "'",
+                       "atlas=" + std::to_string(side_) + " must be in [1, " +
+                           std::to_string(kMaxAtlasSide) + "] (texels per atlas side)");
+  }
+  std::string name() const override { return compute_ ? "atlas-compute" : "atlas"; }
+  nlohmann::json params() const override { return {{"atlas", side_}}; }
+  bool supports(Backend backend) const override {
+    return backend == Backend::cpu || kBuiltWithCuda;
+  }
+  VoxelizeResult voxelize(Backend backend, const TriangleSoup& soup,
+                          const GridSpec& spec) override {
+    return compute_ ? voxelize_atlas_compute(backend, soup, spec, side_)
+                    : voxelize_atlas(backend, soup, spec, side_);
+  }
+
+ private:
+  bool compute_;
+  int side_;
+};
+
 }  // namespace
+
+Registry<Voxelizer>& gl_voxelizer_registry() {
+  static Registry<Voxelizer> registry("voxelizer with --backend gl");
+  return registry;
+}
 
 void register_exact_voxelizer(Registry<Voxelizer>& registry) {
   registry.add("exact",
@@ -68,6 +115,24 @@ void register_sat_voxelizer(Registry<Voxelizer>& registry) {
                "conservative surface voxelization, plane + 2D edge tests (Schwarz & Seidel "
                "2010), CPU and CUDA",
                [](const StrategyParams&) { return std::make_unique<SatVoxelizer>(); });
+}
+
+void register_slicemap_voxelizer(Registry<Voxelizer>& registry) {
+  registry.add("slicemap",
+               "slices of the fragments rasterized along +z, one bit per fragment (Eisemann & "
+               "Decoret 2006), CPU and CUDA; OpenGL with --backend gl",
+               [](const StrategyParams&) { return std::make_unique<SlicemapVoxelizer>(); });
+}
+
+void register_atlas_voxelizers(Registry<Voxelizer>& registry) {
+  registry.add("atlas",
+               "one point per texel of a triangle atlas rasterized into a position texture "
+               "(Thiedemann et al. 2011), CPU and CUDA; param atlas=texels per side",
+               [](const StrategyParams& p) { return std::make_unique<AtlasVoxelizer>(false, p); });
+  registry.add("atlas-compute",
+               "the atlas points computed and written by a compute kernel, no rasterization "
+               "(Buchacher 2014 3.4), CPU and CUDA; param atlas=texels per side",
+               [](const StrategyParams& p) { return std::make_unique<AtlasVoxelizer>(true, p); });
 }
 
 }  // namespace dv

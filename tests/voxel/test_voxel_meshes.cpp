@@ -12,33 +12,17 @@
 #include "strategies/voxelizer/voxel_metrics.h"
 #include "strategies/voxelizer/voxelize_job.h"
 #include "tests/support/paths.h"
+#include "tests/voxel/voxel_meshes.h"
 
 namespace dv {
 namespace {
 
-struct MeshCase {
-  const char* name;
-  TriangleMesh (*make)();
-};
+using test::kMeshes;
+using test::MeshCase;
 
-TriangleMesh bunny() {
-  return make_bunny(test::source_dir() + "/assets", 0);
-}
-TriangleMesh icosphere() {
-  return make_icosphere(0.5, 3);
-}
-TriangleMesh torus() {
-  return make_torus(0.35, 0.15, 48, 24);
-}
-TriangleMesh quad() {
-  return make_subdivided_quad(1.0, 11858);
-}
 TriangleMesh cube() {
   return make_box(dvec3(-0.5), dvec3(0.5));
 }
-
-const MeshCase kMeshes[] = {
-    {"icosphere", icosphere}, {"torus", torus}, {"bunny", bunny}, {"subdivided_quad", quad}};
 
 class SatVersusExact : public ::testing::TestWithParam<MeshCase> {};
 
@@ -72,7 +56,7 @@ INSTANTIATE_TEST_SUITE_P(Meshes, SatVersusExact, ::testing::ValuesIn(kMeshes),
 TEST(SatVersusExact, QuadOnAVoxelPlaneSetsBothLayers) {
   // The quad lies in y = 0, the middle plane of its cubic box: grid y = 32 exactly, so the
   // closed voxel boxes of both layers y = 31 and y = 32 meet it.
-  const TriangleSoup soup = triangle_soup(quad());
+  const TriangleSoup soup = triangle_soup(test::quad_mesh());
   const GridSpec spec = make_box_grid({64, 64, 64}, cubic_bounds(soup.bounds(), "quad"));
   const VoxelizeResult sat = voxelize_sat(Backend::cpu, soup, spec);
   EXPECT_EQ(sat.grid.popcount(), 2 * 64 * 64);
@@ -89,9 +73,9 @@ class CpuCudaParity : public ::testing::Test {
 
 TEST_F(CpuCudaParity, IdenticalGrids) {
   std::vector<std::pair<const char*, TriangleSoup>> cases;
-  cases.emplace_back("bunny", triangle_soup(bunny()));
+  cases.emplace_back("bunny", triangle_soup(test::bunny_mesh()));
   cases.emplace_back("cube", triangle_soup(cube()));
-  cases.emplace_back("quad", triangle_soup(quad()));
+  cases.emplace_back("quad", triangle_soup(test::quad_mesh()));
   TriangleSoup degenerate;
   degenerate.add({0.1, 0.2, 0.3}, {-0.4, 0.3, -0.2}, {0.1, 0.2, 0.3});
   degenerate.add({0.25, 0.25, 0.25}, {0.25, 0.25, 0.25}, {0.25, 0.25, 0.25});
@@ -111,7 +95,7 @@ TEST_F(CpuCudaParity, IdenticalGrids) {
 }
 
 TEST_F(CpuCudaParity, MipOnTheDevice) {
-  const TriangleSoup soup = triangle_soup(bunny());
+  const TriangleSoup soup = triangle_soup(test::bunny_mesh());
   const GridSpec spec = make_box_grid({77, 51, 64}, cubic_bounds(soup.bounds(), "bunny"));
   const VoxelizeResult c = voxelize_sat(Backend::cpu, soup, spec);
   const VoxelizeResult g = voxelize_sat(Backend::cuda, soup, spec);

@@ -123,7 +123,8 @@ TEST(VoxelizeJob, BadJobsAreInputErrors) {
   job.res = "32x32x32";
   VoxelizeJob unknown = job;
   unknown.method = "voxelmagic";
-  expect_input_error([&] { run_voxelize_job(unknown); }, "known: exact, sat");
+  expect_input_error([&] { run_voxelize_job(unknown); },
+                     "known: atlas, atlas-compute, exact, sat, slicemap");
   VoxelizeJob bad_res = job;
   bad_res.res = "32x32x33";
   expect_input_error([&] { run_voxelize_job(bad_res); }, "--res");

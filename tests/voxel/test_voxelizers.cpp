@@ -10,18 +10,14 @@
 #include "generators/mesh_generators.h"
 #include "strategies/voxelizer/sat_voxelizer.h"
 #include "strategies/voxelizer/voxel_metrics.h"
+#include "tests/voxel/voxel_meshes.h"
 #include "tests/voxel/voxel_test_support.h"
 
 namespace dv {
 namespace {
 
+using test::soup_of;
 using test::VoxelSet;
-
-TriangleSoup soup_of(const std::vector<dvec3>& corners) {
-  TriangleSoup s;
-  s.corners = corners;
-  return s;
-}
 
 VoxelSet exact_set(const std::vector<dvec3>& corners, ivec3 res) {
   return test::voxels_of(voxelize_exact(soup_of(corners), test::unit_grid(res), false).exact);

@@ -1,0 +1,72 @@
+// Copy bandwidth and per-pass byte counts (see bandwidth_floor.h).
+#include "experiments/bandwidth_floor.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "core/error.h"
+#include "core/math.h"
+#include "strategies/voxelizer/atlas_packing.h"
+
+#if defined(DEEPVOX_WITH_CUDA)
+#include <cuda_runtime_api.h>
+
+#include "core/cuda_check.h"
+#endif
+
+namespace dv {
+
+double measure_copy_bandwidth(int64_t bytes, int copies) {
+#if defined(DEEPVOX_WITH_CUDA)
+  void *src = nullptr, *dst = nullptr;
+  DV_CUDA_CHECK(cudaMalloc(&src, size_t(bytes)));
+  DV_CUDA_CHECK(cudaMalloc(&dst, size_t(bytes)));
+  DV_CUDA_CHECK(cudaMemset(src, 1, size_t(bytes)));
+  cudaEvent_t start, stop;
+  DV_CUDA_CHECK(cudaEventCreate(&start));
+  DV_CUDA_CHECK(cudaEventCreate(&stop));
+  std::vector<float> ms;
+  for (int i = 0; i <= copies; ++i) {  // the first is the warm-up
+    DV_CUDA_CHECK(cudaEventRecord(start));
+    DV_CUDA_CHECK(cudaMemcpy(dst, src, size_t(bytes), cudaMemcpyDeviceToDevice));
+    DV_CUDA_CHECK(cudaEventRecord(stop));
+    DV_CUDA_CHECK(cudaEventSynchronize(stop));
+    float t = 0.0f;
+    DV_CUDA_CHECK(cudaEventElapsedTime(&t, start, stop));
+    if (i > 0) ms.push_back(t);
+  }
+  cudaEventDestroy(start);
+  cudaEventDestroy(stop);
+  cudaFree(src);
+  cudaFree(dst);
+  std::sort(ms.begin(), ms.end());
+  return 2.0 * double(bytes) / double(ms[ms.size() / 2]);
+#else
+  (void)bytes;
+  (void)copies;
+  throw Error("measure_copy_bandwidth: this build has no CUDA");
+#endif
+}
+
+std::optional<double> pass_floor_bytes(const std::string& method, const std::string& pass,
+                                       const FloorInputs& in) {
+  const double t = double(in.triangles);
+  const double corners = 3.0 * sizeof(dvec3) * t, offsets = sizeof(int64_t) * t;
+  const double set = 4.0 * double(in.set_words);
+  const double texture = sizeof(dvec4) * double(in.atlas_texels);
+  if (pass == "clear") return 4.0 * double(in.grid_words);
+  if (method == "sat") {
+    if (pass == "setup") return 2.0 * corners + offsets;  // corners in and out, counts out
+    if (pass == "scan") return 2.0 * offsets;
+    if (pass == "voxelize") return corners + offsets + set;
+  }
+  if (method == "slicemap" && pass == "setup") return 2.0 * corners + 12.0 * t;  // + indices
+  if (method == "slicemap" && pass == "slices") return corners + set;
+  if (method == "atlas" && pass == "atlas_update") return corners + texture;
+  if (method == "atlas" && pass == "points") return texture + set;
+  if (method == "atlas-compute" && pass == "points")
+    return corners + sizeof(AtlasCell) * t + offsets + set;
+  return std::nullopt;
+}
+
+}  // namespace dv

@@ -1,0 +1,31 @@
+// The bandwidth floor of issue 5's measurements: the device copy bandwidth measured in the same
+// run (cudaMemcpy device-to-device of a large buffer, CUDA events, median of several copies) and,
+// per voxelizer pass, the fewest bytes the pass must move, so that a pass can be reported as a
+// multiple of floor_ms = bytes / bandwidth (goal for kernels over 100 us: within 3x).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace dv {
+
+// Bytes read plus bytes written per millisecond by device-to-device copies of `bytes` bytes
+// (median of `copies` after a warm-up). Throws Error without a CUDA device.
+double measure_copy_bandwidth(int64_t bytes = int64_t(1) << 30, int copies = 9);
+
+// What the byte counts depend on.
+struct FloorInputs {
+  int64_t triangles = 0;
+  int64_t grid_words = 0;    // 32-bit words of the whole grid
+  int64_t set_words = 0;     // words of the result with at least one voxel set
+  int64_t atlas_texels = 0;  // side^2 of the atlas methods' position texture
+};
+
+// The fewest bytes pass `pass` of voxelizer `method` must move: its inputs read once and its
+// outputs written once (the grid: the words it sets; the clear: every word). Empty for passes
+// without a model (host work, uploads, the tile rasterizer).
+std::optional<double> pass_floor_bytes(const std::string& method, const std::string& pass,
+                                       const FloorInputs& in);
+
+}  // namespace dv

@@ -1,0 +1,13 @@
+// Registration of the OpenGL voxelizers (so far `slicemap`, gl_slicemap.h) into
+// gl_voxelizer_registry() (strategies/voxelizer/voxelizer.h), which `deepvox voxelize --backend
+// gl` uses. Each voxelizer creates its headless EGL context on first use (on the calling thread)
+// and throws dv::Error with the reason when none can be had.
+#pragma once
+
+#include "strategies/voxelizer/voxelizer.h"
+
+namespace dv::gl {
+
+void register_gl_voxelizers(Registry<Voxelizer>& registry);
+
+}  // namespace dv::gl

@@ -1,0 +1,54 @@
+// Depth shadow maps as a building block: the parameters the `shadowmap` method and the
+// `transmittance-slicemap` method (its opaque casters) share, the maps of every light face of a
+// layout rendered with the tile rasterizer, and the kernel lookup (ShadowMapSource) over them.
+// Implemented in shadow_map.cpp, which launches the depth kernel.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/buffer.h"
+#include "core/execute.h"
+#include "strategies/registry.h"
+#include "strategies/shadow/light_faces.h"
+#include "strategies/shadow/shadow_map_source.h"
+
+namespace dv {
+
+// res (texels per side, default 1024), pcf (kernel side, default 2), bias (world units; < 0:
+// 1e-4 of the scene diagonal, the default), slope (texel sizes added to the bias, default 1.5).
+struct DepthMapParams {
+  int res = 1024;
+  int pcf = 2;
+  double bias = -1.0;
+  double slope = 1.5;
+
+  // Reads the four keys from `p`; InputError naming `method` when out of range.
+  static DepthMapParams read(const StrategyParams& p, const std::string& method);
+  nlohmann::json json() const;
+  double bias_for(const SceneView& s) const { return bias >= 0.0 ? bias : 1e-4 * s.diagonal; }
+};
+
+// Which surfaces cast into a depth map.
+enum class DepthCasters {
+  surfaces,  // every surface with alpha > 0 (the shadowmap method)
+  opaque,    // only alpha >= 1
+};
+
+// The maps of one scene's lights in backend memory.
+struct DepthMaps {
+  Buffer<float> depths;  // per face res x res nearest caster depths, +inf where none
+  Buffer<ShadowFace> faces;
+  Buffer<ShadowLight> lights;
+  int res = 0;
+
+  ShadowMapSource source(const SceneView& s, const DepthMapParams& params) const;
+};
+
+// Renders every face of `layout` (res x res texels each). Throws Error when the rasterizer's
+// tile lists overflow.
+DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapLayout& layout,
+                            int res, DepthCasters casters);
+
+}  // namespace dv

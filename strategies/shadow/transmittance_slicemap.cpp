@@ -1,0 +1,157 @@
+// Shadow method "transmittance-slicemap" (Buchacher 2014 §5.1; lookup in
+// transmittance_slicemap_source.h). Per light face: a depth map of the opaque casters (alpha >=
+// 1, the shadowmap method's code, depth_maps.h), then a grid of the translucent casters (0 <
+// alpha < 1) over the face's frustum (frustum_grid.h), filled by a registered voxelizer.
+// Parameters: voxelizer (registry name, default slicemap; voxelizer.KEY passes KEY on to it),
+// slices (grid depth, a multiple of 32 in [32, 1024], default 32), res, pcf, bias, slope (as
+// shadowmap; res is also the grids' columns per side). The opacity a of (1 - a)^n is the mean
+// over the translucent objects when they differ (stats: casters). Grids and maps are built once
+// per scene and backend, never per camera. A voxelizer that cannot run on the backend (exact on
+// CUDA) runs on the CPU and its grids are copied; conservative voxelizers (exact, sat) reject
+// perspective faces (spot and omni lights) with an InputError (voxel_grid.h).
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "core/pass_timer.h"
+#include "strategies/shadow/depth_maps.h"
+#include "strategies/shadow/shadow_method.h"
+#include "strategies/shadow/translucent_casters.h"
+#include "strategies/voxelizer/frustum_grid.h"
+#include "strategies/voxelizer/voxelizer.h"
+
+namespace dv {
+
+namespace {
+
+constexpr const char* kName = "transmittance-slicemap";
+
+class TransmittanceSlicemap final : public ShadowMethod {
+ public:
+  explicit TransmittanceSlicemap(const StrategyParams& p)
+      : params_(DepthMapParams::read(p, kName)),
+        voxelizer_name_(p.string("voxelizer", "slicemap")),
+        slices_(p.integer("slices", 32)) {
+    if (slices_ < 32 || slices_ > 1024 || slices_ % 32 != 0)
+      throw InputError(std::string(kName) + " slices",
+                       std::to_string(slices_) + " must be a multiple of 32 in [32, 1024]");
+    voxelizer_ = voxelizer_registry().create(voxelizer_name_, p.prefixed("voxelizer"));
+  }
+  std::string name() const override { return kName; }
+  nlohmann::json params() const override {
+    nlohmann::json j = params_.json();
+    j["voxelizer"] = voxelizer_name_;
+    j["voxelizer_params"] = voxelizer_->params();
+    j["slices"] = slices_;
+    return j;
+  }
+  nlohmann::json stats() const override {
+    nlohmann::json j = {{"maps_built", builds_}, {"prepare_calls", prepare_calls_}};
+    if (builds_ == 0) return j;
+    j["faces"] = faces_;
+    j["casters"] = casters_;
+    j["set_voxels"] = set_voxels_;
+    j["grid_bytes"] = words_.bytes();
+    j["opaque_map_bytes"] = opaque_.depths.bytes();
+    j["opaque_map_ms"] = opaque_ms_;
+    j["voxelize_ms"] = voxelize_ms_;
+    j["last_build_ms"] = build_ms_;
+    j["voxelizer_passes"] = voxelizer_passes_;
+    j["voxelizer_counters"] = voxelizer_counters_;
+    j["not_represented"] =
+        "interiors of objects (constant media, volumes): only surface crossings attenuate; "
+        "translucent casters in one slice of a column count once";
+    return j;
+  }
+
+  ShadowSourceVariant prepare(const SceneData& scene, Backend backend, const Camera*) override {
+    if (prepared_for_ != &scene || backend_ != backend || builds_ == 0) build(scene, backend);
+    ++prepare_calls_;
+    return source_;
+  }
+
+ private:
+  void build(const SceneData& scene, Backend backend) {
+    const SceneView& s = scene.view();
+    PassTimer total(backend);
+    const LightMapLayout layout =
+        light_map_layout(scene.host_lights(), s.bounds, s.diagonal, params_.res);
+    {
+      PassTimer timer(backend);
+      opaque_ = render_depth_maps(backend, s, layout, params_.res, DepthCasters::opaque);
+      opaque_ms_ = timer.stop();
+    }
+    const TranslucentCasters casters = gather_translucent_casters(scene);
+    casters_ = casters.json();
+    build_grids(backend, layout, casters);
+    std::vector<double> powers(size_t(slices_) + 1, 1.0);
+    for (size_t n = 1; n < powers.size(); ++n)
+      powers[n] = powers[n - 1] * (1.0 - casters.alpha_mean);
+    const Memory memory = memory_of(backend);
+    attenuation_ = Buffer<double>(memory, powers, "transmittance slicemap powers");
+    source_ = TransmittanceSlicemapSource{opaque_.source(s, params_), grids_.const_view(),
+                                          words_.view(), attenuation_.const_view(), slices_};
+    prepared_for_ = &scene;
+    backend_ = backend;
+    faces_ = int(layout.faces.size());
+    ++builds_;
+    build_ms_ = total.stop();
+  }
+
+  // One grid per face, concatenated in face order; none without translucent casters.
+  void build_grids(Backend backend, const LightMapLayout& layout, const TranslucentCasters& c) {
+    const Memory memory = memory_of(backend);
+    const Backend run_on = voxelizer_->supports(backend) ? backend : Backend::cpu;
+    std::vector<GridTransform> transforms;
+    std::vector<uint32_t> words;
+    std::map<std::string, double> passes;
+    voxelizer_counters_ = nlohmann::json::array();
+    voxelize_ms_ = 0.0;
+    set_voxels_ = 0;
+    if (c.soup.triangle_count() > 0)
+      for (size_t f = 0; f < layout.faces.size(); ++f) {
+        const GridSpec spec = make_light_grid(layout.faces[f], params_.res, slices_,
+                                              c.soup.bounds(), std::string(kName) + " grid");
+        const VoxelizeResult r = voxelizer_->voxelize(run_on, c.soup, spec);
+        for (const VoxelizePass& p : r.passes) passes[p.name] += p.milliseconds;
+        voxelize_ms_ += r.total_milliseconds();
+        voxelizer_counters_.push_back(r.counters);
+        const std::vector<uint32_t> face_words = r.grid.words();
+        words.insert(words.end(), face_words.begin(), face_words.end());
+        transforms.push_back(grid_transform(spec));
+      }
+    for (uint32_t w : words) set_voxels_ += VoxelGridView::bit_count(w);
+    voxelizer_passes_ = nlohmann::json::array();
+    for (const auto& [name, ms] : passes) voxelizer_passes_.push_back({{"pass", name}, {"ms", ms}});
+    grids_ = Buffer<GridTransform>(memory, transforms, "transmittance slicemap grids");
+    words_ = Buffer<uint32_t>(memory, words, "transmittance slicemap words");
+  }
+
+  DepthMapParams params_;
+  std::string voxelizer_name_;
+  int slices_;
+  std::unique_ptr<Voxelizer> voxelizer_;
+  DepthMaps opaque_;
+  Buffer<GridTransform> grids_;
+  Buffer<uint32_t> words_;
+  Buffer<double> attenuation_;
+  TransmittanceSlicemapSource source_{};
+  const SceneData* prepared_for_ = nullptr;
+  Backend backend_ = Backend::cpu;
+  int builds_ = 0, prepare_calls_ = 0, faces_ = 0;
+  int64_t set_voxels_ = 0;
+  double opaque_ms_ = 0.0, voxelize_ms_ = 0.0, build_ms_ = 0.0;
+  nlohmann::json casters_, voxelizer_passes_, voxelizer_counters_;
+};
+
+}  // namespace
+
+void register_transmittance_slicemap(Registry<ShadowMethod>& registry) {
+  registry.add(kName,
+               "transmittance shadow mapping: opaque depth map, then (1 - a)^n over a voxel grid "
+               "of the translucent casters per light face, Buchacher 2014 5.1 (params: "
+               "voxelizer, slices, res, pcf, bias, slope, voxelizer.KEY)",
+               [](const StrategyParams& p) { return std::make_unique<TransmittanceSlicemap>(p); });
+}
+
+}  // namespace dv
