@@ -11,11 +11,17 @@
 
 #include "core/device_memory.h"
 #include "core/error.h"
+#include "core/execute.h"
 #include "core/hd.h"
 
 namespace dv {
 
 enum class Memory : uint8_t { host, device };
+
+// Where a backend's data lives: host memory for the CPU threads, device memory for CUDA.
+inline Memory memory_of(Backend backend) {
+  return backend == Backend::cuda ? Memory::device : Memory::host;
+}
 
 // A plain pointer + size that is valid on the side its buffer lives on.
 template <class T>
@@ -110,5 +116,17 @@ class Buffer {
   T* data_ = nullptr;
   int64_t size_ = 0;
 };
+
+// A host copy of what `view` points to in `memory` (views into a SceneData, for host planning).
+template <class T>
+std::vector<std::remove_const_t<T>> to_host_vector(View<T> view, Memory memory) {
+  std::vector<std::remove_const_t<T>> out(static_cast<size_t>(view.size));
+  if (view.size == 0) return out;
+  if (memory == Memory::device)
+    copy_to_host(out.data(), view.data, out.size() * sizeof(T));
+  else
+    std::memcpy(static_cast<void*>(out.data()), view.data, out.size() * sizeof(T));
+  return out;
+}
 
 }  // namespace dv

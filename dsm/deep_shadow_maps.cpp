@@ -10,6 +10,12 @@ DeepShadowMaps::DeepShadowMaps(DsmSettings settings) : settings_(std::move(setti
   if (settings_.resolution < 1 || settings_.resolution > kMaxRasterSide)
     throw InputError("dsm res", "must lie in [1, 65536]");
   if (!(settings_.eps >= 0.0f)) throw InputError("dsm eps", "must be a number >= 0");
+  const int s = settings_.subrays;
+  if (s != 1 && s != 4 && s != 9 && s != 16)
+    throw InputError("dsm subrays", "must be 1, 4, 9 or 16");
+  if (settings_.table_bins < 2 || settings_.table_bins > 1024)
+    throw InputError("dsm table_bins", "must lie in [2, 1024]");
+  if (!(settings_.step_scale > 0.0)) throw InputError("dsm step_scale", "must be positive");
   storage_ = storage_registry().create(settings_.storage, settings_.storage_params);
 }
 
@@ -17,7 +23,13 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend) {
   passes_.clear();
   {
     PassTimer timer(backend);
-    generation_ = std::make_unique<DsmGeneration>(scene, backend, settings_.resolution);
+    DsmGenerationOptions options;
+    options.resolution = settings_.resolution;
+    options.subrays = settings_.subrays;
+    options.precompressed = settings_.precompressed;
+    options.table_bins = settings_.table_bins;
+    options.step_scale = settings_.step_scale;
+    generation_ = std::make_unique<DsmGeneration>(scene, backend, options);
     passes_.push_back({"raster", timer.stop()});
   }
   const DsmGenerator& g = generation_->generator();

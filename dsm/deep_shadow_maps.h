@@ -23,11 +23,15 @@ namespace dv {
 struct DsmSettings {
   std::string storage = "compact";
   StrategyParams storage_params;
-  int resolution = 512;
+  int resolution = 1024;
   float eps = 0.05f;
   bool bilinear = false;
-  double bias = -1.0;  // world units; < 0: 1e-4 of the scene diagonal
-  double slope_bias = 1.5;
+  int subrays = 1;             // 4, 9, 16: jittered sub-rays per texel, averaged (pre-filtering)
+  bool precompressed = false;  // volume steps from Hadwiger's pre-compressed tables
+  int table_bins = 64;
+  double step_scale = 1.0;  // multiplies the volumes' steps during generation
+  double bias = -1.0;       // world units; < 0: 1e-4 of the scene diagonal
+  double slope_bias = 3.0;
 };
 
 class DeepShadowMaps {

@@ -4,14 +4,32 @@
 #include <string>
 
 #include "core/pass_timer.h"
+#include "dsm/precompressed_table.h"
 #include "renderer/fragment_walk.h"
 
 namespace dv {
 
-DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend, int res) : backend_(backend) {
+namespace {
+
+// The media containing each face's ray origins. Orthographic faces start on a near plane
+// outside the casters' bounding sphere.
+void find_ray_media(Backend backend, const SceneView& s, View<const ShadowFace> faces,
+                    View<InsideSet> media) {
+  parallel_for(
+      backend, "dsm_ray_media", faces.size, DV_KERNEL_LAMBDA(int64_t i) {
+        media[i] = faces[i].orthographic ? InsideSet{} : media_containing(s, faces[i].eye).inside;
+      });
+}
+
+}  // namespace
+
+DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
+                             const DsmGenerationOptions& options)
+    : backend_(backend) {
+  const int res = options.resolution;
   const SceneView& s = scene.view();
   layout_ = light_map_layout(scene.host_lights(), s.bounds, s.diagonal, res);
-  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  const Memory memory = memory_of(backend);
   faces_ = Buffer<ShadowFace>(memory, layout_.faces, "dsm faces");
   lights_ = Buffer<ShadowLight>(memory, layout_.lights, "dsm lights");
   PassTimer timer(backend);
@@ -26,12 +44,7 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend, int res) :
   list_views_ = Buffer<TileListsView>(memory, views, "dsm tile lists");
   ray_media_ = Buffer<InsideSet>(memory, int64_t(layout_.faces.size()), "dsm ray media");
   const View<const ShadowFace> faces = faces_.const_view();
-  const View<InsideSet> media = ray_media_.view();
-  parallel_for(
-      backend, "dsm_ray_media", faces.size, DV_KERNEL_LAMBDA(int64_t i) {
-        // Orthographic faces start on a near plane outside the casters' bounding sphere.
-        media[i] = faces[i].orthographic ? InsideSet{} : media_containing(s, faces[i].eye).inside;
-      });
+  find_ray_media(backend, s, faces, ray_media_.view());
   raster_ms_ = timer.stop();
   generator_.scene = s;
   generator_.faces = faces;
@@ -39,6 +52,17 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend, int res) :
   generator_.ray_media = ray_media_.const_view();
   generator_.resolution = res;
   generator_.blocks_per_side = (res + kDsmBlockSide - 1) / kDsmBlockSide;
+  generator_.subrays = options.subrays;
+  generator_.step_scale = options.step_scale;
+  if (options.precompressed) {
+    const PrecompressedTableData t =
+        build_precompressed_tables(scene, options.table_bins, options.table_eps);
+    table_steps_ = Buffer<PrecompressedStep>(memory, t.steps, "dsm precompressed steps");
+    object_table_ = Buffer<int32_t>(memory, t.object_table, "dsm precompressed table index");
+    table_domain_ = Buffer<dvec2>(memory, t.domain, "dsm precompressed domains");
+    generator_.tables = {table_steps_.const_view(), object_table_.const_view(),
+                         table_domain_.const_view(), options.table_bins};
+  }
 }
 
 int64_t DsmGeneration::fragments() const {

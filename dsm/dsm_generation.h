@@ -16,10 +16,19 @@
 
 namespace dv {
 
+struct DsmGenerationOptions {
+  int resolution = 512;
+  int subrays = 1;             // 4, 9 or 16: pre-filtered texels (dsm/prefilter.h)
+  bool precompressed = false;  // volume steps from Hadwiger's tables (dsm/precompressed_table.h)
+  int table_bins = 64;         // density bins per axis of those tables
+  float table_eps = 0.005f;    // their compression bound per step
+  double step_scale = 1.0;     // multiplies the volumes' steps (accuracy studies)
+};
+
 class DsmGeneration {
  public:
-  // Rasterizes every face of every light at res x res; throws if a tile list overflows.
-  DsmGeneration(const SceneData& scene, Backend backend, int res);
+  // Rasterizes every face of every light; throws if a tile list overflows.
+  DsmGeneration(const SceneData& scene, Backend backend, const DsmGenerationOptions& options);
 
   const DsmGenerator& generator() const { return generator_; }
   const LightMapLayout& layout() const { return layout_; }
@@ -37,6 +46,9 @@ class DsmGeneration {
   std::vector<TileLists> lists_;
   Buffer<TileListsView> list_views_;
   Buffer<InsideSet> ray_media_;
+  Buffer<PrecompressedStep> table_steps_;
+  Buffer<int32_t> object_table_;
+  Buffer<dvec2> table_domain_;
   DsmGenerator generator_;
   double raster_ms_ = 0.0;
 };

@@ -11,6 +11,7 @@
 
 #include "core/buffer.h"
 #include "core/hd.h"
+#include "dsm/prefilter.h"
 #include "dsm/visibility_compressor.h"
 #include "dsm/visibility_payload.h"
 #include "renderer/raster_fragments.h"
@@ -30,7 +31,8 @@ struct DsmTexelRecord {
 
 enum DsmTexelFlag : uint32_t {
   kDsmStorageOverflow = 1u,  // the storage refused nodes: it holds a prefix of V'
-  kDsmWalkOverflow = 2u,     // the walk hit kMaxHitsPerPixel or kMaxInsideObjects
+  kDsmWalkOverflow = 2u,     // the walk hit kMaxHitsPerPixel or kMaxInsideObjects, or a
+                             // pre-filtering sub-ray overflowed its node array
   kDsmRecompressed = 4u,     // stored with a larger eps than asked (texture3d's policy)
 };
 
@@ -64,7 +66,10 @@ struct DsmGenerator {
   View<const TileListsView> lists;  // per face
   View<const InsideSet> ray_media;  // per face: media containing its rays' origin
   int resolution = 0;
-  int blocks_per_side = 0;  // ceil(resolution / 8)
+  int blocks_per_side = 0;     // ceil(resolution / 8)
+  int subrays = 1;             // > 1: pre-filtered texels (dsm/prefilter.h)
+  PrecompressedTables tables;  // bins > 0: volume steps from pre-compressed tables
+  double step_scale = 1.0;     // multiplies the volumes' steps
 
   DV_HD int64_t texel_count() const { return faces.size * int64_t(resolution) * resolution; }
   DV_HD int64_t blocks_per_face() const { return int64_t(blocks_per_side) * blocks_per_side; }
@@ -87,6 +92,15 @@ struct DsmGenerator {
     return true;
   }
 
+  template <class Target>
+  DV_HD VisibilityPayload<Target> make_payload(Target& target, const PixelRay& ray,
+                                               double eps) const {
+    VisibilityPayload<Target> p{scene, target, ray.origin, ray.direction, eps};
+    p.tables = tables;
+    p.step_scale = step_scale;
+    return p;
+  }
+
   // Walks texel t's ray into `target` (push / push_step), sampling constant media for error
   // bound eps; returns the walk's status and the visibility where it ended.
   template <class Target>
@@ -95,7 +109,7 @@ struct DsmGenerator {
     const ShadowFace& f = faces[t.face];
     const PixelRay ray = pixel_ray(f.projection, t.x, t.y);
     const NearPlaneStart front = start_at_near_plane(scene, f.projection, ray, ray_media[t.face]);
-    VisibilityPayload<Target> payload{scene, target, ray.origin, ray.direction, eps};
+    VisibilityPayload<Target> payload = make_payload(target, ray, eps);
     const RasterFragments fragments{&scene, lists[t.face], t.x, t.y, ray.origin, ray.direction};
     WalkStatus status =
         walk_fragments(scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
@@ -110,24 +124,69 @@ struct DsmGenerator {
   template <class Sink>
   DV_HD DsmTexelResult<Sink> generate(const DsmTexel& t, float eps, Sink sink,
                                       float sample_eps = -1.0f) const {
+    if (sample_eps < 0.0f) sample_eps = eps;
+    if (subrays > 1) return generate_prefiltered(t, eps, sink, sample_eps);
     VisibilityCompressor<TrackingSink<Sink>> compressor(eps, TrackingSink<Sink>{sink});
     double final_visibility = 1.0;
-    const WalkStatus status =
-        walk(t, sample_eps >= 0.0f ? sample_eps : eps, compressor, final_visibility);
+    const WalkStatus status = walk(t, sample_eps, compressor, final_visibility);
     compressor.finish();
+    return result(compressor, status.overflow, 0.0f, float(final_visibility));
+  }
+
+  // The same from `subrays` jittered sub-rays averaged (dsm/prefilter.h).
+  template <class Sink>
+  DV_HD DsmTexelResult<Sink> generate_prefiltered(const DsmTexel& t, float eps, Sink sink,
+                                                  float sample_eps) const {
+    const ShadowFace& f = faces[t.face];
+    SubrayNodes nodes;
+    nodes.rays = min_value(subrays, kMaxSubrays);
+    int side = 1;
+    while ((side + 1) * (side + 1) <= nodes.rays) ++side;
+    bool overflow = false;
+    float sub_error = 0.0f;
+    double final_visibility = 0.0;
+    for (int k = 0; k < nodes.rays; ++k) {
+      const double px = t.x + (double(k % side) + subray_jitter(t.index, k, 0)) / side;
+      const double py = t.y + (double(k / side % side) + subray_jitter(t.index, k, 1)) / side;
+      const PixelRay ray = image_point_ray(f.projection, px, py);
+      const NearPlaneStart front = start_at_near_plane(scene, f.projection, ray, ray_media[t.face]);
+      VisibilityCompressor<ArrayNodeSink> sub(0.5f * eps,
+                                              ArrayNodeSink{nodes.z[k], nodes.v[k], kSubrayNodes});
+      VisibilityPayload<VisibilityCompressor<ArrayNodeSink>> payload =
+          make_payload(sub, ray, sample_eps);
+      const BvhFragments fragments{&scene, make_sheared_ray(ray.origin, ray.direction), 1e300};
+      const WalkStatus status =
+          walk_fragments(scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
+      sub.finish();
+      nodes.count[k] = sub.sink().count;
+      overflow |= status.overflow || front.status.overflow || sub.stats().overflow;
+      sub_error = max_value(sub_error, sub.stats().max_error);
+      final_visibility += payload.visibility / nodes.rays;
+    }
+    VisibilityCompressor<TrackingSink<Sink>> compressor(0.5f * eps, TrackingSink<Sink>{sink});
+    push_average(nodes, compressor);
+    compressor.finish();
+    return result(compressor, overflow, sub_error, float(final_visibility));
+  }
+
+  // The texel's record from its compressor; `extra_error` adds the error of earlier stages.
+  template <class Sink>
+  DV_HD static DsmTexelResult<Sink> result(
+      const VisibilityCompressor<TrackingSink<Sink>>& compressor, bool walk_overflow,
+      float extra_error, float final_visibility) {
     const VisibilityCompressionStats& stats = compressor.stats();
     const TrackingSink<Sink>& tracked = compressor.sink();
     DsmTexelRecord r;
     r.nodes = stats.nodes;
     r.stored = tracked.stored;
-    r.error = stats.max_error;
+    r.error = stats.max_error + extra_error;
     if (stats.overflow) {
       // The prefix is within the bound; beyond it V' stays at the last stored value while V
       // falls to where the walk ended.
       r.flags |= kDsmStorageOverflow;
-      r.error = max_value(r.error, tracked.last_v - float(final_visibility));
+      r.error = max_value(r.error, tracked.last_v - final_visibility);
     }
-    if (status.overflow) r.flags |= kDsmWalkOverflow;
+    if (walk_overflow) r.flags |= kDsmWalkOverflow;
     return {tracked.inner, r};
   }
 };

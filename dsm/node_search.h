@@ -19,6 +19,18 @@ struct DsmNode {
   float v;
 };
 
+// Node accessors for the search templates below (named structs, not lambdas: see
+// renderer/raster_fragments.h for why).
+struct ContiguousNodes {  // node k at base[k]
+  const DsmNode* base;
+  DV_HD DsmNode operator()(int k) const { return base[k]; }
+};
+struct StridedNodes {  // node k at base[k * stride]
+  const DsmNode* base;
+  int64_t stride;
+  DV_HD DsmNode operator()(int k) const { return base[int64_t(k) * stride]; }
+};
+
 // The first k in [0, count] with node(k).z >= z (count when every node lies before z).
 template <class NodeAt>
 DV_HD int lower_bound_nodes(const NodeAt& node, int count, float z) {

@@ -6,6 +6,8 @@
 // - a surface crossing with opacity a: a step V -> V (1 - a) at its depth (twin nodes);
 // - volumes: the renderer's step rules (renderer/media_march.h), V after each step sampled at the
 //   step's end, so the interpolant matches the camera pass's midpoint quadrature at step ends;
+//   or, with pre-compressed tables (dsm/precompressed_table.h) and one volume at a time, the
+//   table's nodes inside each step from the densities at its two ends;
 // - constant media: exact values exp(-sigma d), sampled densely enough that the linear
 //   interpolant stays within eps / 2 of the exponential (the chord error of exp(-x) over a step h
 //   is at most (sigma h)^2 / 8), and at least at both ends.
@@ -18,6 +20,7 @@
 
 #include "core/hd.h"
 #include "core/math.h"
+#include "dsm/precompressed_table.h"
 #include "renderer/fragment_walk.h"
 #include "renderer/media_march.h"
 
@@ -38,6 +41,8 @@ struct VisibilityPayload {
   dvec3 dir;
   double eps;
   double visibility = 1.0;
+  PrecompressedTables tables{};  // bins == 0: midpoint sampling
+  double step_scale = 1.0;       // multiplies the volumes' steps
   bool started = false;
   unsigned long long samples = 0;
 
@@ -57,7 +62,7 @@ struct VisibilityPayload {
       target.push(float(t0), 1.0f);
       started = true;
     }
-    march_media(s, inside, origin, dir, t0, t1, *this);
+    march_media(s, inside, origin, dir, t0, t1, *this, step_scale);
   }
 
   DV_HD void absorb(double sigma_constant, double a, double b) {
@@ -82,10 +87,41 @@ struct VisibilityPayload {
 
   DV_HD void sample(const InsideSet& inside, double sigma_constant, const dvec3& x, double a,
                     double b) {
+    ++samples;
+    const int32_t volume = single_volume(inside);
+    if (volume >= 0 && tables.bins > 0 && tables.has(volume)) {
+      tabled_step(volume, sigma_constant, a, b);
+      return;
+    }
     const double sigma = sigma_constant + volume_extinction(s, inside, x);
     visibility *= exp(-sigma * (b - a));
     target.push(float(b), float(visibility));
-    ++samples;
+  }
+
+  // The one volume object the ray is inside, or -1 (none or several).
+  DV_HD int32_t single_volume(const InsideSet& inside) const {
+    int32_t found = -1;
+    for (int i = 0; i < inside.count; ++i) {
+      if (s.objects[inside.object[i]].interior != InteriorKind::volume) continue;
+      if (found >= 0) return -1;
+      found = inside.object[i];
+    }
+    return found;
+  }
+
+  DV_HD void tabled_step(int32_t object, double sigma_constant, double a, double b) {
+    const ObjectView& o = s.objects[object];
+    const VolumeView& v = s.volumes[o.volume];
+    const double d0 = density_at_grid(s, v, world_to_grid(o, origin + dir * a));
+    const double d1 = density_at_grid(s, v, world_to_grid(o, origin + dir * b));
+    const PrecompressedStep& step = tables.step(object, d0, d1);
+    const double dt = b - a, v0 = visibility;
+    for (int i = 0; i < step.count; ++i) {
+      const double z = a + double(step.s[i]) * dt;
+      target.push(float(z), float(v0 * exp(-dt * double(step.tau[i]) - sigma_constant * (z - a))));
+    }
+    visibility = v0 * exp(-dt * (double(step.tau_end) + sigma_constant));
+    target.push(float(b), float(visibility));
   }
 };
 

@@ -35,7 +35,7 @@ void probe(benchmark::State& state, const char* scene_name, Backend backend) {
   if (backend == Backend::cuda && !cuda_device_available(&why))
     return state.SkipWithError(why.c_str());
   const Scene scene = load_scene(scene_path(scene_name));
-  const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+  const SceneData data(scene, memory_of(backend));
   const std::vector<dvec3> points = random_points(scene, int(state.range(0)));
   auto method = shadow_registry().create("reference");
   probe_transmittance(backend, data, *method, points);  // warm-up
@@ -50,7 +50,7 @@ void render(benchmark::State& state, const char* scene_name, Backend backend) {
   if (backend == Backend::cuda && !cuda_device_available(&why))
     return state.SkipWithError(why.c_str());
   const Scene scene = load_scene(scene_path(scene_name));
-  const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+  const SceneData data(scene, memory_of(backend));
   auto method = shadow_registry().create("reference");
   render_reference(backend, data, scene.camera, *method, scene.background);  // warm-up
   for (auto _ : state)

@@ -21,7 +21,7 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
   if (backend == Backend::cuda && !cuda_device_available(&why))
     return state.SkipWithError(why.c_str());
   const Scene scene = load_scene(test::source_dir() + "/scenes/" + scene_name);
-  const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+  const SceneData data(scene, memory_of(backend));
   auto method = shadow_registry().create(shadows);
   render_raster(backend, data, scene.camera, *method, scene.background);  // warm-up, builds maps
   double raster_ms = 0.0, fragment_ms = 0.0;

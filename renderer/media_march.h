@@ -39,9 +39,11 @@ DV_HD inline double empty_run_end(const SceneView& s, const InsideSet& inside, c
 //   void absorb(double sigma_constant, double a, double b);    constant media only over [a, b]
 //   void sample(const InsideSet&, double sigma_constant, const dvec3& x, double a, double b);
 //                                                              one volume step [a, b], midpoint x
+// `step_scale` multiplies the volumes' steps (accuracy studies; 1 everywhere else).
 template <class Visitor>
 DV_HD void march_media(const SceneView& s, const InsideSet& inside, const dvec3& origin,
-                       const dvec3& dir, double t0, double t1, Visitor& visitor) {
+                       const dvec3& dir, double t0, double t1, Visitor& visitor,
+                       double step_scale = 1.0) {
   double sigma_constant = 0.0, step = 1e300;
   bool any_volume = false;
   for (int i = 0; i < inside.count; ++i) {
@@ -53,6 +55,7 @@ DV_HD void march_media(const SceneView& s, const InsideSet& inside, const dvec3&
     visitor.absorb(sigma_constant, t0, t1);
     return;
   }
+  step *= step_scale;
   const int64_t steps = int64_t(ceil((t1 - t0) / step));
   for (int64_t k = 0; k < steps && !visitor.done(); ++k) {
     const double a = t0 + double(k) * step, b = min_value(a + step, t1);

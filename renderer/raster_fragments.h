@@ -13,6 +13,30 @@
 
 namespace dv {
 
+// The nearest crossing after (t_after, after_triangle) among a pixel's fragments. A named
+// visitor rather than a lambda: this code is compiled by both g++ and nvcc, and lambda closure
+// layouts may differ between the two while their instantiations share one mangled name.
+struct NearestFragmentAfter {
+  const SceneView* scene;
+  const dvec3* origin;
+  const dvec3* dir;
+  double t_after;
+  int64_t after_triangle;
+  RayHit* out;
+  bool found = false;
+
+  DV_HD void operator()(uint32_t tri) {
+    double t;
+    bool entering;
+    if (!triangle_plane_hit(*scene, tri, *origin, *dir, t, entering)) return;  // seen edge-on
+    const bool after = t > t_after || (t == t_after && int64_t(tri) > after_triangle);
+    if (after && (!found || t < out->t || (t == out->t && tri < out->triangle))) {
+      *out = RayHit{t, tri, entering};
+      found = true;
+    }
+  }
+};
+
 struct RasterFragments {
   const SceneView* scene;
   TileListsView lists;
@@ -21,18 +45,9 @@ struct RasterFragments {
   dvec3 dir;
 
   DV_HD bool next(double t_after, int64_t after_triangle, RayHit& out) const {
-    bool found = false;
-    for_each_fragment(lists, x, y, [&](uint32_t tri) {
-      double t;
-      bool entering;
-      if (!triangle_plane_hit(*scene, tri, origin, dir, t, entering)) return;  // seen edge-on
-      const bool after = t > t_after || (t == t_after && int64_t(tri) > after_triangle);
-      if (after && (!found || t < out.t || (t == out.t && tri < out.triangle))) {
-        out = RayHit{t, tri, entering};
-        found = true;
-      }
-    });
-    return found;
+    NearestFragmentAfter nearest{scene, &origin, &dir, t_after, after_triangle, &out};
+    for_each_fragment(lists, x, y, nearest);
+    return nearest.found;
   }
 };
 

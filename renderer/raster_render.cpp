@@ -51,7 +51,7 @@ nlohmann::json RasterRenderResult::stats() const {
 
 RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
                                  ShadowMethod& shadows, const dvec3& background) {
-  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  const Memory memory = memory_of(backend);
   if (scene.memory() != memory) throw Error("render_raster: scene data is in the wrong memory");
   const SceneView& view = scene.view();
   const RasterProjection projection = make_camera_projection(camera, view.bounds);

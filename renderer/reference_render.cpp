@@ -42,7 +42,7 @@ nlohmann::json RenderResult::stats() const {
 
 RenderResult render_reference(Backend backend, const SceneData& scene, const Camera& camera,
                               ShadowMethod& shadows, const dvec3& background) {
-  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  const Memory memory = memory_of(backend);
   if (scene.memory() != memory) throw Error("render_reference: scene data is in the wrong memory");
   const CameraView cam = make_camera_view(camera);
   Buffer<float> rgb(memory, int64_t(cam.width) * cam.height * 3, "image");

@@ -3,7 +3,8 @@
 # CUDA smoke test, CPU/CUDA parity, the oracle, raster, render, voxel and DSM tests, renders of the
 # committed scenes on both backends, and the benchmarks. Logs and outputs are packed into
 # $OUT/gpu-check.tar.gz (the device tool returns few files); the summary goes to stdout.
-# Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]
+# Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]; SECTIONS="tests renders benches experiments"
+# (the default) picks what runs.
 set -uo pipefail
 build=${1:?build dir}
 out=${OUT:-gpu-out}
@@ -13,15 +14,22 @@ export DEEPVOX_SOURCE_DIR="$PWD" DEEPVOX_ASSETS="$PWD/assets"
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem --format=csv > "$work/gpu.txt" 2>&1
 cat "$work/gpu.txt"
 status=0
-for t in test_core test_render test_oracle test_raster test_voxel test_dsm; do
+sections=${SECTIONS:-tests renders benches experiments}
+has() { [[ " $sections " == *" $1 "* ]]; }
+# Packs what exists so far: a run cut short by the device's time limit still returns its logs.
+pack() { mkdir -p "$out" && tar -czf "$out/gpu-check.tar.gz" -C "$work" .; }
+limit=${STEP_TIMEOUT:-240}  # seconds per test binary, benchmark or experiment
+has tests && for t in test_core test_render test_oracle test_raster test_voxel test_dsm; do
   [ -x "$build/bin/$t" ] || continue
-  "$build/bin/$t" --gtest_output="json:$work/$t.json" > "$work/$t.log" 2>&1 || status=1
+  timeout "$limit" "$build/bin/$t" --gtest_output="json:$work/$t.json" > "$work/$t.log" 2>&1 ||
+    status=1
   echo "$t: $(grep -E '^\[  (PASSED|FAILED|SKIPPED) ' "$work/$t.log" | tr '\n' ' ')"
+  pack
 done
 bin="$build/bin/deepvox-lean"
 [ -x "$bin" ] || bin="$build/bin/deepvox"
-for scene in demo ct-phantom intersecting-volumes knecht-fig56; do
-  for shadows in reference shadowmap; do
+has renders && for scene in demo ct-phantom intersecting-volumes knecht-fig56; do
+  for shadows in reference shadowmap dsm; do
     for backend in cuda cpu; do
       "$bin" render "scenes/$scene.json" --backend "$backend" --shadows "$shadows" \
         --out "$work/$scene-$shadows-$backend.png" --stats "$work/$scene-$shadows-$backend.json" \
@@ -29,13 +37,25 @@ for scene in demo ct-phantom intersecting-volumes knecht-fig56; do
     done
   done
 done
-grep -h "deepvox: render" "$work/render.log"
-for bench in bench_oracle bench_renderer bench_voxelizer; do
-  "$build/bin/$bench" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+has renders && grep -h "deepvox: render" "$work/render.log"
+has benches && for bench in bench_oracle bench_renderer bench_voxelizer bench_dsm; do
+  [ -x "$build/bin/$bench" ] || continue
+  timeout "$limit" "$build/bin/$bench" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
     --benchmark_out="$work/$bench.json" --benchmark_out_format=json > "$work/$bench.log" 2>&1 || status=1
   grep -E "median|stddev" "$work/$bench.log"
+  pack
 done
-mkdir -p "$out"
-tar -czf "$out/gpu-check.tar.gz" -C "$work" .
+if has experiments && [ -x "$build/bin/dsm_accuracy" ]; then
+  timeout "$limit" "$build/bin/dsm_accuracy" --backend cuda --points 50000 --res 512 > "$work/dsm_accuracy.json" \
+    2> "$work/dsm_accuracy.log" || status=1
+  tail -n 20 "$work/dsm_accuracy.log"
+  pack
+fi
+if has experiments && [ -x "$build/bin/voxel_tables" ]; then
+  timeout "$limit" "$build/bin/voxel_tables" --backend cuda --exact-max-voxels 8388608 \
+    > "$work/voxel_tables.json" 2> "$work/voxel_tables.log" || status=1
+  tail -n 5 "$work/voxel_tables.log"
+fi
+pack
 echo "gpu-check status $status"
 exit $status

@@ -21,6 +21,8 @@ Registry<Voxelizer>& voxelizer_registry() {
     Registry<Voxelizer> r("voxelizer");
     register_exact_voxelizer(r);
     register_sat_voxelizer(r);
+    register_slicemap_voxelizer(r);
+    register_atlas_voxelizers(r);
     return r;
   }();
   return registry;

@@ -36,7 +36,7 @@ Runner add_probe(CLI::App& app) {
     auto method = make_shadow_method(opt->shadows);
     const Scene scene = load_scene(opt->scene);
     const std::vector<dvec3> points = read_points_csv(opt->points);
-    const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+    const SceneData data(scene, memory_of(backend));
     const ProbeResults r = probe_transmittance(backend, data, *method, points);
     write_transmittance_csv(opt->out, points, r.transmittance, r.light_count);
     int flagged = 0;

@@ -64,7 +64,7 @@ Runner add_render(CLI::App& app) {
     if (opt->width) scene.camera.width = opt->width;
     if (opt->height) scene.camera.height = opt->height;
     check_image_path(opt->out);  // before any work: an unwritable type would lose the render
-    const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+    const SceneData data(scene, memory_of(backend));
     nlohmann::json stats = {{"meta", run_metadata(backend)},
                             {"scene", opt->scene},
                             {"shadows", {{"name", method->name()}, {"params", method->params()}}},

@@ -15,5 +15,6 @@ Runner add_render(CLI::App& app);
 Runner add_info(CLI::App& app);
 Runner add_list(CLI::App& app);
 Runner add_voxelize(CLI::App& app);
+Runner add_dsm(CLI::App& app);
 
 }  // namespace dv::cli

@@ -14,6 +14,8 @@ void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
       ->check(CLI::Range(0.0, 4.0));
   cmd->add_option("--filter", o.filter, "dsm: none or bilinear")
       ->check(CLI::IsMember({"none", "bilinear"}));
+  cmd->add_option("--voxelizer", o.voxelizer,
+                  "transmittance-slicemap: voxelizer filling its grids (see `deepvox list`)");
 }
 
 std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& o) {
@@ -26,6 +28,7 @@ std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& o) {
     params.push_back(eps);
   }
   if (!o.filter.empty()) params.push_back("filter=" + o.filter);
+  if (!o.voxelizer.empty()) params.push_back("voxelizer=" + o.voxelizer);
   return shadow_registry().create(o.name, StrategyParams::parse(params));
 }
 

@@ -1,6 +1,7 @@
 // The shadow-method options `render` and `probe` share: --shadows NAME, --param key=value, and
 // the deep-shadow-map shortcuts --storage, --dsm-res, --eps, --filter (the dsm method's
-// storage, res, eps and filter parameters; any other method rejects them as unknown).
+// storage, res, eps and filter parameters; any other method rejects them as unknown) and
+// --voxelizer (the transmittance-slicemap method's voxelizer parameter).
 #pragma once
 
 #include <memory>
@@ -16,7 +17,7 @@ namespace dv::cli {
 struct ShadowOptions {
   std::string name = "reference";
   std::vector<std::string> params;
-  std::string storage, filter;
+  std::string storage, filter, voxelizer;
   int dsm_res = 0;
   double eps = -1.0;
 };

@@ -54,10 +54,10 @@ DV_HD inline double near_plane_distance(const RasterProjection& p, const dvec4& 
          p.near_offset;
 }
 
-// NDC (x, y) of the centre of pixel (x, y), the same formula as camera_ray_direction().
-DV_HD inline dvec2 pixel_center_ndc(const RasterProjection& p, int x, int y) {
-  return {(double(x) + 0.5) / double(p.width) * 2.0 - 1.0,
-          1.0 - (double(y) + 0.5) / double(p.height) * 2.0};
+// NDC (x, y) of image position (px, py) in pixels (x right, y down; pixel (x, y)'s centre is
+// (x + 0.5, y + 0.5)).
+DV_HD inline dvec2 image_point_ndc(const RasterProjection& p, double px, double py) {
+  return {px / double(p.width) * 2.0 - 1.0, 1.0 - py / double(p.height) * 2.0};
 }
 
 DV_HD inline dvec3 unproject_ndc(const RasterProjection& p, double x, double y, double z) {
@@ -65,13 +65,18 @@ DV_HD inline dvec3 unproject_ndc(const RasterProjection& p, double x, double y, 
   return dvec3(h.x, h.y, h.z) / h.w;
 }
 
-// World-space ray through the centre of pixel (x, y): along the line from the near plane to
-// the far plane; it starts at the eye for perspective projections.
-DV_HD inline PixelRay pixel_ray(const RasterProjection& p, int x, int y) {
-  const dvec2 ndc = pixel_center_ndc(p, x, y);
+// World-space ray through image position (px, py): along the line from the near plane to the
+// far plane; it starts at the eye for perspective projections.
+DV_HD inline PixelRay image_point_ray(const RasterProjection& p, double px, double py) {
+  const dvec2 ndc = image_point_ndc(p, px, py);
   const dvec3 on_near = unproject_ndc(p, ndc.x, ndc.y, -1.0);
   const dvec3 on_far = unproject_ndc(p, ndc.x, ndc.y, 1.0);
   return {p.orthographic ? on_near : p.eye, glm::normalize(on_far - on_near)};
+}
+
+// The ray through the centre of pixel (x, y).
+DV_HD inline PixelRay pixel_ray(const RasterProjection& p, int x, int y) {
+  return image_point_ray(p, double(x) + 0.5, double(y) + 0.5);
 }
 
 // The scene camera (same pixel centres and basis as make_camera_view) with the given far plane.

@@ -119,10 +119,6 @@ DV_HD inline void sort_entries(TileEntry* e, int64_t n) {
   }
 }
 
-Memory memory_of(Backend backend) {
-  return backend == Backend::cuda ? Memory::device : Memory::host;
-}
-
 void check_view(const RasterView& view) {
   const RasterProjection& p = view.projection;
   if (p.width < 1 || p.height < 1 || p.width > kMaxRasterSide || p.height > kMaxRasterSide)

@@ -1,7 +1,7 @@
 // Shadow method "dsm": deep shadow maps (dsm/deep_shadow_maps.h). Parameters: storage (compact,
-// texture3d, chunked, blocked; default compact), res (texels per side, default 512), eps (error
+// texture3d, chunked, blocked; default compact), res (texels per side, default 1024), eps (error
 // bound, default 0.05), filter (none | bilinear, default none), bias (world units, default 1e-4
-// of the scene diagonal), slope (texel sizes added to the bias, default 1.5), and storage.KEY
+// of the scene diagonal), slope (texel sizes added to the bias, default 3), and storage.KEY
 // passed to the storage strategy (e.g. storage.alloc=thesis). Maps depend on the lights and
 // the casters only: they are generated when the scene data or the backend changes, never
 // because the camera moved.
@@ -27,6 +27,13 @@ DsmSettings dsm_settings(const StrategyParams& p) {
   s.bilinear = filter == "bilinear";
   s.bias = p.number("bias", s.bias);
   s.slope_bias = p.number("slope", s.slope_bias);
+  s.subrays = p.integer("subrays", s.subrays);
+  const std::string volume = p.string("volume", "midpoint");
+  if (volume != "midpoint" && volume != "table")
+    throw InputError("dsm volume", "must be 'midpoint' or 'table', got '" + volume + "'");
+  s.precompressed = volume == "table";
+  s.table_bins = p.integer("table_bins", s.table_bins);
+  s.step_scale = p.number("step_scale", s.step_scale);
   return s;
 }
 
@@ -42,7 +49,11 @@ class DsmShadows final : public ShadowMethod {
             {"eps", s.eps},
             {"filter", s.bilinear ? "bilinear" : "none"},
             {"bias", s.bias >= 0.0 ? nlohmann::json(s.bias) : nlohmann::json("auto")},
-            {"slope", s.slope_bias}};
+            {"slope", s.slope_bias},
+            {"subrays", s.subrays},
+            {"volume", s.precompressed ? "table" : "midpoint"},
+            {"table_bins", s.table_bins},
+            {"step_scale", s.step_scale}};
   }
   nlohmann::json stats() const override {
     nlohmann::json j = {{"maps_built", maps_.generations()}, {"prepare_calls", prepare_calls_}};
@@ -80,7 +91,7 @@ class DsmShadows final : public ShadowMethod {
 void register_dsm_shadows(Registry<ShadowMethod>& registry) {
   registry.add("dsm",
                "deep shadow maps with an error bound (params: storage, res, eps, filter, bias, "
-               "slope, storage.KEY)",
+               "slope, subrays, volume, table_bins, step_scale, storage.KEY)",
                [](const StrategyParams& p) { return std::make_unique<DsmShadows>(p); });
 }
 

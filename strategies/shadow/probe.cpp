@@ -30,7 +30,7 @@ void probe_points(Backend backend, const Source& source, int lights, View<const 
 
 ProbeResults probe_transmittance(Backend backend, const SceneData& scene, ShadowMethod& method,
                                  const std::vector<dvec3>& points) {
-  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  const Memory memory = memory_of(backend);
   if (scene.memory() != memory)
     throw Error("probe_transmittance: scene data is in the wrong memory");
   const int lights = int(scene.view().lights.size);

@@ -8,14 +8,14 @@
 // would be tighter); omni faces and queries without a camera (probe) are not focused. A
 // focused map depends on the camera, so it is rebuilt when the camera moves. Near and far planes
 // are fitted to the casters (the scene's bounds); maps are rebuilt only when the scene data or
-// backend changes.
+// backend changes. Also implements the shared depth maps of depth_maps.h.
 #include <algorithm>
 
 #include "core/buffer.h"
 #include "core/pass_timer.h"
 #include "renderer/raster/tile_raster.h"
 #include "scene/ray_query.h"
-#include "strategies/shadow/shadow_map_source.h"
+#include "strategies/shadow/depth_maps.h"
 #include "strategies/shadow/shadow_method.h"
 
 namespace dv {
@@ -62,7 +62,9 @@ void focus_face(ShadowFace& face, const Aabb& region) {
 
 // Nearest caster depth per texel of one face.
 void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face,
-                       View<float> depths) {
+                       DepthCasters casters, View<float> depths) {
+  const double min_alpha = casters == DepthCasters::opaque ? 1.0 : 0.0;
+  const bool inclusive = casters == DepthCasters::opaque;
   const TileLists lists = rasterize_tiles(backend, s, face.projection);
   if (lists.stats.overflow)
     throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
@@ -76,7 +78,8 @@ void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& fa
         for_each_fragment(tiles, x, y, [&](uint32_t tri) {
           double t;
           bool entering;
-          if (s.objects[s.triangle_object[tri]].alpha <= 0.0 ||
+          const double alpha = s.objects[s.triangle_object[tri]].alpha;
+          if ((inclusive ? alpha < min_alpha : alpha <= min_alpha) ||
               !triangle_plane_hit(s, tri, ray.origin, ray.direction, t, entering))
             return;
           nearest = min_value(nearest, shadow_depth(face, ray.origin + ray.direction * t));
@@ -88,28 +91,18 @@ void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& fa
 class ShadowMapMethod final : public ShadowMethod {
  public:
   explicit ShadowMapMethod(const StrategyParams& p)
-      : res_(p.integer("res", 1024)),
-        pcf_(p.integer("pcf", 2)),
-        bias_(p.number("bias", -1.0)),
-        slope_(p.number("slope", 1.5)),
-        focus_(p.integer("focus", 0) != 0) {
-    if (res_ < 1 || res_ > kMaxRasterSide)
-      throw InputError("shadowmap res", "must lie in [1, 65536]");
-    if (pcf_ < 1 || pcf_ > 16) throw InputError("shadowmap pcf", "must lie in [1, 16]");
-  }
+      : params_(DepthMapParams::read(p, "shadowmap")), focus_(p.integer("focus", 0) != 0) {}
   std::string name() const override { return "shadowmap"; }
   nlohmann::json params() const override {
-    return {{"res", res_},
-            {"pcf", pcf_},
-            {"bias", bias_ >= 0.0 ? nlohmann::json(bias_) : nlohmann::json("auto")},
-            {"slope", slope_},
-            {"focus", focus_}};
+    nlohmann::json j = params_.json();
+    j["focus"] = focus_;
+    return j;
   }
   nlohmann::json stats() const override {
     return {{"maps_built", builds_},
             {"prepare_calls", prepare_calls_},
             {"faces", faces_built_},
-            {"bytes", depths_.bytes()},
+            {"bytes", maps_.depths.bytes()},
             {"last_build_ms", build_ms_}};
   }
 
@@ -135,42 +128,27 @@ class ShadowMapMethod final : public ShadowMethod {
   void build(const SceneData& scene, Backend backend, const Camera* focus_on) {
     const SceneView& s = scene.view();
     PassTimer timer(backend);
-    LightMapLayout layout = light_map_layout(scene.host_lights(), s.bounds, s.diagonal, res_);
-    std::vector<ShadowFace>& faces = layout.faces;
+    LightMapLayout layout =
+        light_map_layout(scene.host_lights(), s.bounds, s.diagonal, params_.res);
     if (focus_on)
       for (const ShadowLight& l : layout.lights)
-        if (l.face_count == 1) focus_face(faces[l.first_face], visible_region(*focus_on, s.bounds));
-    const int64_t texels = layout.texels_per_face;
-    const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
-    depths_ = Buffer<float>(memory, texels * int64_t(faces.size()), "shadow map depths");
-    for (const ShadowFace& f : faces) render_depth_face(backend, s, f, depths_.view());
-    faces_ = Buffer<ShadowFace>(memory, faces, "shadow map faces");
-    light_faces_ = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");
-    const double bias = bias_ >= 0.0 ? bias_ : 1e-4 * s.diagonal;
-    source_ = ShadowMapSource{s.lights,
-                              light_faces_.const_view(),
-                              faces_.const_view(),
-                              depths_.const_view(),
-                              res_,
-                              pcf_,
-                              bias,
-                              slope_};
+        if (l.face_count == 1)
+          focus_face(layout.faces[l.first_face], visible_region(*focus_on, s.bounds));
+    maps_ = render_depth_maps(backend, s, layout, params_.res, DepthCasters::surfaces);
+    source_ = maps_.source(s, params_);
     prepared_for_ = &scene;
     backend_ = backend;
     was_focused_ = focus_on != nullptr;
     ++builds_;
     build_ms_ = timer.stop();
-    faces_built_ = int(faces.size());
+    faces_built_ = int(layout.faces.size());
   }
 
-  int res_, pcf_;
-  double bias_, slope_;
+  DepthMapParams params_;
   bool focus_;
   Camera camera_;
   bool has_camera_ = false, was_focused_ = false;
-  Buffer<float> depths_;
-  Buffer<ShadowFace> faces_;
-  Buffer<ShadowLight> light_faces_;
+  DepthMaps maps_;
   ShadowMapSource source_{};
   const SceneData* prepared_for_ = nullptr;
   Backend backend_ = Backend::cpu;
@@ -179,6 +157,43 @@ class ShadowMapMethod final : public ShadowMethod {
 };
 
 }  // namespace
+
+DepthMapParams DepthMapParams::read(const StrategyParams& p, const std::string& method) {
+  DepthMapParams d;
+  d.res = p.integer("res", d.res);
+  d.pcf = p.integer("pcf", d.pcf);
+  d.bias = p.number("bias", d.bias);
+  d.slope = p.number("slope", d.slope);
+  if (d.res < 1 || d.res > kMaxRasterSide)
+    throw InputError(method + " res", "must lie in [1, 65536]");
+  if (d.pcf < 1 || d.pcf > 16) throw InputError(method + " pcf", "must lie in [1, 16]");
+  return d;
+}
+
+nlohmann::json DepthMapParams::json() const {
+  return {{"res", res},
+          {"pcf", pcf},
+          {"bias", bias >= 0.0 ? nlohmann::json(bias) : nlohmann::json("auto")},
+          {"slope", slope}};
+}
+
+ShadowMapSource DepthMaps::source(const SceneView& s, const DepthMapParams& params) const {
+  return {s.lights, lights.const_view(), faces.const_view(), depths.const_view(),
+          res,      params.pcf,          params.bias_for(s), params.slope};
+}
+
+DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapLayout& layout,
+                            int res, DepthCasters casters) {
+  const Memory memory = memory_of(backend);
+  DepthMaps maps;
+  maps.res = res;
+  maps.depths = Buffer<float>(memory, layout.texel_count(), "shadow map depths");
+  for (const ShadowFace& f : layout.faces)
+    render_depth_face(backend, s, f, casters, maps.depths.view());
+  maps.faces = Buffer<ShadowFace>(memory, layout.faces, "shadow map faces");
+  maps.lights = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");
+  return maps;
+}
 
 void register_shadow_maps(Registry<ShadowMethod>& registry) {
   registry.add(

@@ -35,5 +35,6 @@ void register_no_shadows(Registry<ShadowMethod>& registry);
 void register_reference_shadows(Registry<ShadowMethod>& registry);
 void register_shadow_maps(Registry<ShadowMethod>& registry);
 void register_dsm_shadows(Registry<ShadowMethod>& registry);
+void register_transmittance_slicemap(Registry<ShadowMethod>& registry);
 
 }  // namespace dv

@@ -10,6 +10,7 @@ Registry<ShadowMethod>& shadow_registry() {
     register_reference_shadows(r);
     register_shadow_maps(r);
     register_dsm_shadows(r);
+    register_transmittance_slicemap(r);
     return r;
   }();
   return registry;

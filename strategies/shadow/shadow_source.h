@@ -15,6 +15,7 @@
 #include "scene/scene_view.h"
 #include "strategies/shadow/dsm_source.h"
 #include "strategies/shadow/shadow_map_source.h"
+#include "strategies/shadow/transmittance_slicemap_source.h"
 
 namespace dv {
 
@@ -39,7 +40,7 @@ struct ReferenceShadowSource {
   }
 };
 
-using ShadowSourceVariant =
-    std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource, DsmSource>;
+using ShadowSourceVariant = std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource,
+                                         DsmSource, TransmittanceSlicemapSource>;
 
 }  // namespace dv

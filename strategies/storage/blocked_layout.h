@@ -61,6 +61,17 @@ struct BlockedSink {
   }
 };
 
+// Node k of one texel through its tile's indirection table.
+struct BlockedNodes {
+  BlockedLayout layout;
+  const int32_t* table;
+  const DsmNode* pool;
+  int local;
+  DV_HD DsmNode operator()(int k) const {
+    return pool[layout.entry(table[k / kBlockLayers] - 1, k, local)];
+  }
+};
+
 struct BlockedReader {
   BlockedLayout layout;
   View<const int32_t> indirection;
@@ -68,11 +79,9 @@ struct BlockedReader {
   View<const int32_t> counts;  // layers per texel
 
   DV_HD float visibility(int64_t texel, float z, int& hint) const {
-    const int32_t* table = indirection.data + layout.tile_of(texel) * layout.blocks_per_tile;
-    const int local = layout.local_of(texel);
-    const BlockedLayout l = layout;
-    const DsmNode* p = pool.data;
-    const auto node = [=](int k) { return p[l.entry(table[k / kBlockLayers] - 1, k, local)]; };
+    const BlockedNodes node{layout,
+                            indirection.data + layout.tile_of(texel) * layout.blocks_per_tile,
+                            pool.data, layout.local_of(texel)};
     return evaluate_nodes(node, counts[texel], z, hint);
   }
 };

@@ -31,8 +31,7 @@ struct CompactReader {
   DV_HD float visibility(int64_t texel, float z, int&) const {
     const int64_t begin = offsets[texel];
     const int count = int(offsets[texel + 1] - begin);
-    const DsmNode* n = nodes.data + begin;
-    const auto node = [n](int k) { return n[k]; };
+    const ContiguousNodes node{nodes.data + begin};
     return interpolate_nodes(node, count, lower_bound_nodes(node, count, z), z);
   }
 };

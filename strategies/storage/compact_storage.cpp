@@ -62,6 +62,7 @@ class CompactStorage final : public DsmStorage {
   }
   int64_t bytes_allocated() const override { return offsets_.bytes() + nodes_.bytes(); }
   int64_t bytes_per_node() const override { return sizeof(DsmNode); }
+  DsmHostNodes host_nodes() const override { return {offsets_.to_vector(), nodes_.to_vector()}; }
 
  private:
   Buffer<int64_t> offsets_;

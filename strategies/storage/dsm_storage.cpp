@@ -3,7 +3,13 @@
 
 #include <algorithm>
 
+#include "core/error.h"
+
 namespace dv {
+
+DsmHostNodes DsmStorage::host_nodes() const {
+  throw Error("storage '" + name() + "' cannot copy its nodes out; generate with 'compact'");
+}
 
 nlohmann::json dsm_figures(const DsmStorage& storage, const std::vector<DsmTexelRecord>& records) {
   int64_t nodes = 0, needed = 0, max_layers = 0, non_empty = 0, overflowed = 0, recompressed = 0,

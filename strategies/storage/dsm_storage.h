@@ -44,6 +44,12 @@ void timed_pass(const DsmGenerationContext& c, const char* name, F&& f) {
   c.passes->push_back({name, timer.stop()});
 }
 
+// Every texel's nodes in host memory, packed: texel t's are nodes[offsets[t] .. offsets[t + 1]).
+struct DsmHostNodes {
+  std::vector<int64_t> offsets;
+  std::vector<DsmNode> nodes;
+};
+
 class DsmStorage {
  public:
   virtual ~DsmStorage() = default;
@@ -56,6 +62,9 @@ class DsmStorage {
   virtual int64_t bytes_allocated() const = 0;
   // Bytes one stored node takes in the strategy's format.
   virtual int64_t bytes_per_node() const = 0;
+  // The stored functions copied to the host (export, tests). Strategies that do not offer it
+  // throw; `compact` does.
+  virtual DsmHostNodes host_nodes() const;
   // The strategy's own figures (waste, chunks, blocks, recompressions, ...).
   virtual nlohmann::json own_figures() const { return nlohmann::json::object(); }
 };

@@ -6,7 +6,6 @@
 #include <cstdint>
 
 #include "core/buffer.h"
-#include "core/execute.h"
 
 namespace dv {
 
@@ -14,10 +13,6 @@ template <class T>
 void ensure_buffer(Buffer<T>& buffer, Memory memory, int64_t count, const char* what) {
   if (buffer.size() != count || buffer.memory() != memory || (count > 0 && !buffer.data()))
     buffer = Buffer<T>(memory, count, what);
-}
-
-inline Memory memory_of(Backend backend) {
-  return backend == Backend::cuda ? Memory::device : Memory::host;
 }
 
 }  // namespace dv

@@ -32,9 +32,7 @@ struct Texture3dReader {
   int64_t texels;
 
   DV_HD float visibility(int64_t texel, float z, int& hint) const {
-    const DsmNode* base = atlas.data + texel;
-    const int64_t stride = texels;
-    const auto node = [base, stride](int k) { return base[int64_t(k) * stride]; };
+    const StridedNodes node{atlas.data + texel, texels};
     return evaluate_nodes(node, counts[texel], z, hint);
   }
 };

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/deep_exr.h"
 #include "io/scene_loader.h"
 #include "oracle/transmittance.h"
 
@@ -69,15 +70,15 @@ const std::string kSmallScene = R"({
 })";
 
 TEST_F(Cli, HelpAndList) {
-  for (const char* sub : {"probe", "render", "info", "list"}) {
+  for (const char* sub : {"probe", "render", "info", "list", "dsm"}) {
     const CommandResult r = run(std::string(sub) + " --help");
     EXPECT_EQ(r.exit_code, 0) << sub;
     EXPECT_NE(r.output.find(sub), std::string::npos);
   }
   const CommandResult list = run("list");
   EXPECT_EQ(list.exit_code, 0);
-  for (const char* name :
-       {"reference", "none", "storage", "voxelizer", "icosphere", "shepp_logan", "cpu"})
+  for (const char* name : {"reference", "none", "transmittance-slicemap", "storage", "voxelizer",
+                           "icosphere", "shepp_logan", "cpu"})
     EXPECT_NE(list.output.find(name), std::string::npos) << name;
   EXPECT_NE(run("").exit_code, 0);
 }
@@ -129,6 +130,45 @@ TEST_F(Cli, RenderWritesImagesAndStats) {
   const CommandResult info = run("info " + scene + " --json");
   ASSERT_EQ(info.exit_code, 0) << info.output;
   EXPECT_EQ(nlohmann::json::parse(info.output)["triangles"].get<int>(), 24);
+}
+
+// Width and height from a PNG file's IHDR chunk.
+std::pair<int, int> png_size(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), sizeof h);
+  const auto be = [&](int i) {
+    return (h[i] << 24) | (h[i + 1] << 16) | (h[i + 2] << 8) | h[i + 3];
+  };
+  return {be(16), be(20)};
+}
+
+TEST_F(Cli, DsmExportsDeepExrHeatmapAndStats) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string tail = " --dsm-res 16 --eps 0.05 --backend cpu --heatmap " +
+                           path("layers.png") + " --stats " + path("s.json");
+  const CommandResult r =
+      run("dsm " + scene + tail + (DEEPVOX_FULL_BINARY ? " --out " + path("maps.exr") : ""));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(png_size(path("layers.png")), std::make_pair(6 * 16 + 5, 16 + 1 + 4 + 1 + 5 + 1));
+  std::ifstream in(path("s.json"));
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["faces"].get<int>(), 6);
+  EXPECT_GT(stats["figures"]["nodes"].get<long long>(), 0);
+  EXPECT_GT(stats["passes"].size(), 1u);
+  EXPECT_EQ(stats["meta"]["backend"], "cpu");
+  EXPECT_EQ(stats["settings"]["storage"], "compact");
+#if DEEPVOX_FULL_BINARY
+  const DeepMapFile maps = read_deep_exr(path("maps.exr"));
+  ASSERT_EQ(maps.faces.size(), 6u);
+  size_t nodes = 0;
+  for (const DeepMapFace& f : maps.faces) nodes += f.nodes.size();
+  EXPECT_EQ(nodes, stats["figures"]["nodes"].get<size_t>());
+  EXPECT_EQ(maps.commit, stats["meta"]["git_sha"]);
+#endif
+  expect_error("dsm " + scene + " --out " + path("maps.png"), {"maps.png", ".exr"});
+  expect_error("dsm " + scene, {"--out", "--heatmap"});
+  expect_error("dsm " + path("none.json") + " --heatmap " + path("h.png"), {"none.json"});
 }
 
 TEST_F(Cli, MeshFileIsASceneOfOneObject) {

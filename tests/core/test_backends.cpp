@@ -17,7 +17,7 @@ namespace {
 // Fills out[i] = i * i + 1 and counts visits, on the given backend.
 void square_plus_one(Backend backend, int64_t n, std::vector<int64_t>& values,
                      unsigned long long& visits) {
-  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  const Memory memory = memory_of(backend);
   Buffer<int64_t> out(memory, n, "test values");
   Buffer<unsigned long long> count(memory, 1, "test counter");
   count.fill_zero();

@@ -58,7 +58,7 @@ struct CompressedWalks {
 };
 
 CompressedWalks compress_walks(Backend backend, float eps) {
-  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  const Memory memory = memory_of(backend);
   Buffer<float> z(memory, int64_t(kTexels) * kCapacity, "node depths");
   Buffer<float> v(memory, int64_t(kTexels) * kCapacity, "node values");
   Buffer<int> nodes(memory, kTexels, "nodes"), stored(memory, kTexels, "stored");

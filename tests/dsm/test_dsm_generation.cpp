@@ -19,7 +19,7 @@ using test::RecordingTarget;
 constexpr double kEvalSlack = 2e-6;
 
 void check_every_texel(const SceneData& data, int res, float eps) {
-  const DsmGeneration generation(data, Backend::cpu, res);
+  const DsmGeneration generation(data, Backend::cpu, {.resolution = res});
   const DsmGenerator& g = generation.generator();
   int64_t texels = 0, non_empty = 0;
   for (int64_t i = 0; i < g.thread_count(); ++i) {
@@ -88,7 +88,7 @@ SceneData quad_stack(int count, double alpha, bool coincident_pairs) {
 
 std::vector<test::Node> centre_nodes(const SceneData& data, float eps, int res,
                                      test::Samples* samples = nullptr) {
-  const DsmGeneration generation(data, Backend::cpu, res);
+  const DsmGeneration generation(data, Backend::cpu, {.resolution = res});
   const DsmGenerator& g = generation.generator();
   // Off the axis by (1.5, 0.5) texels: clear of the quads' diagonals.
   DsmTexel t{0, res / 2 + 1, res / 2, int64_t(res / 2) * res + res / 2 + 1};
@@ -139,6 +139,91 @@ TEST(DsmGeneration, CoincidentSurfacesGiveOneStep) {
   EXPECT_NEAR(nodes[1].v, 0.25, 1e-6);
   EXPECT_NEAR(nodes[3].v, 0.0625, 1e-6);
   EXPECT_EQ(max_error(samples, nodes), 0.0);
+}
+
+}  // namespace
+}  // namespace dv
+
+namespace dv {
+namespace {
+
+// The exact average of the sub-rays' sampled functions of texel t (walked here independently,
+// eps 0) against the pre-filtered texel's nodes.
+double prefilter_error(const DsmGenerator& g, const DsmTexel& t, float eps,
+                       std::vector<test::Node>& nodes) {
+  nodes.clear();
+  g.generate(t, eps, test::VectorSink{&nodes});
+  const ShadowFace& f = g.faces[t.face];
+  const int side = g.subrays == 16 ? 4 : (g.subrays == 9 ? 3 : 2);
+  std::vector<test::Samples> rays;
+  std::vector<double> depths;
+  for (int k = 0; k < g.subrays; ++k) {
+    const PixelRay ray =
+        image_point_ray(f.projection, t.x + (k % side + subray_jitter(t.index, k, 0)) / side,
+                        t.y + (k / side + subray_jitter(t.index, k, 1)) / side);
+    const NearPlaneStart front =
+        start_at_near_plane(g.scene, f.projection, ray, g.ray_media[t.face]);
+    RecordingTarget target(0.0f);
+    VisibilityPayload<RecordingTarget> payload{g.scene, target, ray.origin, ray.direction, eps};
+    const BvhFragments fragments{&g.scene, make_sheared_ray(ray.origin, ray.direction), 1e300};
+    walk_fragments(g.scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
+    for (const test::Node& n : target.samples) depths.push_back(n.z);
+    rays.push_back(target.samples);
+  }
+  for (const test::Node& n : nodes) depths.push_back(n.z);
+  double worst = 0.0;
+  for (double z : depths)
+    for (bool right : {false, true}) {
+      double average = 0.0;
+      for (const test::Samples& r : rays) average += test::evaluate(r, z, right) / rays.size();
+      worst = std::max(worst, std::abs(average - test::evaluate(nodes, z, right)));
+    }
+  return worst;
+}
+
+TEST(DsmPrefilter, WithinEpsOfTheSubrayAverage) {
+  for (unsigned seed : {1u, 2u}) {
+    const SceneData data(test::random_scene(seed), Memory::host);
+    DsmGeneration generation(data, Backend::cpu, {.resolution = 12, .subrays = 4});
+    const DsmGenerator& g = generation.generator();
+    int64_t partial = 0;
+    for (int64_t i = 0; i < g.thread_count(); ++i) {
+      DsmTexel t;
+      if (!g.texel_of_thread(i, t)) continue;
+      std::vector<test::Node> nodes;
+      const double err = prefilter_error(g, t, 0.05f, nodes);
+      ASSERT_LE(err, 0.05 + kEvalSlack) << "seed " << seed << " texel " << t.index;
+      ASSERT_TRUE(test::is_monotone(nodes));
+      // Some texels straddle an edge: their last value is neither lit nor fully behind one.
+      if (!nodes.empty() && nodes.back().v > 0.01f && nodes.back().v < 0.99f) ++partial;
+    }
+    EXPECT_GT(partial, 10);
+  }
+}
+
+TEST(DsmPrefilter, OpaqueEdgeGivesFractionalVisibility) {
+  test::SceneBuilder b;
+  b.add(make_box(dvec3(-2.0, 0.0, -2.0), dvec3(0.05, 0.2, 2.0)), 1.0);  // edge inside a texel
+  b.spot(dvec3(0.0, 5.0, 0.0), dvec3(0.0, -1.0, 0.0), 20.0);
+  const SceneData data = b.build();
+  DsmGeneration plain(data, Backend::cpu, {.resolution = 16}),
+      filtered(data, Backend::cpu, {.resolution = 16, .subrays = 16});
+  // Texels around the edge: unfiltered all or nothing, pre-filtered a fraction for the column
+  // the edge runs through.
+  int straddling = 0;
+  for (int y = 2; y < 14; ++y) {
+    for (int x = 6; x < 10; ++x) {
+      const DsmTexel t{0, x, y, int64_t(y) * 16 + x};
+      std::vector<test::Node> a, f;
+      plain.generator().generate(t, 0.0f, test::VectorSink{&a});
+      filtered.generator().generate(t, 0.0f, test::VectorSink{&f});
+      const float last_plain = a.empty() ? 1.0f : a.back().v;
+      const float last_filtered = f.empty() ? 1.0f : f.back().v;
+      EXPECT_TRUE(last_plain == 0.0f || last_plain == 1.0f);
+      if (last_filtered > 0.0f && last_filtered < 1.0f) ++straddling;
+    }
+  }
+  EXPECT_GT(straddling, 0);
 }
 
 }  // namespace

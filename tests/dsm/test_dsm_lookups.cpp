@@ -157,3 +157,55 @@ TEST(DsmLookups, CameraMovesDoNotRegenerate) {
 
 }  // namespace
 }  // namespace dv
+
+namespace dv {
+namespace {
+
+// Hadwiger's pre-compressed steps on an isosurface transfer function: a density ramp along the
+// light's axis, extinction 0 below density 0.5 and 40 above 0.52 (a sharp edge inside a step).
+// With the same steps, the tables place the edge where it is; the midpoint rule smears it.
+TEST(DsmPrecompressed, CapturesASharpTransferEdge) {
+  test::SceneBuilder b;
+  VolumeGrid g;
+  g.name = "ramp";
+  const int n = 9;
+  const double h = 0.25;
+  g.dims = {2, n, 2};
+  g.spacing = dvec3(h);
+  g.origin = dvec3(-0.5 * h, 0.0, -0.5 * h);
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < 2; ++x) g.density.push_back(float(1.0 - double(y) / (n - 1)));
+  b.scene.volumes.push_back(g);
+  Object& o =
+      b.add(make_box(g.origin, g.origin + dvec3(h, (n - 1) * h, h)), 0.0, InteriorKind::volume);
+  o.interior.volume = 0;
+  o.interior.step = 0.3;  // coarse: the edge falls inside a step
+  o.interior.transfer.points = {{0.0, dvec3(1.0), 0.0},
+                                {0.5, dvec3(1.0), 0.0},
+                                {0.52, dvec3(1.0), 40.0},
+                                {1.0, dvec3(1.0), 40.0}};
+  b.spot(dvec3(0.0, 4.0, 0.0), dvec3(0.0, -1.0, 0.0), 2.0);
+  const SceneData data = b.build();
+  double worst[2] = {0.0, 0.0};
+  for (int table = 0; table < 2; ++table) {
+    DsmSettings s = exact_depth_settings(0.0f, 8);
+    s.precompressed = table == 1;
+    s.table_bins = 256;
+    DeepShadowMaps maps(s);
+    maps.generate(data, Backend::cpu);
+    const PixelRay ray = pixel_ray(maps.layout().faces[0].projection, 4, 4);
+    for (int k = 0; k <= 200; ++k) {
+      const dvec3 p = ray.origin + ray.direction * (2.0 + 2.0 * k / 200.0);  // y from 2 to 0
+      worst[table] =
+          std::max(worst[table], std::abs(dsm_at(maps, p, 0) - test::oracle_at(data, 0, p)));
+    }
+  }
+  RecordProperty("midpoint_error", std::to_string(worst[0]));
+  RecordProperty("table_error", std::to_string(worst[1]));
+  EXPECT_GT(worst[0], 0.2);  // the midpoint rule misses where the surface starts
+  EXPECT_LT(worst[1], std::min(0.06, worst[0] / 5.0));  // the tables do not
+}
+
+}  // namespace
+}  // namespace dv

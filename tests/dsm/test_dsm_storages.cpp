@@ -30,8 +30,7 @@ Generated generate(const Scene& scene, Backend backend, const std::string& stora
   s.resolution = res;
   s.eps = eps;
   Generated g;
-  g.data =
-      std::make_unique<SceneData>(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+  g.data = std::make_unique<SceneData>(scene, memory_of(backend));
   g.maps = std::make_unique<DeepShadowMaps>(s);
   g.maps->generate(*g.data, backend);
   return g;
@@ -42,8 +41,7 @@ std::vector<float> sample_lookups(const Generated& g, Backend backend) {
   const DsmSource source = g.maps->source();
   const int64_t texels = int64_t(g.maps->records().size());
   const int depths = 24;
-  Buffer<float> out(backend == Backend::cuda ? Memory::device : Memory::host, texels * depths,
-                    "lookups");
+  Buffer<float> out(memory_of(backend), texels * depths, "lookups");
   const View<float> o = out.view();
   const double far = 2.0 * g.data->view().diagonal;
   parallel_for(
@@ -90,7 +88,7 @@ TEST_P(Storages, SameAttenuationAsCompact) {
 TEST_P(Storages, RenderAndProbeThroughTheShadowMethod) {
   const auto [name, backend] = GetParam();
   const Scene scene = test::scene_file("translucent-boxes.json");
-  const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+  const SceneData data(scene, memory_of(backend));
   auto method = shadow_registry().create(
       "dsm", StrategyParams::parse({std::string("storage=") + name, "res=64", "eps=0.01"}));
   std::mt19937 rng(9);

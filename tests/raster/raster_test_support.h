@@ -57,7 +57,7 @@ struct RasterRun {
 
 inline RasterRun rasterize(Backend backend, const Soup& soup, const RasterProjection& projection,
                            const RasterOptions& options = {}) {
-  const Memory memory = backend == Backend::cuda ? Memory::device : Memory::host;
+  const Memory memory = memory_of(backend);
   const Buffer<dvec3> vertices(memory, std::span<const dvec3>(soup.vertices), "test vertices");
   const Buffer<u32vec3> triangles(memory, std::span<const u32vec3>(soup.triangles),
                                   "test triangles");

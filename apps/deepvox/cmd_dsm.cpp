@@ -1,0 +1,111 @@
+// `deepvox dsm SCENE [--out maps.exr] [--dsm-res N] [--eps E] [--backend cpu|cuda]
+//  [--heatmap layers.png] [--stats s.json]`: generates every light's deep shadow maps (always
+// with the compact storage: the strategy does not change the functions) and exports them as
+// deep EXR (io/deep_exr.h, full build only), as a layers-per-texel heatmap
+// (io/layer_heatmap.h, every build) and as generation figures with run metadata.
+#include <fstream>
+
+#include "apps/deepvox/commands.h"
+#include "apps/deepvox/run_metadata.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "core/text.h"
+#include "dsm/dsm_export.h"
+#include "io/layer_heatmap.h"
+#include "io/scene_loader.h"
+
+namespace dv::cli {
+
+namespace {
+
+struct DsmOptions {
+  std::string scene, out, heatmap, stats, backend;
+  DsmSettings settings;
+};
+
+// Every output path is checked before the (possibly long) generation.
+void check_outputs(const DsmOptions& o) {
+  if (o.out.empty() && o.heatmap.empty() && o.stats.empty())
+    throw InputError("dsm", "nothing to write: give --out, --heatmap or --stats");
+  if (!o.out.empty()) {
+    if (lowercase_extension(o.out) != ".exr")
+      throw InputError(o.out, "deep shadow maps are written as deep OpenEXR: use .exr");
+    if (!deep_exr_supported()) write_deep_exr(o.out, DeepMapFile());  // throws the reason
+  }
+  if (!o.heatmap.empty()) check_image_path(o.heatmap);
+}
+
+nlohmann::json generation_stats(const DsmOptions& o, const DeepShadowMaps& maps, Backend backend) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const DsmPass& p : maps.passes())
+    passes.push_back({{"name", p.name}, {"ms", p.milliseconds}});
+  return {{"meta", run_metadata(backend)},
+          {"scene", o.scene},
+          {"settings",
+           {{"storage", maps.settings().storage},
+            {"resolution", maps.settings().resolution},
+            {"eps", maps.settings().eps}}},
+          {"lights", maps.layout().lights.size()},
+          {"faces", maps.layout().faces.size()},
+          {"fragments", maps.fragments()},
+          {"generation_ms", maps.generation_milliseconds()},
+          {"passes", passes},
+          {"figures", maps.figures()},
+          {"outputs", {{"exr", o.out}, {"heatmap", o.heatmap}}}};
+}
+
+}  // namespace
+
+Runner add_dsm(CLI::App& app) {
+  auto opt = std::make_shared<DsmOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "dsm", "generate every light's deep shadow maps and export them (deep EXR, heatmap)");
+  cmd->add_option("scene", opt->scene, "scene: .json, .gltf/.glb or a mesh file")->required();
+  cmd->add_option("--out", opt->out, "deep EXR file, one subimage per map face (full build only)");
+  cmd->add_option("--dsm-res", opt->settings.resolution, "texels per side of each map")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  cmd->add_option("--eps", opt->settings.eps, "error bound of the visibility functions")
+      ->check(CLI::Range(0.0, 4.0))
+      ->capture_default_str();
+  cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
+  cmd->add_option("--heatmap", opt->heatmap,
+                  "image of layers per texel, faces side by side, with a colour scale");
+  cmd->add_option("--stats", opt->stats, "write generation figures and run metadata as JSON");
+  return [opt] {
+    const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
+    require_backend(backend);
+    check_outputs(*opt);
+    const Scene scene = load_scene(opt->scene);
+    if (scene.lights.empty()) throw InputError(opt->scene, "the scene has no lights");
+    const SceneData data(scene, memory_of(backend));
+    opt->settings.storage = "compact";
+    DeepShadowMaps maps(opt->settings);
+    maps.generate(data, backend);
+    const nlohmann::json stats = generation_stats(*opt, maps, backend);
+    if (!opt->out.empty())
+      write_deep_exr(opt->out, deep_map_file(maps, stats["meta"]["git_sha"].get<std::string>()));
+    if (!opt->heatmap.empty())
+      write_image(opt->heatmap, layer_heatmap(stored_layers(maps), int(maps.layout().faces.size()),
+                                              maps.settings().resolution));
+    if (!opt->stats.empty()) {
+      std::ofstream out(opt->stats);
+      if (!out) throw InputError(opt->stats, "cannot write stats file");
+      out << stats.dump(2) << "\n";
+    }
+    const nlohmann::json& f = maps.figures();
+    log_info("dsm: " + std::to_string(maps.layout().faces.size()) + " faces at " +
+             std::to_string(maps.settings().resolution) + "^2 on " + to_string(backend) + ": " +
+             std::to_string(f["nodes"].get<int64_t>()) + " nodes, max " +
+             std::to_string(f["max_layers"].get<int64_t>()) + " layers, " +
+             std::to_string(maps.generation_milliseconds()) + " ms");
+    if (f["walk_overflow_texels"].get<int64_t>() > 0) {
+      log_warning(std::to_string(f["walk_overflow_texels"].get<int64_t>()) +
+                  " texels overflowed a fixed-size walk structure (their functions are cut)");
+      return 3;
+    }
+    return 0;
+  };
+}
+
+}  // namespace dv::cli

@@ -1,0 +1,21 @@
+// What `deepvox dsm` exports from generated deep shadow maps: every face's nodes with its
+// matrix, light and face index as a DeepMapFile (written as a deep EXR by io/deep_exr.h), and
+// the layers (stored nodes) per texel that the heatmap draws (io/layer_heatmap.h).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dsm/deep_shadow_maps.h"
+#include "io/deep_exr.h"
+
+namespace dv {
+
+// Needs a storage that copies its nodes out (`compact`).
+DeepMapFile deep_map_file(const DeepShadowMaps& maps, const std::string& commit);
+
+// One count per texel of the layout, texel index face * res^2 + y * res + x.
+std::vector<int32_t> stored_layers(const DeepShadowMaps& maps);
+
+}  // namespace dv
