@@ -5,12 +5,14 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <vector>
 
 #include "core/error.h"
 #include "core/pass_timer.h"
+#include "gl/gl_grid_image.h"
 #include "gl/gl_program.h"
 
 namespace dv::gl {
@@ -27,50 +29,31 @@ void main() {
 }
 )";
 
-const char* const kFragmentShader = R"(#version 450 core
-layout(r32ui, binding = 0) uniform coherent uimage2DArray slices;
-uniform int depth_res;
+// Fragments at grid (x, y) of the window; the slice is the half-open one holding the depth.
+const std::string kFragmentShader = std::string("#version 450 core\n") + kGridImageGlsl + R"(
 noperspective in float grid_depth;
 void main() {
-  // The half-open slice holding the depth; the grid's upper face belongs to the last slice.
-  if (!(grid_depth >= 0.0 && grid_depth <= float(depth_res))) discard;
-  int z = min(int(floor(grid_depth)), depth_res - 1);
-  imageAtomicOr(slices, ivec3(ivec2(gl_FragCoord.xy), z >> 5), 1u << uint(z & 31));
+  int z = point_voxel(grid_depth, grid_res.z);
+  if (z < 0) discard;
+  set_voxel(ivec3(ivec2(gl_FragCoord.xy), z));
 }
 )";
 
 // GL objects of one voxelization, deleted however it ends.
 struct SlicemapObjects {
-  GLuint program = 0, texture = 0, framebuffer = 0, vertex_array = 0, buffer = 0;
+  GLuint program = 0, framebuffer = 0, vertex_array = 0, buffer = 0;
   ~SlicemapObjects() {
     glDeleteProgram(program);
-    glDeleteTextures(1, &texture);
     glDeleteFramebuffers(1, &framebuffer);
     glDeleteVertexArrays(1, &vertex_array);
     glDeleteBuffers(1, &buffer);
   }
 };
 
-GLint gl_limit(GLenum name) {
-  GLint value = 0;
-  glGetIntegerv(name, &value);
-  return value;
-}
-
-void check_limits(const GridSpec& spec) {
-  const int layers = spec.words_per_column();
-  const GLint side =
-      std::min(gl_limit(GL_MAX_TEXTURE_SIZE),
+// The window is the grid's x, y: they must fit a framebuffer too.
+void check_framebuffer_limits(const GridSpec& spec) {
+  require_side("slicemap (gl)", "grid", spec.res.x, spec.res.y,
                std::min(gl_limit(GL_MAX_FRAMEBUFFER_WIDTH), gl_limit(GL_MAX_FRAMEBUFFER_HEIGHT)));
-  if (spec.res.x > side || spec.res.y > side)
-    throw InputError("slicemap (gl)", "grid " + std::to_string(spec.res.x) + "x" +
-                                          std::to_string(spec.res.y) +
-                                          " exceeds the driver's limit of " + std::to_string(side) +
-                                          " texels per side");
-  if (layers > gl_limit(GL_MAX_ARRAY_TEXTURE_LAYERS))
-    throw InputError("slicemap (gl)", "depth " + std::to_string(spec.res.z) +
-                                          " needs more array layers than the driver's " +
-                                          std::to_string(gl_limit(GL_MAX_ARRAY_TEXTURE_LAYERS)));
 }
 
 }  // namespace
@@ -78,25 +61,18 @@ void check_limits(const GridSpec& spec) {
 VoxelizeResult voxelize_slicemap_gl(const TriangleSoup& soup, const GridSpec& spec) {
   validate_grid_spec(spec, "slicemap (gl)");
   require_affine_grid(spec, "slicemap (gl)");
-  check_limits(spec);
+  check_framebuffer_limits(spec);
   const int64_t triangles = soup.triangle_count();
   if (3 * triangles > INT_MAX)
     throw InputError("slicemap (gl)",
                      std::to_string(triangles) + " triangles exceed one OpenGL draw call");
   VoxelizeResult result;
   SlicemapObjects gl;
-  const int layers = spec.words_per_column();
-  {
-    PassTimer timer(Backend::cpu);
-    result.grid = VoxelGrid(spec, Memory::host);
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &gl.texture);
-    glTextureStorage3D(gl.texture, 1, GL_R32UI, spec.res.x, spec.res.y, layers);
-    const GLuint zero = 0;
-    glClearTexImage(gl.texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glFinish();
-    check_gl("slicemap (gl) clear");
-    result.passes.push_back({"clear", timer.stop()});
-  }
+  PassTimer clear_timer(Backend::cpu);
+  result.grid = VoxelGrid(spec, Memory::host);
+  const GridImage image(spec, "slicemap (gl)");
+  glFinish();
+  result.passes.push_back({"clear", clear_timer.stop()});
 
   int64_t skipped = 0;
   {
@@ -158,8 +134,7 @@ VoxelizeResult voxelize_slicemap_gl(const TriangleSoup& soup, const GridSpec& sp
     glUseProgram(gl.program);
     glUniform2f(glGetUniformLocation(gl.program, "to_ndc"), float(2.0 / spec.res.x),
                 float(2.0 / spec.res.y));
-    glUniform1i(glGetUniformLocation(gl.program, "depth_res"), spec.res.z);
-    glBindImageTexture(0, gl.texture, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    image.bind(gl.program);
     glBindVertexArray(gl.vertex_array);
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * (triangles - skipped)));
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -170,12 +145,7 @@ VoxelizeResult voxelize_slicemap_gl(const TriangleSoup& soup, const GridSpec& sp
   }
   {
     PassTimer timer(Backend::cpu);
-    uint32_t* words = result.grid.view().words;
-    const int64_t layer_words = int64_t(spec.res.x) * spec.res.y;
-    for (int k = 0; k < layers; ++k)
-      glGetTextureSubImage(gl.texture, 0, 0, 0, k, spec.res.x, spec.res.y, 1, GL_RED_INTEGER,
-                           GL_UNSIGNED_INT, GLsizei(layer_words * 4), words + k * layer_words);
-    check_gl("slicemap (gl) readback");
+    image.read_into(result.grid);
     result.passes.push_back({"readback", timer.stop()});
   }
   return result;

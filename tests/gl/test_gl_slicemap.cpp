@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cstdio>
 
 #include "core/error.h"
@@ -17,38 +16,15 @@
 #include "gl/gl_voxelizers.h"
 #include "strategies/voxelizer/slicemap_voxelizer.h"
 #include "strategies/voxelizer/voxelize_job.h"
+#include "tests/gl/gl_test_support.h"
 #include "tests/support/paths.h"
 
 namespace dv {
 namespace {
 
-class GlSlicemap : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::string why;
-    context_ = gl::EglContext::create_headless(&why);
-    if (!context_) GTEST_SKIP() << "no headless OpenGL 4.5 here: " << why;
-  }
-  std::unique_ptr<gl::EglContext> context_;
-};
+class GlSlicemap : public test::GlContextTest {};
 
-// Voxels set in one grid but not the other; prints the first few.
-int64_t count_differences(const VoxelGrid& a, const VoxelGrid& b, const std::string& label) {
-  const std::vector<uint32_t> wa = a.words(), wb = b.words();
-  const ivec3 r = a.spec().res;
-  int64_t differ = 0;
-  for (size_t i = 0; i < wa.size(); ++i) {
-    const uint32_t d = wa[i] ^ wb[i];
-    if (!d) continue;
-    if (differ < 5) {
-      const int64_t x = int64_t(i) % r.x, y = int64_t(i) / r.x % r.y, k = int64_t(i) / r.x / r.y;
-      std::printf("  %s: column (%lld, %lld) word %lld: cpu %08x gl %08x\n", label.c_str(),
-                  (long long)x, (long long)y, (long long)k, wa[i], wb[i]);
-    }
-    differ += std::popcount(d);
-  }
-  return differ;
-}
+using test::count_differences;
 
 TEST_F(GlSlicemap, AgreesWithTheSharedRasterizer) {
   std::printf("GL renderer: %s\n", context_->renderer().c_str());
