@@ -22,6 +22,7 @@
 #include "strategies/voxelizer/frustum_grid.h"
 #include "strategies/voxelizer/voxelize_job.h"
 #include "tests/gl/gl_test_support.h"
+#include "tests/support/light_face_cases.h"
 #include "tests/support/paths.h"
 
 namespace dv {
@@ -117,14 +118,7 @@ TEST_F(GlAtlas, AgreesWithTheCpuAtlas) {
 }
 
 TEST_F(GlAtlas, AgreesOnAPerspectiveLightGrid) {
-  Light l;
-  l.type = LightType::spot;
-  l.position = dvec3(0.0, 4.0, 0.0);
-  l.direction = dvec3(0.0, -1.0, 0.0);
-  l.cutoff_deg = 30.0;
-  const Aabb scene{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 2.0, 2.0)};
-  const ShadowFace face =
-      light_map_faces(make_light_view(l), scene, glm::length(scene.extent()), 96)[0];
+  const ShadowFace face = test::spot_face(96);
   dmat4 m(1.0);
   m[3] = dvec4(0.2, 1.0, -0.1, 1.0);
   const TriangleSoup ball = triangle_soup(make_icosphere(0.7, 3), m);

@@ -9,29 +9,14 @@
 #include "strategies/voxelizer/frustum_grid.h"
 #include "strategies/voxelizer/voxel_metrics.h"
 #include "strategies/voxelizer/voxelizer.h"
+#include "tests/support/light_face_cases.h"
 #include "tests/voxel/voxel_test_support.h"
 
 namespace dv {
 namespace {
 
-// The face of a spot light at (0, 4, 0) looking down (-y) with a 30-degree half-angle.
-ShadowFace spot_face(int res) {
-  Light l;
-  l.type = LightType::spot;
-  l.position = dvec3(0.0, 4.0, 0.0);
-  l.direction = dvec3(0.0, -1.0, 0.0);
-  l.cutoff_deg = 30.0;
-  const Aabb scene{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 2.0, 2.0)};
-  return light_map_faces(make_light_view(l), scene, glm::length(scene.extent()), res)[0];
-}
-
-ShadowFace sun_face(int res) {
-  Light l;
-  l.type = LightType::directional;
-  l.direction = glm::normalize(dvec3(0.3, -1.0, 0.2));
-  const Aabb scene{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 2.0, 2.0)};
-  return light_map_faces(make_light_view(l), scene, glm::length(scene.extent()), res)[0];
-}
+using test::spot_face;
+using test::sun_face;
 
 // A 1.2-wide horizontal quad at height y.
 TriangleSoup quad_at(double y) {
