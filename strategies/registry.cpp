@@ -1,6 +1,7 @@
 // StrategyParams parsing and checking (see registry.h).
 #include "strategies/registry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -40,6 +41,15 @@ std::string StrategyParams::string(const std::string& key, const std::string& fa
   if (it == values_.end()) return fallback;
   read_.insert(key);
   return it->second;
+}
+
+std::string StrategyParams::choice(const std::string& key, const std::string& fallback,
+                                   const std::vector<std::string>& allowed) const {
+  const std::string value = string(key, fallback);
+  if (std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return value;
+  std::string names;
+  for (const std::string& a : allowed) names += (names.empty() ? "'" : ", '") + a + "'";
+  throw InputError("--param " + key, "must be one of " + names + ", got '" + value + "'");
 }
 
 StrategyParams StrategyParams::prefixed(const std::string& prefix) const {

@@ -33,6 +33,9 @@ class StrategyParams {
   double number(const std::string& key, double fallback) const;
   int integer(const std::string& key, int fallback) const;
   std::string string(const std::string& key, const std::string& fallback) const;
+  // A string that must be one of `allowed` (fallback when absent); others are an InputError.
+  std::string choice(const std::string& key, const std::string& fallback,
+                     const std::vector<std::string>& allowed) const;
 
   // The parameters "prefix.key" as "key" (marked read here): how a strategy passes parameters
   // on to a strategy of another family it is built from (the dsm method's storage.* keys).

@@ -7,7 +7,6 @@
 // because the camera moved.
 #include <memory>
 
-#include "core/error.h"
 #include "dsm/deep_shadow_maps.h"
 #include "strategies/shadow/shadow_method.h"
 
@@ -21,17 +20,11 @@ DsmSettings dsm_settings(const StrategyParams& p) {
   s.storage_params = p.prefixed("storage");
   s.resolution = p.integer("res", s.resolution);
   s.eps = float(p.number("eps", s.eps));
-  const std::string filter = p.string("filter", "none");
-  if (filter != "none" && filter != "bilinear")
-    throw InputError("dsm filter", "must be 'none' or 'bilinear', got '" + filter + "'");
-  s.bilinear = filter == "bilinear";
+  s.bilinear = p.choice("filter", "none", {"none", "bilinear"}) == "bilinear";
   s.bias = p.number("bias", s.bias);
   s.slope_bias = p.number("slope", s.slope_bias);
   s.subrays = p.integer("subrays", s.subrays);
-  const std::string volume = p.string("volume", "midpoint");
-  if (volume != "midpoint" && volume != "table")
-    throw InputError("dsm volume", "must be 'midpoint' or 'table', got '" + volume + "'");
-  s.precompressed = volume == "table";
+  s.precompressed = p.choice("volume", "midpoint", {"midpoint", "table"}) == "table";
   s.table_bins = p.integer("table_bins", s.table_bins);
   s.step_scale = p.number("step_scale", s.step_scale);
   return s;

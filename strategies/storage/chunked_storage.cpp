@@ -42,13 +42,11 @@ void relayout(Backend backend, const ChunkPool& pool, View<ChunkEntry> entries) 
 class ChunkedStorage final : public DsmStorage {
  public:
   explicit ChunkedStorage(const StrategyParams& p)
-      : alloc_(p.string("alloc", "aggregated")),
+      : alloc_(p.choice("alloc", "aggregated", {"aggregated", "thesis"})),
         chunk_layers_(p.integer("chunk", 64)),
         block_limit_(p.integer("block_chunks", 64)),
         pool_per_block_(p.number("pool_per_block", 32.0)),
         pool_(p.integer("pool", 0)) {
-    if (alloc_ != "thesis" && alloc_ != "aggregated")
-      throw InputError("chunked alloc", "must be 'thesis' or 'aggregated', got '" + alloc_ + "'");
     if (chunk_layers_ < 1 || chunk_layers_ > 1024)
       throw InputError("chunked chunk", "must lie in [1, 1024]");
     if (block_limit_ < 1 || block_limit_ > 65536)

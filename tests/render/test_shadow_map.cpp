@@ -7,6 +7,7 @@
 
 #include "strategies/shadow/probe.h"
 #include "tests/support/scene_builder.h"
+#include "tests/support/shadow_methods.h"
 
 namespace dv {
 namespace {
@@ -35,14 +36,7 @@ Agreement compare_on_floor(SceneBuilder& b, const std::string& params) {
   std::vector<dvec3> points;
   for (int i = 0; i < 4000; ++i) points.push_back({u(rng), 1e-9, u(rng)});
   auto reference = shadow_registry().create("reference");
-  std::vector<std::string> items;
-  for (size_t start = 0; start < params.size();) {
-    size_t end = params.find(' ', start);
-    if (end == std::string::npos) end = params.size();
-    items.push_back(params.substr(start, end - start));
-    start = end + 1;
-  }
-  auto shadowmap = shadow_registry().create("shadowmap", StrategyParams::parse(items));
+  auto shadowmap = test::make_shadow_method("shadowmap", params);
   const ProbeResults exact = probe_transmittance(Backend::cpu, data, *reference, points);
   const ProbeResults approx = probe_transmittance(Backend::cpu, data, *shadowmap, points);
   int agree = 0, shadowed = 0;

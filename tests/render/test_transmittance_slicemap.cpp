@@ -13,6 +13,7 @@
 #include "core/device_memory.h"
 #include "strategies/shadow/probe.h"
 #include "tests/support/scene_builder.h"
+#include "tests/support/shadow_methods.h"
 
 namespace dv {
 namespace {
@@ -53,14 +54,7 @@ Probe stack_points() {
 }
 
 std::unique_ptr<ShadowMethod> tsm(const std::string& params) {
-  std::vector<std::string> items;
-  for (size_t start = 0; start < params.size();) {
-    size_t end = params.find(' ', start);
-    if (end == std::string::npos) end = params.size();
-    items.push_back(params.substr(start, end - start));
-    start = end + 1;
-  }
-  return shadow_registry().create("transmittance-slicemap", StrategyParams::parse(items));
+  return test::make_shadow_method("transmittance-slicemap", params);
 }
 
 void expect_powers(SceneBuilder& b, const std::string& params) {
