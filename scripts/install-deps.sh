@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages deepvox builds against, only those missing (Debian 12).
-# Needs root or sudo when something is missing; prints what it installs.
+# Needs root or sudo when something is missing; prints what it installs. openimageio-tools is
+# listed because Debian's OpenImageIOTargets.cmake checks that /usr/bin/iconvert exists: without
+# it the CMake configure step fails (libopenimageio-dev only recommends it).
 set -euo pipefail
 
 packages=(
   cmake g++ make pkg-config git
-  libglm-dev libglfw3-dev libopenimageio-dev python3-imath libcgal-dev libeigen3-dev
+  libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools python3-imath libcgal-dev libeigen3-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   libgtest-dev libbenchmark-dev
   libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
