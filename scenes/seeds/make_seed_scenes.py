@@ -256,8 +256,10 @@ def buchacher_scene(description, mesh, transform, cam):
 # z = 0 is the middle slice plane of every even depth, the thesis's quad-on-a-slice-boundary case.
 QUAD_TO_Z = {"matrix": [1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1]}
 
-BUCHACHER_VOXELIZE = (" Voxelize with `deepvox voxelize FILE --res WxWx32` and the default bounds (the scene bounds "
-                      "made cubic), the depth axis (z) as the voxelization camera's view direction.")
+BUCHACHER_VOXELIZE = (" Voxelize with `deepvox voxelize FILE --res WxWx32`, the depth axis (z) as the voxelization "
+                      "camera's view direction; the thesis's grid is 1.5 x the quad (`--bounds=-0.75,-0.75,-0.75,0.75,"
+                      "0.75,0.75` reproduces its Compute counts for the simple quad), its margin for the other models "
+                      "is unknown (default bounds: the model's bounding cube).")
 
 
 def buchacher_scenes():
