@@ -75,6 +75,22 @@ void* device_allocate(size_t bytes, const char* what) {
   return ptr;
 }
 
+size_t device_free_bytes() {
+  size_t free = 0, total = 0;
+  DV_CUDA_CHECK(cudaMemGetInfo(&free, &total));
+  int device = 0;
+  cudaMemPool_t pool = nullptr;
+  uint64_t reserved = 0, used = 0;
+  if (cudaGetDevice(&device) == cudaSuccess &&
+      cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess &&
+      cudaMemPoolGetAttribute(pool, cudaMemPoolAttrReservedMemCurrent, &reserved) == cudaSuccess &&
+      cudaMemPoolGetAttribute(pool, cudaMemPoolAttrUsedMemCurrent, &used) == cudaSuccess &&
+      reserved > used)
+    free += size_t(reserved - used);
+  cudaGetLastError();
+  return free;
+}
+
 void device_free(void* ptr) noexcept {
   if (ptr) cudaFreeAsync(ptr, cudaStreamLegacy);
 }
@@ -113,6 +129,9 @@ std::string cuda_device_name() {
 }
 void* device_allocate(size_t, const char*) {
   no_cuda("device_allocate");
+}
+size_t device_free_bytes() {
+  no_cuda("device_free_bytes");
 }
 void device_free(void*) noexcept {}
 void copy_to_device(void*, const void*, size_t) {

@@ -13,6 +13,9 @@ bool cuda_device_available(std::string* why_not = nullptr);
 std::string cuda_device_name();
 
 void* device_allocate(size_t bytes, const char* what);
+// Bytes the device can still hand out: free device memory plus what the memory pool holds
+// unused.
+size_t device_free_bytes();
 void device_free(void* ptr) noexcept;
 void copy_to_device(void* dst, const void* src, size_t bytes);
 void copy_to_host(void* dst, const void* src, size_t bytes);

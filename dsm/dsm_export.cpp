@@ -2,6 +2,7 @@
 #include "dsm/dsm_export.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace dv {
 
@@ -36,6 +37,24 @@ std::vector<int32_t> stored_layers(const DeepShadowMaps& maps) {
   layers.reserve(maps.records().size());
   for (const DsmTexelRecord& r : maps.records()) layers.push_back(r.stored);
   return layers;
+}
+
+std::vector<std::string> face_labels(const LightMapLayout& layout) {
+  std::vector<std::string> labels;
+  for (size_t l = 0; l < layout.lights.size(); ++l)
+    for (int i = 0; i < layout.lights[l].face_count; ++i) {
+      std::string label = "L";
+      label += std::to_string(l);
+      if (layout.lights[l].face_count > 1) {
+        const dvec3 a = layout.faces[size_t(layout.lights[l].first_face) + i].axis;
+        const int k = std::abs(a.x) >= std::abs(a.y) && std::abs(a.x) >= std::abs(a.z) ? 0
+                      : std::abs(a.y) >= std::abs(a.z)                                 ? 1
+                                                                                       : 2;
+        label += std::string(a[k] > 0.0 ? " +" : " -") + "XYZ"[k];
+      }
+      labels.push_back(label);
+    }
+  return labels;
 }
 
 }  // namespace dv

@@ -24,7 +24,8 @@ struct Image {
 
 // Writes by extension: .png always; .exr only where exr_supported().
 void write_image(const std::string& path, const Image& image);
-// Throws the InputError write_image would throw for this path's type, without writing.
+// Throws the InputError write_image would throw for this path (type, directory, permission;
+// io/output_path.h), without writing.
 void check_image_path(const std::string& path);
 void write_png(const std::string& path, const Image& image);
 

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "io/image.h"
+#include "io/output_path.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_WRITE_NO_STDIO_FILENAME_CHECK
@@ -32,10 +33,9 @@ void write_png(const std::string& path, const Image& image) {
 }
 
 void check_image_path(const std::string& path) {
-  const std::string ext = lowercase_extension(path);
-  if (ext == ".exr" && !exr_supported()) write_exr(path, Image());  // throws the reason
-  if (ext != ".png" && ext != ".exr")
-    throw InputError(path, "unknown image type '" + ext + "' (known: .png, .exr)");
+  if (lowercase_extension(path) == ".exr" && !exr_supported())
+    write_exr(path, Image());  // throws the reason
+  check_output_path(path, {".png", ".exr"}, "image");
 }
 
 void write_image(const std::string& path, const Image& image) {

@@ -12,6 +12,7 @@
 #include "core/text.h"
 #include "dsm/dsm_export.h"
 #include "io/layer_heatmap.h"
+#include "io/output_path.h"
 #include "io/scene_loader.h"
 
 namespace dv::cli {
@@ -31,8 +32,10 @@ void check_outputs(const DsmOptions& o) {
     if (lowercase_extension(o.out) != ".exr")
       throw InputError(o.out, "deep shadow maps are written as deep OpenEXR: use .exr");
     if (!deep_exr_supported()) write_deep_exr(o.out, DeepMapFile());  // throws the reason
+    check_output_path(o.out, {".exr"}, "deep EXR");
   }
   if (!o.heatmap.empty()) check_image_path(o.heatmap);
+  if (!o.stats.empty()) check_output_path(o.stats, {".json"}, "stats JSON");
 }
 
 nlohmann::json generation_stats(const DsmOptions& o, const DeepShadowMaps& maps, Backend backend) {
@@ -70,12 +73,12 @@ Runner add_dsm(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   cmd->add_option("--heatmap", opt->heatmap,
-                  "image of layers per texel, faces side by side, with a colour scale");
+                  "image of layers per texel, labelled faces in a grid, with a colour scale");
   cmd->add_option("--stats", opt->stats, "write generation figures and run metadata as JSON");
   return [opt] {
+    check_outputs(*opt);
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
-    check_outputs(*opt);
     const Scene scene = load_scene(opt->scene);
     if (scene.lights.empty()) throw InputError(opt->scene, "the scene has no lights");
     const SceneData data(scene, memory_of(backend));
@@ -86,8 +89,9 @@ Runner add_dsm(CLI::App& app) {
     if (!opt->out.empty())
       write_deep_exr(opt->out, deep_map_file(maps, stats["meta"]["git_sha"].get<std::string>()));
     if (!opt->heatmap.empty())
-      write_image(opt->heatmap, layer_heatmap(stored_layers(maps), int(maps.layout().faces.size()),
-                                              maps.settings().resolution));
+      write_image(opt->heatmap,
+                  layer_heatmap(stored_layers(maps), int(maps.layout().faces.size()),
+                                maps.settings().resolution, face_labels(maps.layout())));
     if (!opt->stats.empty()) {
       std::ofstream out(opt->stats);
       if (!out) throw InputError(opt->stats, "cannot write stats file");

@@ -9,6 +9,7 @@
 #include "core/device_memory.h"
 #include "core/execute.h"
 #include "core/log.h"
+#include "io/output_path.h"
 #include "io/points_csv.h"
 #include "io/scene_loader.h"
 #include "scene/scene_view.h"
@@ -31,6 +32,7 @@ Runner add_probe(CLI::App& app) {
   add_shadow_options(cmd, opt->shadows);
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   return [opt] {
+    check_output_path(opt->out, {".csv"}, "transmittance CSV");  // before any work
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
     auto method = make_shadow_method(opt->shadows);

@@ -10,6 +10,7 @@
 #include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
 #include "io/image.h"
+#include "io/output_path.h"
 #include "io/scene_loader.h"
 #include "renderer/camera_rays.h"
 #include "renderer/raster_render.h"
@@ -57,13 +58,14 @@ Runner add_render(CLI::App& app) {
   cmd->add_option("--height", opt->height, "override the camera's image height")
       ->check(CLI::Range(1, 16384));
   return [opt] {
+    check_image_path(opt->out);  // before any work: an unwritable output would lose the render
+    if (!opt->stats.empty()) check_output_path(opt->stats, {".json"}, "stats JSON");
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
     auto method = make_shadow_method(opt->shadows);
     Scene scene = load_scene(opt->scene);
     if (opt->width) scene.camera.width = opt->width;
     if (opt->height) scene.camera.height = opt->height;
-    check_image_path(opt->out);  // before any work: an unwritable type would lose the render
     const SceneData data(scene, memory_of(backend));
     nlohmann::json stats = {{"meta", run_metadata(backend)},
                             {"scene", opt->scene},

@@ -1,5 +1,6 @@
-// deepvox: the research testbed's one executable. Parses the subcommand, runs it, and turns
-// every error into a clear message on stderr and a non-zero exit (never a crash).
+// deepvox: the research testbed's one executable. Parses the subcommand (command-line mistakes:
+// apps/deepvox/usage_errors.h), runs it, and turns every error into a clear message on stderr
+// and a non-zero exit (never a crash).
 #include <cstdio>
 #include <exception>
 #include <map>
@@ -7,6 +8,7 @@
 
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/run_metadata.h"
+#include "apps/deepvox/usage_errors.h"
 #include "core/error.h"
 #if DEEPVOX_WITH_GL
 #include "gl/gl_voxelizers.h"
@@ -28,11 +30,8 @@ int main(int argc, char** argv) {
   runners["list"] = dv::cli::add_list(app);
   runners["voxelize"] = dv::cli::add_voxelize(app);
   runners["dsm"] = dv::cli::add_dsm(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const int parse_exit = dv::cli::parse_command_line(app, argc, argv); parse_exit >= 0)
+    return parse_exit;
   try {
     for (CLI::App* sub : app.get_subcommands()) return runners.at(sub->get_name())();
   } catch (const dv::InputError& e) {

@@ -1,8 +1,10 @@
 // Storage strategy `blocked` (see blocked_layout.h). Parameters: tile = T texels per side
 // (default 8), layers = most layers per texel (default 256, a multiple of 8), pool = blocks of
-// 8 layers x T^2 texels (default 8 per tile). A node beyond `layers` or with the pool
-// exhausted ends the texel's function there (an overflow with the error reached, reported).
-// Compiled by nvcc when CUDA is on.
+// 8 layers x T^2 texels, sizing = counted | thesis (strategies/storage/pool_sizing.h). The pool:
+// `pool` when given; else counted (default) sums over the tiles the blocks each needs for its
+// deepest texel (at most layers / 8), and thesis reserves pool_per_tile (default 8) per tile. A
+// node beyond `layers` or with the pool exhausted ends the texel's function there (an overflow with
+// the error reached, reported). Compiled by nvcc when CUDA is on.
 #include <algorithm>
 #include <memory>
 
@@ -10,6 +12,7 @@
 #include "strategies/storage/blocked_layout.h"
 #include "strategies/storage/dsm_storage.h"
 #include "strategies/storage/ensure_buffer.h"
+#include "strategies/storage/pool_sizing.h"
 
 namespace dv {
 
@@ -39,7 +42,8 @@ class BlockedStorage final : public DsmStorage {
       : tile_(p.integer("tile", 8)),
         layers_(p.integer("layers", 256)),
         pool_per_tile_(p.number("pool_per_tile", 8.0)),
-        pool_(p.integer("pool", 0)) {
+        pool_(p.integer("pool", 0)),
+        sizing_(read_pool_sizing(p)) {
     if (tile_ < 1 || tile_ > 256) throw InputError("blocked tile", "must lie in [1, 256]");
     if (layers_ < kBlockLayers || layers_ % kBlockLayers != 0 || layers_ > 65536)
       throw InputError("blocked layers", "must be a multiple of 8 in [8, 65536]");
@@ -50,7 +54,8 @@ class BlockedStorage final : public DsmStorage {
     return {{"tile", tile_},
             {"layers", layers_},
             {"pool", pool_ ? nlohmann::json(pool_) : nlohmann::json("auto")},
-            {"pool_per_tile", pool_per_tile_}};
+            {"pool_per_tile", pool_per_tile_},
+            {"sizing", to_string(sizing_)}};
   }
 
   void generate(const DsmGenerationContext& c) override {
@@ -60,7 +65,13 @@ class BlockedStorage final : public DsmStorage {
     layout_ = {tile_, (res + tile_ - 1) / tile_, res, layers_ / kBlockLayers, int64_t(res) * res};
     tiles_ = g.faces.size * int64_t(layout_.tiles_per_side) * layout_.tiles_per_side;
     const int64_t block_entries = int64_t(kBlockLayers) * tile_ * tile_;
-    const double wanted = pool_ > 0 ? double(pool_) : pool_per_tile_ * double(tiles_);
+    double wanted = pool_ > 0 ? double(pool_) : pool_per_tile_ * double(tiles_);
+    if (pool_ == 0 && sizing_ == PoolSizing::counted) {
+      wanted = 0.0;
+      for (int32_t deepest :
+           count_nodes_per_group(c, {NodeCountGroups::tile, true, layout_}, tiles_))
+        wanted += double(units_needed(deepest, kBlockLayers, layout_.blocks_per_tile));
+    }
     capacity_ = int32_t(std::min(wanted, 2147483647.0));
     ensure_buffer(indirection_, memory, tiles_ * layout_.blocks_per_tile, "dsm block indirection");
     ensure_buffer(used_, memory, 1, "dsm blocks used");
@@ -103,6 +114,7 @@ class BlockedStorage final : public DsmStorage {
   int tile_, layers_;
   double pool_per_tile_;
   int32_t pool_;
+  PoolSizing sizing_;
   int32_t capacity_ = 0;
   BlockedLayout layout_{};
   int64_t tiles_ = 0, taken_ = 0;
@@ -115,7 +127,7 @@ class BlockedStorage final : public DsmStorage {
 void register_blocked_storage(Registry<DsmStorage>& registry) {
   registry.add("blocked",
                "Hadwiger 2006 3.4: tiles, blocks of 8 layers on demand, indirection per tile "
-               "(params: tile, layers, pool, pool_per_tile)",
+               "(params: tile, layers, pool, pool_per_tile, sizing=counted|thesis)",
                [](const StrategyParams& p) { return std::make_unique<BlockedStorage>(p); });
 }
 

@@ -1,6 +1,9 @@
 // Storage strategy `chunked` (see chunked_layout.h). Parameters: alloc = thesis | aggregated
 // (default aggregated), chunk = L_C layers per chunk (default 64), block_chunks = C_B (default
-// 64), pool = C_max chunks (default 32 per 8x8 block). `thesis` allocates as Knecht's
+// 64), pool = C_max chunks, sizing = counted | thesis (strategies/storage/pool_sizing.h).
+// The pool: `pool` when given; else counted (default) sums over the 8x8 blocks the chunks each
+// needs for its nodes (at most C_B), and thesis reserves pool_per_block (default 32) per block.
+// `thesis` allocates as Knecht's
 // Algorithm 4.1 (threads of a block race, losers' chunks are wasted: measured, reported);
 // `aggregated` claims each chunk once with a pending state, so a block wastes at most the
 // unused tail of its last chunk. A refused node (block at C_B, or pool exhausted) ends the
@@ -13,6 +16,7 @@
 #include "strategies/storage/chunked_layout.h"
 #include "strategies/storage/dsm_storage.h"
 #include "strategies/storage/ensure_buffer.h"
+#include "strategies/storage/pool_sizing.h"
 
 namespace dv {
 
@@ -46,7 +50,8 @@ class ChunkedStorage final : public DsmStorage {
         chunk_layers_(p.integer("chunk", 64)),
         block_limit_(p.integer("block_chunks", 64)),
         pool_per_block_(p.number("pool_per_block", 32.0)),
-        pool_(p.integer("pool", 0)) {
+        pool_(p.integer("pool", 0)),
+        sizing_(read_pool_sizing(p)) {
     if (chunk_layers_ < 1 || chunk_layers_ > 1024)
       throw InputError("chunked chunk", "must lie in [1, 1024]");
     if (block_limit_ < 1 || block_limit_ > 65536)
@@ -59,14 +64,63 @@ class ChunkedStorage final : public DsmStorage {
             {"chunk", chunk_layers_},
             {"block_chunks", block_limit_},
             {"pool", pool_ ? nlohmann::json(pool_) : nlohmann::json("auto")},
-            {"pool_per_block", pool_per_block_}};
+            {"pool_per_block", pool_per_block_},
+            {"sizing", to_string(sizing_)}};
   }
 
   void generate(const DsmGenerationContext& c) override {
+    blocks_ = c.generator.thread_count() / (kDsmBlockSide * kDsmBlockSide);
+    const bool counted = pool_ == 0 && sizing_ == PoolSizing::counted;
+    double wanted = pool_ > 0 ? double(pool_) : pool_per_block_ * double(blocks_);
+    if (counted) {
+      wanted = 0.0;
+      for (int32_t nodes :
+           count_nodes_per_group(c, {NodeCountGroups::generation_block, false}, blocks_))
+        wanted += double(units_needed(nodes, chunk_layers_, block_limit_));
+    }
+    // The racing allocation (alloc=thesis) loses chunks to the race, so a counted pool may run
+    // out: it then grows to what the race took and the maps are written again.
+    for (int attempt = 0;; ++attempt) {
+      write_pool(c, wanted);
+      if (!counted || taken_ <= capacity_ || attempt == 3) break;
+      wanted = double(taken_);
+    }
+  }
+
+  DsmReader reader() const override {
+    DsmReader r;
+    r.kind = DsmReaderKind::chunked;
+    r.chunked = {entries_.const_view(), first_.const_view(), chunk_layers_};
+    return r;
+  }
+  int64_t bytes_allocated() const override {
+    return depth_.bytes() + visibility_.bytes() + next_chunk_.bytes() + next_layer_.bytes() +
+           block_layers_.bytes() + block_chunks_.bytes() + counters_.bytes() + first_.bytes() +
+           entries_.bytes();
+  }
+  int64_t bytes_per_node() const override { return sizeof(ChunkEntry); }
+  nlohmann::json own_figures() const override {
+    const int64_t allocated = std::min<int64_t>(taken_, capacity_);
+    return {
+        {"chunk_bytes", int64_t(chunk_layers_) * int64_t(sizeof(ChunkEntry))},
+        {"pool_chunks", capacity_},
+        {"chunks_allocated", allocated},
+        {"chunks_used", used_},
+        {"chunks_wasted", allocated - used_},
+        {"pool_exhausted", taken_ > capacity_},
+        {"refused_nodes", refused_},
+        {"blocks", blocks_},
+        {"used_chunks_per_block", blocks_ ? double(used_) / double(blocks_) : 0.0},
+        {"wasted_chunks_per_block", blocks_ ? double(allocated - used_) / double(blocks_) : 0.0},
+        {"lookup_bytes", entries_.bytes() + first_.bytes()}};
+  }
+
+ private:
+  // Writes every texel's nodes into a pool of `wanted` chunks (capped to 32-bit entry indices)
+  // and packs the allocated chunks.
+  void write_pool(const DsmGenerationContext& c, double wanted) {
     const DsmGenerator& g = c.generator;
     const Memory memory = memory_of(c.backend);
-    blocks_ = g.thread_count() / (kDsmBlockSide * kDsmBlockSide);
-    const double wanted = pool_ > 0 ? double(pool_) : pool_per_block_ * double(blocks_);
     capacity_ = int32_t(std::min(wanted, double((int64_t(1) << 31) - 1) / chunk_layers_));
     const int64_t pool_entries = int64_t(capacity_) * chunk_layers_;
     ensure_buffer(depth_, memory, pool_entries, "dsm chunk depths");
@@ -103,39 +157,11 @@ class ChunkedStorage final : public DsmStorage {
     for (int32_t slot : block_chunks_.to_vector()) used_ += slot > 0;
   }
 
-  DsmReader reader() const override {
-    DsmReader r;
-    r.kind = DsmReaderKind::chunked;
-    r.chunked = {entries_.const_view(), first_.const_view(), chunk_layers_};
-    return r;
-  }
-  int64_t bytes_allocated() const override {
-    return depth_.bytes() + visibility_.bytes() + next_chunk_.bytes() + next_layer_.bytes() +
-           block_layers_.bytes() + block_chunks_.bytes() + counters_.bytes() + first_.bytes() +
-           entries_.bytes();
-  }
-  int64_t bytes_per_node() const override { return sizeof(ChunkEntry); }
-  nlohmann::json own_figures() const override {
-    const int64_t allocated = std::min<int64_t>(taken_, capacity_);
-    return {
-        {"chunk_bytes", int64_t(chunk_layers_) * int64_t(sizeof(ChunkEntry))},
-        {"pool_chunks", capacity_},
-        {"chunks_allocated", allocated},
-        {"chunks_used", used_},
-        {"chunks_wasted", allocated - used_},
-        {"pool_exhausted", taken_ > capacity_},
-        {"refused_nodes", refused_},
-        {"blocks", blocks_},
-        {"used_chunks_per_block", blocks_ ? double(used_) / double(blocks_) : 0.0},
-        {"wasted_chunks_per_block", blocks_ ? double(allocated - used_) / double(blocks_) : 0.0},
-        {"lookup_bytes", entries_.bytes() + first_.bytes()}};
-  }
-
- private:
   std::string alloc_;
   int32_t chunk_layers_, block_limit_;
   double pool_per_block_;
   int32_t pool_;
+  PoolSizing sizing_;
   int32_t capacity_ = 0;
   int64_t blocks_ = 0, taken_ = 0, refused_ = 0, used_ = 0;
   Buffer<float> depth_, visibility_;
@@ -149,7 +175,8 @@ class ChunkedStorage final : public DsmStorage {
 void register_chunked_storage(Registry<DsmStorage>& registry) {
   registry.add("chunked",
                "Knecht 2011 4.2.2: chunks from a global pool per 8x8 block, linked lists "
-               "(params: alloc=thesis|aggregated, chunk, block_chunks, pool, pool_per_block)",
+               "(params: alloc=thesis|aggregated, chunk, block_chunks, pool, pool_per_block, "
+               "sizing=counted|thesis)",
                [](const StrategyParams& p) { return std::make_unique<ChunkedStorage>(p); });
 }
 

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/execute.h"
 #include "io/binvox.h"
+#include "io/output_path.h"
 #include "io/scene_loader.h"
 #include "strategies/voxelizer/exact_voxelizer.h"
 #include "strategies/voxelizer/voxel_metrics.h"
@@ -100,6 +101,8 @@ Backend voxelize_job_backend(const VoxelizeJob& job) {
 }
 
 nlohmann::json run_voxelize_job(const VoxelizeJob& job, const nlohmann::json& meta) {
+  if (!job.out.empty()) check_output_path(job.out, {".binvox"}, "binvox grid");  // before work
+  if (!job.stats.empty()) check_output_path(job.stats, {".json"}, "stats JSON");
   const bool gl = voxelize_job_uses_gl(job);
   const Backend backend = voxelize_job_backend(job);
   const Registry<Voxelizer>& registry = gl ? gl_voxelizer_registry() : voxelizer_registry();

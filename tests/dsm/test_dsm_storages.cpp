@@ -188,6 +188,67 @@ TEST(ChunkedAllocation, ThesisSchemeStoresTheSameFunctions) {
   expect_same_lookups(compact, thesis, Backend::cpu);
 }
 
+// A lamp-like scene with five omni lights (30 map faces, like glTF's LightsPunctualLamp): the
+// case where the thesis's fixed pools reserve the most.
+Scene five_omni_scene() {
+  Scene scene = test::random_scene(3);
+  scene.lights.clear();
+  test::SceneBuilder b;
+  b.scene = scene;
+  for (int i = 0; i < 5; ++i) b.omni(dvec3(-2.0 + i, 3.0 + 0.2 * i, 1.0 - 0.5 * i));
+  validate_scene(b.scene);
+  return b.scene;
+}
+
+// Counted pools (the default) hold the same functions as compact in a small multiple of its
+// bytes: chunked and blocked within 4x; texture3d gives every texel the deepest texel's layers,
+// exactly, which here (max 11 layers, 89% of texels empty) is within 10x. The thesis's pools
+// reserve 64 layers' worth per texel, over 40x compact.
+TEST(StorageSizing, CountedPoolsStayNearCompactWithFiveOmniLights) {
+  const Scene scene = five_omni_scene();
+  const Generated compact = generate(scene, Backend::cpu, "compact", {}, 0.02f, 64);
+  const int64_t compact_bytes = compact.maps->figures()["bytes_allocated"].get<int64_t>();
+  const std::pair<const char*, int> cases[] = {{"texture3d", 10}, {"chunked", 4}, {"blocked", 4}};
+  for (const auto& [name, factor] : cases) {
+    const Generated counted = generate(scene, Backend::cpu, name, {}, 0.02f, 64);
+    const nlohmann::json& f = counted.maps->figures();
+    EXPECT_EQ(f["overflowed_texels"], 0) << name;
+    EXPECT_EQ(f["nodes"], compact.maps->figures()["nodes"]) << name;
+    const int64_t bytes = f["bytes_allocated"].get<int64_t>();
+    EXPECT_LE(bytes, factor * compact_bytes) << name << ": " << f.dump();
+    if (std::string(name) == "texture3d")
+      EXPECT_EQ(bytes, f["texels"].get<int64_t>() *
+                           (f["max_layers"].get<int64_t>() * int64_t(sizeof(DsmNode)) + 4));
+    EXPECT_EQ(counted.maps->storage().params()["sizing"], "counted");
+    expect_same_lookups(compact, counted, Backend::cpu);
+    const Generated thesis = generate(scene, Backend::cpu, name, {"sizing=thesis"}, 0.02f, 64);
+    EXPECT_GT(thesis.maps->figures()["bytes_allocated"].get<int64_t>(), 40 * compact_bytes) << name;
+    expect_same_lookups(compact, thesis, Backend::cpu);
+  }
+}
+
+// Sets an environment variable for the scope of one test.
+struct ScopedEnv {
+  std::string name;
+  ScopedEnv(const char* n, const char* value) : name(n) { setenv(n, value, 1); }
+  ~ScopedEnv() { unsetenv(name.c_str()); }
+};
+
+TEST(StorageSizing, ReservationBeyondFreeMemoryNamesStructureAndBytes) {
+  const Scene scene = five_omni_scene();
+  const ScopedEnv limit("DEEPVOX_MEMORY_LIMIT", "20000000");
+  try {
+    generate(scene, Backend::cpu, "texture3d", {"sizing=thesis"}, 0.02f, 64);
+    FAIL() << "a 63 MB atlas fit into a 20 MB limit";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("dsm texture3d atlas"), std::string::npos) << m;
+    EXPECT_NE(m.find(std::to_string(int64_t(30) * 64 * 64 * 64 * 8) + " bytes"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("20 MB free"), std::string::npos) << m;
+  }
+}
+
 TEST(StorageParams, BadValuesAreRejected) {
   EXPECT_THROW(storage_registry().create("chunked", StrategyParams::parse({"alloc=greedy"})),
                InputError);
