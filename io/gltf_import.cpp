@@ -29,6 +29,7 @@
 #include "core/log.h"
 #include "core/text.h"
 #include "generators/mesh_topology.h"
+#include "scene/default_staging.h"
 
 namespace dv {
 namespace {
@@ -362,15 +363,9 @@ Interior volume_interior(const tinygltf::Value& volume, const std::string& where
   if (thickness == 0.0) return interior;  // thin-walled: no medium inside
   dvec3 sigma(0.0);
   if (std::isfinite(distance)) sigma = -glm::log(glm::max(color, dvec3(1e-6))) / distance;
-  double mean = (sigma.x + sigma.y + sigma.z) / 3.0;
-  double spread = std::max({sigma.x, sigma.y, sigma.z}) - std::min({sigma.x, sigma.y, sigma.z});
-  if (spread > 1e-9 * std::max(1.0, mean))
-    log_warning(where +
-                ": attenuationColor is not grey but deepvox media are; using the mean "
-                "extinction " +
-                std::to_string(mean) + " per unit");
   interior.kind = InteriorKind::constant;
-  interior.sigma = mean;
+  interior.sigma = (sigma.x + sigma.y + sigma.z) / 3.0;
+  if (interior.sigma > 0.0) interior.sigma_tint = sigma / interior.sigma;
   return interior;
 }
 
@@ -402,6 +397,7 @@ MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string&
     require(unit_range(transmission), ext_where, "transmissionFactor must lie in [0, 1]");
   }
   out.material.alpha = coverage * (1.0 - transmission);
+  out.material.transmission = coverage * transmission;
   if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_volume"))
     out.interior = volume_interior(*ext, where + ": KHR_materials_volume");
   return out;
@@ -409,7 +405,8 @@ MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string&
 
 class Importer {
  public:
-  Importer(std::string path, const Model& model) : path_(std::move(path)), model_(model) {}
+  Importer(std::string path, const Model& model, const GltfImportOptions& options)
+      : path_(std::move(path)), model_(model), options_(options) {}
 
   Scene run();
 
@@ -419,11 +416,11 @@ class Importer {
   void add_node(int node_index, const dmat4& world);
   void add_light(const tinygltf::Node& node, const std::string& where, const dmat4& world);
   void finish_camera();
-  void add_default_light();
   std::string at(const std::string& what) const { return path_ + ": " + what; }
 
   std::string path_;
   const Model& model_;
+  GltfImportOptions options_;
   Scene scene_;
   std::map<std::pair<int, int>, int> primitive_meshes_;  // (mesh, primitive) -> scene mesh or -1
   std::map<int, MappedMaterial> materials_;
@@ -567,6 +564,7 @@ void Importer::add_light(const tinygltf::Node& node, const std::string& where, c
             light_where, "spot cone angles need 0 <= innerConeAngle <= outerConeAngle <= pi/2");
     light.type = LightType::spot;
     light.cutoff_deg = std::min(degrees(outer), 90.0);
+    // cos_inner = cos(cutoff - penumbra) = cos(innerConeAngle): the spec's falloff window.
     light.penumbra_deg = degrees(outer - inner);
   } else if (src.type == "point") {
     light.type = LightType::omni;
@@ -583,7 +581,13 @@ void Importer::add_light(const tinygltf::Node& node, const std::string& where, c
   }
   require(std::isfinite(src.intensity) && src.intensity >= 0.0, light_where,
           "intensity must be a finite number >= 0");
-  light.intensity = src.intensity;
+  require(std::isfinite(src.range) && src.range >= 0.0, light_where,
+          "range must be a finite number >= 0 (0: no range)");
+  light.intensity = photometric_to_radiometric(src.intensity);
+  light.source_intensity = src.intensity;
+  light.source_unit = light.type == LightType::directional ? "lx" : "cd";
+  light.gltf_cone = light.type == LightType::spot;
+  light.range = light.type == LightType::directional ? 0.0 : src.range;
   scene_.lights.push_back(light);
 }
 
@@ -619,11 +623,6 @@ void Importer::finish_camera() {
   cam.near_plane = p.znear;
 }
 
-void Importer::add_default_light() {
-  scene_.lights.push_back(default_light(world_bounds(scene_)));
-  log_info(path_ + ": no lights in the file; added an omni light above the scene");
-}
-
 Scene Importer::run() {
   if (model_.scenes.empty()) throw InputError(path_, "the file has no scenes");
   int scene_index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
@@ -639,7 +638,10 @@ Scene Importer::run() {
   for (int mesh : with_interior) {
     if (is_closed(scene_.meshes[size_t(mesh)])) orient_outward(scene_.meshes[size_t(mesh)]);
   }
-  if (scene_.lights.empty()) add_default_light();
+  if (scene_.lights.empty() && options_.default_lights) {
+    scene_.lights = default_lights(world_bounds(scene_));
+    log_info(path_ + ": no lights in the file; added the default key and fill lights");
+  }
   finish_camera();
   scene_.source = path_;
   validate_scene(scene_);
@@ -648,10 +650,14 @@ Scene Importer::run() {
 
 }  // namespace
 
-Scene load_gltf_scene(const std::string& path) {
+Scene load_gltf_scene(const std::string& path, const GltfImportOptions& options) {
   Model model = parse_model(path);
   check_extensions(path, model);
-  return Importer(path, model).run();
+  return Importer(path, model, options).run();
+}
+
+double photometric_to_radiometric(double photometric) {
+  return photometric / kLumensPerWatt;
 }
 
 bool is_gltf_file(const std::string& path) {

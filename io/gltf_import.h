@@ -38,16 +38,28 @@
 //     times the distance to the centre of the scene bounds), fov_deg = yfov in degrees,
 //     width = 640, height = round(640 / aspectRatio) (480 without aspectRatio), near_plane =
 //     znear. Orthographic cameras are skipped with a warning.
-//   - No camera: fov 45 degrees, looking at the centre of the world bounds from the +Z side,
+//   - No camera: dv::default_camera (scene/default_staging.h): fov 45 degrees, a three-quarter
+//     view of the world bounds' centre (35 degrees round from +Z towards +X, 25 degrees up),
 //     far enough that the bounding sphere fits the vertical field of view.
 // Lights (KHR_lights_punctual, attached to nodes)
 //   - Position = node origin; a light shines along its node's local -Z. spot -> spot with
 //     cutoff_deg = outerConeAngle (default pi/4) and penumbra_deg = outer - inner cone angle,
-//     both in degrees; point -> omni; directional -> directional. color and intensity
-//     (default 1) are copied (glTF units: candela, lux for directional); range is ignored.
-//   - No light at all: one omni light above the scene bounds (log_info), at height r above
-//     the top, r the bounding-sphere radius, with intensity d^2 (d its distance to the bounds
-//     centre) so the irradiance it gives at the centre is 1.
+//     both in degrees, and the spec's cone falloff (Light::gltf_cone: (clamp((cos a - cos
+//     outer) / max(cos inner - cos outer, 0.001), 0, 1))^2, a the angle to the axis); point
+//     -> omni; directional -> directional. color is copied.
+//   - Units: glTF intensity is photometric (candela = lm/sr for point and spot, lux = lm/m^2
+//     for directional). deepvox's scale is radiometric: a light of intensity I gives
+//     irradiance I / d^2 (W/m^2) at distance d, and a white surface of diffuse 1 facing it
+//     shows I / d^2 before exposure (render --exposure, --tonemap). The conversion is the
+//     spec's luminous efficacy of 683 lm/W: I = candela / 683 W/sr, E = lux / 683 W/m^2
+//     (photometric_to_radiometric). So a 100 cd lamp 0.5 m away lights a white diffuse
+//     surface to 400 / 683 = 0.59. The original value and unit are kept for `info`.
+//   - range (point and spot, 0 = none) multiplies the 1/d^2 falloff by the spec's window
+//     clamp(1 - (d / range)^4, 0, 1).
+//   - No light at all: dv::default_lights (scene/default_staging.h): a key spot light from
+//     above and beside the default view, irradiance 1 at the bounds' centre, and a dim fill
+//     (log_info); not when GltfImportOptions::default_lights is false (a JSON scene that
+//     imports the file adds its own).
 // Materials (one per primitive; no material means glTF's default white material)
 //   - color = baseColorFactor rgb; diffuse = 0.8; ambient stays 0.1.
 //   - Phong from PBR roughness r: specular = 0.2 * (1 - r) + 0.04 (a dielectric's 4 % plus a
@@ -57,13 +69,18 @@
 //     baseColorFactor alpha for BLEND, and 1 or 0 for MASK (alpha >= alphaCutoff or not);
 //     t = KHR_materials_transmission transmissionFactor (0 without the extension). So
 //     transmission 0.25 gives alpha 0.75, and a BLEND material without it its factor's alpha.
+//     Shadows see exactly this alpha. Material::transmission = a * t: in the camera image
+//     that part of the surface shows Phong highlights and tints what is seen through it by
+//     the base colour (glass with transmission 1 casts no shadow but is visible); `info`
+//     warns about fully transmissive materials.
 //   - KHR_materials_volume: thicknessFactor 0 (the default) is thin-walled: no interior.
 //     thicknessFactor > 0 gives a constant interior with sigma = -ln(c) / d per channel from
 //     attenuationColor c (default [1,1,1], channels clamped to >= 1e-6) and
-//     attenuationDistance d (default +infinity, giving sigma 0). deepvox media are grey: when
-//     the channels' sigmas differ their mean is used and a warning is logged once per
-//     material. An object with an interior must have a closed mesh; dv::validate_scene, called
-//     at the end, reports open edges.
+//     attenuationDistance d (default +infinity, giving sigma 0). Shadows (the oracle and every
+//     shadow method) are scalar and use the mean of the three sigmas (Interior::sigma); the
+//     camera pass attenuates each channel by its own (Interior::sigma_tint), so a red medium
+//     tints what is seen through it red. An object with an interior must have a closed
+//     mesh; dv::validate_scene, called at the end, reports open edges.
 //   - Factors outside their glTF ranges ([0,1] colours, roughness, transmission; d > 0;
 //     thickness >= 0) or of the wrong JSON type are InputErrors naming the material.
 // The scene must contain at least one triangle; scene.source is set to the path.
@@ -75,8 +92,19 @@
 
 namespace dv {
 
+// Luminous efficacy the KHR_lights_punctual spec uses to relate its photometric units to
+// radiometric ones (lm/W).
+inline constexpr double kLumensPerWatt = 683.0;
+
+// candela -> W/sr (point, spot) or lux -> W/m^2 (directional): photometric / 683.
+double photometric_to_radiometric(double photometric);
+
+struct GltfImportOptions {
+  bool default_lights = true;  // add dv::default_lights when the file has no light
+};
+
 // Loads a .gltf or .glb file as described above; throws InputError naming the file.
-Scene load_gltf_scene(const std::string& path);
+Scene load_gltf_scene(const std::string& path, const GltfImportOptions& options = {});
 
 // True when the path ends in .gltf or .glb (any letter case).
 bool is_gltf_file(const std::string& path);

@@ -22,7 +22,10 @@ struct Image {
   }
 };
 
-// Writes by extension: .png always; .exr only where exr_supported().
+// Writes by extension: .png always; .exr only where exr_supported(). 8-bit files (PNG) show
+// `image` through `display` (io/tone_mapping.h: exposure and tone curve); EXR stays linear.
+struct DisplayTransform;
+void write_image(const std::string& path, const Image& image, const DisplayTransform& display);
 void write_image(const std::string& path, const Image& image);
 // Throws the InputError write_image would throw for this path (type, directory, permission;
 // io/output_path.h), without writing.

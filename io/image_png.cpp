@@ -8,6 +8,7 @@
 #include "core/text.h"
 #include "io/image.h"
 #include "io/output_path.h"
+#include "io/tone_mapping.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_WRITE_NO_STDIO_FILENAME_CHECK
@@ -38,10 +39,15 @@ void check_image_path(const std::string& path) {
   check_output_path(path, {".png", ".exr"}, "image");
 }
 
-void write_image(const std::string& path, const Image& image) {
+void write_image(const std::string& path, const Image& image, const DisplayTransform& display) {
   check_image_path(path);
-  if (lowercase_extension(path) == ".png") return write_png(path, image);
+  if (lowercase_extension(path) == ".png")
+    return write_png(path, apply_display_transform(image, display));
   write_exr(path, image);
+}
+
+void write_image(const std::string& path, const Image& image) {
+  write_image(path, image, DisplayTransform{});
 }
 
 }  // namespace dv

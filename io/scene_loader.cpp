@@ -13,6 +13,7 @@
 #include "io/gltf_import.h"
 #include "io/json_reader.h"
 #include "io/mesh_io.h"
+#include "scene/default_staging.h"
 
 namespace dv {
 
@@ -90,6 +91,7 @@ Material read_material(JsonReader& m) {
   mat.specular = m.number("specular", mat.specular);
   mat.shininess = m.number("shininess", mat.shininess);
   mat.alpha = m.number("alpha", mat.alpha);
+  mat.transmission = m.number("transmission", mat.transmission);
   m.finish();
   return mat;
 }
@@ -152,7 +154,13 @@ struct Loader {
     if (type == "none") {
     } else if (type == "constant") {
       it.kind = InteriorKind::constant;
-      it.sigma = in.number("sigma");
+      if (in.has("sigma") && in.raw("sigma").is_array()) {  // tinted: per-channel extinction
+        const dvec3 sigma = in.vec3("sigma");
+        it.sigma = (sigma.x + sigma.y + sigma.z) / 3.0;
+        if (it.sigma > 0.0) it.sigma_tint = sigma / it.sigma;
+      } else {
+        it.sigma = in.number("sigma");
+      }
     } else if (type == "volume") {
       it.kind = InteriorKind::volume;
       const std::string v = in.string("volume");
@@ -224,16 +232,39 @@ struct Loader {
     c.finish();
   }
 
+  // "import": "file.glb" or {"file": ..., "lights": true|false, "light_scale": k}: the glTF's
+  // meshes, objects, camera and (unless "lights" is false) its lights times k. Default
+  // lights are left to read(): they are added only when the whole scene has none.
+  void read_import(JsonReader& r) {
+    std::string file;
+    bool keep_lights = true;
+    double light_scale = 1.0;
+    if (r.raw("import").is_string()) {
+      file = r.string("import");
+    } else {
+      JsonReader in = r.child("import");
+      file = in.string("file");
+      keep_lights = in.boolean("lights", keep_lights);
+      light_scale = in.number("light_scale", light_scale);
+      if (!(light_scale >= 0.0 && std::isfinite(light_scale)))
+        in.fail("light_scale", "must be a finite number >= 0");
+      in.finish();
+    }
+    Scene imported = load_gltf_scene(resolve(file), {.default_lights = false});
+    scene.meshes = std::move(imported.meshes);
+    scene.objects = std::move(imported.objects);
+    if (keep_lights) scene.lights = std::move(imported.lights);
+    for (Light& light : scene.lights) {
+      light.intensity *= light_scale;
+      light.source_intensity *= light_scale;
+    }
+    scene.camera = imported.camera;
+  }
+
   void read(const Json& root, const std::string& file) {
     JsonReader r(root, file, "");
-    if (r.has("import")) {
-      const std::string path = resolve(r.string("import"));
-      Scene imported = load_gltf_scene(path);
-      scene.meshes = std::move(imported.meshes);
-      scene.objects = std::move(imported.objects);
-      scene.lights = std::move(imported.lights);
-      scene.camera = imported.camera;
-    }
+    const bool imports = r.has("import");
+    if (imports) read_import(r);
     if (r.has("volumes")) {
       JsonReader vols = r.child("volumes");
       for (auto& [name, spec] : r.raw("volumes").items()) {
@@ -255,9 +286,12 @@ struct Loader {
       int i = 0;
       for (JsonReader& o : r.children("objects")) read_object(o, i++);
     }
+    const bool ground = r.boolean("ground", false);
     r.finish();
     if (scene.objects.empty()) throw InputError(file, "scene has no objects");
-    if (scene.lights.empty()) throw InputError(file, "scene has no lights");
+    if (scene.lights.empty() && !imports) throw InputError(file, "scene has no lights");
+    if (scene.lights.empty()) scene.lights = default_lights(world_bounds(scene));
+    if (ground) add_ground_plane(scene);
   }
 };
 
@@ -279,7 +313,7 @@ Scene load_scene(const std::string& path, const std::string& assets_dir) {
     scene.objects.push_back(o);
     const Aabb b = world_bounds(scene);
     scene.camera = default_camera(b);
-    scene.lights.push_back(default_light(b));
+    scene.lights = default_lights(b);
   } else if (lowercase_extension(path) == ".json") {
     Loader loader{scene,
                   fs::path(path).parent_path(),

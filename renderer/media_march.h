@@ -72,6 +72,17 @@ DV_HD void march_media(const SceneView& s, const InsideSet& inside, const dvec3&
   }
 }
 
+// The per-channel extinction of the constant media the ray is inside (the camera pass tints by
+// it; shadows and march_media use the scalar sigma, summed in the same order).
+DV_HD inline dvec3 constant_extinction_rgb(const SceneView& s, const InsideSet& inside) {
+  dvec3 sigma(0.0);
+  for (int i = 0; i < inside.count; ++i) {
+    const ObjectView& o = s.objects[inside.object[i]];
+    if (o.interior == InteriorKind::constant) sigma += o.sigma_rgb;
+  }
+  return sigma;
+}
+
 // The extinction of the volumes the ray is inside at x (constant media not included).
 DV_HD inline double volume_extinction(const SceneView& s, const InsideSet& inside, const dvec3& x) {
   double sigma = 0.0;

@@ -1,6 +1,8 @@
 // The camera pass's payload for the fragment walk: Phong-shaded translucent surfaces and
 // volume samples composited front to back (Knecht eq. 3.10/3.11), constant media absorbing
 // exactly, the shadow term of every shaded sample from a shadow source. Host and device code.
+// What the camera sees through things is RGB: transmissive surfaces tint it by their colour
+// and constant media by their per-channel extinction; shadows stay scalar (the oracle's).
 #pragma once
 
 #include <cmath>
@@ -24,45 +26,62 @@ struct ShadePayload {
   dvec3 dir;
   typename Source::Cursor cursor{};
   dvec3 color{0.0};
-  double transmittance = 1.0;
+  dvec3 transmittance{1.0};
   unsigned long long samples = 0;
+  dvec3 segment_sigma_rgb{0.0};  // the constant media's extinction in the current segment
 
-  DV_HD bool done() const { return transmittance <= kSaturatedTransmittance; }
+  DV_HD bool done() const {
+    return max_value(transmittance.x, max_value(transmittance.y, transmittance.z)) <=
+           kSaturatedTransmittance;
+  }
 
-  // A translucent surface: its Phong colour over what lies behind, weighted by its opacity.
+  // A translucent surface: its Phong colour over what lies behind, weighted by its opacity;
+  // its transmissive part adds highlights and tints what lies behind by its colour.
   DV_HD void surface(const RayHit& h, int32_t object) {
     const ObjectView& o = s.objects[object];
-    if (o.alpha <= 0.0) return;
+    if (o.alpha <= 0.0 && o.transmission <= 0.0) return;
     const u32vec3 tri = s.triangles[h.triangle];
     const dvec3 p0 = s.vertices[tri.x], p1 = s.vertices[tri.y], p2 = s.vertices[tri.z];
     dvec3 n = glm::cross(p1 - p0, p2 - p0);
     const double len = glm::length(n);
     n = len > 0.0 ? n / len : -dir;
     if (glm::dot(n, dir) > 0.0) n = -n;  // two-sided: face the viewer
-    const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, origin + dir * h.t, n, -dir);
-    color += transmittance * o.alpha * c;
-    transmittance *= 1.0 - o.alpha;
+    const dvec3 p = origin + dir * h.t;
+    if (o.alpha > 0.0) {
+      const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, p, n, -dir);
+      color += transmittance * o.alpha * c;
+    }
+    if (o.transmission <= 0.0) {
+      transmittance *= 1.0 - o.alpha;
+      return;
+    }
+    const dvec3 highlight = shade_phong(s, shadows, cursor, o, o.color, p, n, -dir, true);
+    color += transmittance * o.transmission * highlight;
+    transmittance *= (1.0 - o.alpha - o.transmission) + o.transmission * o.color;
   }
 
   // Media over [t0, t1], stepped by march_media (renderer/media_march.h).
   DV_HD void segment(const InsideSet& inside, double t0, double t1) {
+    segment_sigma_rgb = constant_extinction_rgb(s, inside);
     march_media(s, inside, origin, dir, t0, t1, *this);
   }
 
-  // Constant media only over [a, b]: they absorb, exactly.
-  DV_HD void absorb(double sigma_constant, double a, double b) {
-    transmittance *= exp(-sigma_constant * (b - a));
+  // Constant media only over [a, b]: they absorb, exactly, per channel.
+  DV_HD void absorb(double, double a, double b) {
+    const double length = b - a;
+    transmittance.x *= exp(-segment_sigma_rgb.x * length);
+    transmittance.y *= exp(-segment_sigma_rgb.y * length);
+    transmittance.z *= exp(-segment_sigma_rgb.z * length);
   }
 
-  DV_HD void sample(const InsideSet& inside, double sigma_constant, const dvec3& x, double a,
-                    double b) {
-    volume_sample(inside, sigma_constant, x, b - a);
+  DV_HD void sample(const InsideSet& inside, double, const dvec3& x, double a, double b) {
+    volume_sample(inside, segment_sigma_rgb, x, b - a);
   }
 
   // One volume sample of length dt at x: alpha = 1 - exp(-sigma * dt), emission from the volumes'
   // share of the extinction, shaded with the dominant volume's density gradient as normal (the
   // exact gradient of the trilinear interpolant: the same eight samples, no extra lookups).
-  DV_HD void volume_sample(const InsideSet& inside, double sigma_constant, const dvec3& x,
+  DV_HD void volume_sample(const InsideSet& inside, const dvec3& sigma_constant, const dvec3& x,
                            double dt) {
     double sigma_volume = 0.0, strongest = 0.0;
     dvec3 weighted_color(0.0), gradient(0.0);
@@ -80,9 +99,9 @@ struct ShadePayload {
       }
     }
     ++samples;
-    const double sigma = sigma_constant + sigma_volume;
-    if (sigma <= 0.0) return;
-    const double alpha = 1.0 - exp(-sigma * dt);
+    const dvec3 sigma = sigma_constant + sigma_volume;
+    if (max_value(sigma.x, max_value(sigma.y, sigma.z)) <= 0.0) return;
+    const dvec3 alpha(1.0 - exp(-sigma.x * dt), 1.0 - exp(-sigma.y * dt), 1.0 - exp(-sigma.z * dt));
     if (dominant >= 0) {
       const ObjectView& o = s.objects[dominant];
       dvec3 n = gradient;

@@ -44,33 +44,6 @@ Aabb world_bounds(const Scene& scene) {
   return box;
 }
 
-// Bounding-sphere radius of a box, never zero.
-static double bounding_radius(const Aabb& bounds) {
-  return bounds.empty() ? 1.0 : std::max(0.5 * glm::length(bounds.extent()), 1e-3);
-}
-
-Camera default_camera(const Aabb& bounds) {
-  Camera c;
-  const dvec3 center = bounds.empty() ? dvec3(0.0) : bounds.center();
-  const double radius = bounding_radius(bounds);
-  c.fov_deg = 45.0;
-  const double distance = radius / std::sin(0.5 * c.fov_deg * 3.14159265358979323846 / 180.0);
-  c.target = center;
-  c.position = center + dvec3(0.0, 0.0, distance);
-  c.near_plane = std::min(0.01, 0.5 * (distance - radius));
-  return c;
-}
-
-Light default_light(const Aabb& bounds) {
-  Light l;
-  const dvec3 center = bounds.empty() ? dvec3(0.0) : bounds.center();
-  l.type = LightType::omni;
-  l.position =
-      dvec3(center.x, (bounds.empty() ? 0.0 : bounds.hi.y) + bounding_radius(bounds), center.z);
-  l.intensity = glm::dot(l.position - center, l.position - center);  // irradiance 1 at the centre
-  return l;
-}
-
 namespace {
 
 bool finite(const dvec3& v) {
@@ -128,6 +101,8 @@ void validate_scene(Scene& scene) {
     if (!(m.alpha >= 0.0 && m.alpha <= 1.0))
       throw InputError(where, "material alpha must lie in [0,1]");
     if (!finite(m.color)) throw InputError(where, "material colour is not finite");
+    if (!(m.transmission >= 0.0 && m.transmission <= 1.0 - m.alpha + 1e-12))
+      throw InputError(where, "material transmission must lie in [0, 1 - alpha]");
     if (std::abs(glm::determinant(obj.transform)) < 1e-300 ||
         !std::isfinite(glm::determinant(obj.transform)))
       throw InputError(where, "transform is singular or not finite");
@@ -135,6 +110,9 @@ void validate_scene(Scene& scene) {
     if (in.kind == InteriorKind::none) continue;
     if (in.kind == InteriorKind::constant && !(in.sigma >= 0.0 && std::isfinite(in.sigma)))
       throw InputError(where, "interior sigma must be finite and >= 0");
+    if (in.kind == InteriorKind::constant && !(finite(in.sigma_tint) && in.sigma_tint.x >= 0.0 &&
+                                               in.sigma_tint.y >= 0.0 && in.sigma_tint.z >= 0.0))
+      throw InputError(where, "interior sigma must be >= 0 in every channel");
     if (in.kind == InteriorKind::volume) {
       if (in.volume < 0 || in.volume >= int(scene.volumes.size()))
         throw InputError(where, "interior volume index out of range");

@@ -19,7 +19,9 @@ struct TriangleMesh {
 };
 
 // Surface material: Phong parameters plus surface opacity. Light through one surface crossing
-// is multiplied by (1 - alpha).
+// is multiplied by (1 - alpha). `transmission` (at most 1 - alpha) is the part of that light
+// which passes through the material (glass) rather than past it (holes, coverage): the camera
+// pass shows Phong highlights on it and tints it by `color`; shadows see only 1 - alpha.
 struct Material {
   dvec3 color{0.8, 0.8, 0.8};
   double ambient = 0.1;
@@ -27,6 +29,7 @@ struct Material {
   double specular = 0.2;
   double shininess = 32.0;
   double alpha = 1.0;
+  double transmission = 0.0;
 };
 
 // One control point of a piecewise-linear transfer function: density -> colour and extinction
@@ -58,8 +61,11 @@ enum class InteriorKind : uint8_t { none, constant, volume };
 
 struct Interior {
   InteriorKind kind = InteriorKind::none;
-  double sigma = 0.0;  // constant: extinction per world unit (absorption only)
-  int volume = -1;     // volume: index into Scene::volumes
+  double sigma = 0.0;  // constant: extinction per world unit (absorption only), for shadows
+  // constant: the camera pass's extinction of channel c is sigma * sigma_tint[c] (tinted
+  // media, mean 1); shadows are scalar and use sigma alone. Grey media keep [1, 1, 1].
+  dvec3 sigma_tint{1.0};
+  int volume = -1;  // volume: index into Scene::volumes
   TransferFunction transfer;
   double step = 0.0;  // volume: ray-marching step of the renderer in world units (0: half a cell)
 };
@@ -81,7 +87,17 @@ struct Light {
   double cutoff_deg = 30.0;         // spot: half-angle of the cone
   double penumbra_deg = 0.0;        // spot: width of the fade inside the cone edge
   dvec3 color{1.0, 1.0, 1.0};
-  double intensity = 1.0;  // spot/omni: radiant intensity (falls off with 1/d^2)
+  // spot/omni: radiant intensity I (falls off with 1/d^2): a white surface of diffuse 1
+  // facing the light at distance d shows I / d^2 before exposure; directional: irradiance.
+  double intensity = 1.0;
+  // glTF lights (KHR_lights_punctual): the spec's cone falloff (squared, linear in the cosine)
+  // instead of the smoothstep penumbra, and the range window (0: no range).
+  bool gltf_cone = false;
+  double range = 0.0;
+  // Where the intensity came from, for `info`: the unit ("cd", "lx") and value before the
+  // conversion, or an empty unit for deepvox's own scale.
+  std::string source_unit;
+  double source_intensity = 0.0;
 };
 
 struct Camera {
@@ -109,13 +125,6 @@ const char* to_string(InteriorKind kind);
 
 // World-space bounds of all objects (vertices after transforms).
 Aabb world_bounds(const Scene& scene);
-
-// A 640x480 camera with a 45 degree field of view looking at the centre of `bounds` from the
-// +z side, far enough that the bounding sphere fits the vertical field of view.
-Camera default_camera(const Aabb& bounds);
-// An omni light one bounding-sphere radius above the top of `bounds`, with the intensity that
-// gives irradiance 1 at the centre.
-Light default_light(const Aabb& bounds);
 
 // Checks invariants the renderer and oracle rely on (indices in range, finite numbers, closed
 // meshes for interiors, sorted transfer functions); throws InputError naming scene.source.

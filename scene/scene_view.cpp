@@ -18,6 +18,8 @@ LightView make_light_view(const Light& l) {
   v.cos_inner = std::cos(std::max(0.0, l.cutoff_deg - l.penumbra_deg) * deg);
   v.color = l.color;
   v.intensity = l.intensity;
+  v.gltf_cone = l.gltf_cone;
+  v.range = l.range;
   return v;
 }
 
@@ -69,8 +71,11 @@ ObjectView make_object_view(const Scene& scene, const Object& obj,
   o.specular = m.specular;
   o.shininess = m.shininess;
   o.alpha = m.alpha;
+  o.transmission = m.transmission;
   o.interior = obj.interior.kind;
-  o.sigma = obj.interior.kind == InteriorKind::constant ? obj.interior.sigma : 0.0;
+  const bool constant = obj.interior.kind == InteriorKind::constant;
+  o.sigma = constant ? obj.interior.sigma : 0.0;
+  o.sigma_rgb = constant ? obj.interior.sigma * obj.interior.sigma_tint : dvec3(0.0);
   o.volume = obj.interior.kind == InteriorKind::volume ? obj.interior.volume : -1;
   o.transfer_first = int32_t(transfer.size());
   o.transfer_count = int32_t(obj.interior.transfer.points.size());

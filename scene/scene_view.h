@@ -15,10 +15,12 @@ namespace dv {
 struct ObjectView {
   dvec3 color;
   double ambient, diffuse, specular, shininess;
-  double alpha;  // surface opacity per crossing
+  double alpha;         // surface opacity per crossing
+  double transmission;  // part of 1 - alpha through the material: highlights and tint
   InteriorKind interior;
-  double sigma;    // constant interior
-  int32_t volume;  // index into SceneView::volumes, or -1
+  double sigma;     // constant interior (shadows)
+  dvec3 sigma_rgb;  // constant interior per channel (camera pass)
+  int32_t volume;   // index into SceneView::volumes, or -1
   int32_t transfer_first, transfer_count;
   double step;           // volume ray-marching step (world units)
   dmat4 world_to_grid;   // world position -> continuous grid index (i, j, k)
@@ -42,6 +44,8 @@ struct LightView {
   double cos_inner;   // spot: cos(cutoff - penumbra)
   dvec3 color;
   double intensity;
+  bool gltf_cone;  // spot: KHR_lights_punctual's squared linear falloff, not smoothstep
+  double range;    // KHR_lights_punctual range window, 0: none
 };
 
 // Whether unit direction `from_light` (from a spot light's position toward a point) leaves the

@@ -1,4 +1,5 @@
-// `deepvox info SCENE [--json]`: what a scene holds (objects, triangles, volumes, lights, bounds).
+// `deepvox info SCENE [--json]`: what a scene holds (objects, triangles, volumes, lights with
+// their colours and units, bounds) and warnings about what will not look as a user expects.
 #include <cstdio>
 #include <iostream>
 
@@ -16,6 +17,44 @@ nlohmann::json vec(const dvec3& v) {
   return {v.x, v.y, v.z};
 }
 
+// Renderer units of a light's intensity (radiometric; see io/gltf_import.h).
+const char* intensity_unit(LightType type) {
+  return type == LightType::directional ? "W/m^2" : "W/sr";
+}
+
+nlohmann::json describe_light(const Light& l) {
+  nlohmann::json light = {{"type", to_string(l.type)},
+                          {"color", vec(l.color)},
+                          {"intensity", l.intensity},
+                          {"unit", intensity_unit(l.type)}};
+  if (!l.source_unit.empty())
+    light["source"] = {{"intensity", l.source_intensity}, {"unit", l.source_unit}};
+  if (l.type != LightType::directional) light["position"] = vec(l.position);
+  if (l.type != LightType::omni) light["direction"] = vec(l.direction);
+  if (l.type == LightType::spot) light["cutoff"] = l.cutoff_deg;
+  if (l.range > 0.0) light["range"] = l.range;
+  return light;
+}
+
+// What renders differently from what a user of the source file would expect.
+nlohmann::json warnings(const Scene& scene) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Object& o : scene.objects) {
+    if (o.material.alpha == 0.0 && o.material.transmission > 0.0)
+      out.push_back("object '" + o.name +
+                    "' is fully transmissive (glTF transmission 1): its surfaces cast no "
+                    "shadow; the camera sees their highlights and their colour's tint on what is "
+                    "behind them");
+    const Interior& in = o.interior;
+    if (in.kind == InteriorKind::constant && in.sigma_tint != dvec3(1.0))
+      out.push_back("object '" + o.name +
+                    "' has a tinted medium: the camera sees it per channel, shadows use the "
+                    "mean extinction " +
+                    std::to_string(in.sigma));
+  }
+  return out;
+}
+
 nlohmann::json describe(const Scene& scene) {
   nlohmann::json j;
   int64_t triangles = 0;
@@ -28,7 +67,11 @@ nlohmann::json describe(const Scene& scene) {
                           {"triangles", m.triangles.size()},
                           {"alpha", o.material.alpha},
                           {"interior", to_string(o.interior.kind)}};
-    if (o.interior.kind == InteriorKind::constant) obj["sigma"] = o.interior.sigma;
+    if (o.material.transmission > 0.0) obj["transmission"] = o.material.transmission;
+    if (o.interior.kind == InteriorKind::constant) {
+      obj["sigma"] = o.interior.sigma;
+      obj["sigma_rgb"] = vec(o.interior.sigma * o.interior.sigma_tint);
+    }
     if (o.interior.kind == InteriorKind::volume)
       obj["volume"] = scene.volumes[o.interior.volume].name;
     j["objects"].push_back(obj);
@@ -41,13 +84,7 @@ nlohmann::json describe(const Scene& scene) {
                             {"spacing", vec(v.spacing)},
                             {"origin", vec(v.origin)}});
   j["lights"] = nlohmann::json::array();
-  for (const Light& l : scene.lights) {
-    nlohmann::json light = {{"type", to_string(l.type)}, {"intensity", l.intensity}};
-    if (l.type != LightType::directional) light["position"] = vec(l.position);
-    if (l.type != LightType::omni) light["direction"] = vec(l.direction);
-    if (l.type == LightType::spot) light["cutoff"] = l.cutoff_deg;
-    j["lights"].push_back(light);
-  }
+  for (const Light& l : scene.lights) j["lights"].push_back(describe_light(l));
   const Aabb b = world_bounds(scene);
   j["bounds"] = {{"min", vec(b.lo)}, {"max", vec(b.hi)}};
   j["camera"] = {{"position", vec(scene.camera.position)},
@@ -55,6 +92,7 @@ nlohmann::json describe(const Scene& scene) {
                  {"fov", scene.camera.fov_deg},
                  {"width", scene.camera.width},
                  {"height", scene.camera.height}};
+  j["warnings"] = warnings(scene);
   return j;
 }
 
@@ -88,9 +126,18 @@ Runner add_info(CLI::App& app) {
     for (const VolumeGrid& v : scene.volumes)
       std::printf("  %-20s %d x %d x %d\n", v.name.c_str(), v.dims.x, v.dims.y, v.dims.z);
     std::printf("lights    %zu\n", scene.lights.size());
-    for (const auto& l : j["lights"]) std::printf("  %s\n", l.dump().c_str());
+    for (const auto& l : j["lights"]) {
+      std::string source;
+      if (l.contains("source"))
+        source = " (from " + l["source"]["intensity"].dump() + " " +
+                 l["source"]["unit"].get<std::string>() + ")";
+      std::printf("  %-11s color %s  intensity %.6g %s%s\n", l["type"].get<std::string>().c_str(),
+                  l["color"].dump().c_str(), l["intensity"].get<double>(),
+                  l["unit"].get<std::string>().c_str(), source.c_str());
+    }
     std::printf("bounds    %s\n", j["bounds"].dump().c_str());
     std::printf("camera    %s\n", j["camera"].dump().c_str());
+    for (const auto& w : j["warnings"]) std::printf("warning   %s\n", w.get<std::string>().c_str());
     return 0;
   };
 }

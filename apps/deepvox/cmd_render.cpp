@@ -1,7 +1,8 @@
 // `deepvox render SCENE --out img.png [--backend cpu|cuda] [--renderer raster|raytrace]
-//  [--shadows NAME] [--stats s.json] [--frames N --orbit DEG] [--width W --height H]`: the
-// rasterizing renderer (or the BVH ray-walk reference) with a shadow method, PNG or EXR out,
-// per-frame pass timings and counters in a stats JSON.
+//  [--shadows NAME] [--stats s.json] [--frames N --orbit DEG] [--width W --height H]
+//  [--exposure EV] [--tonemap none|reinhard|aces] [--ground]`: the rasterizing renderer (or the
+// BVH ray-walk reference) with a shadow method, PNG (exposed and tone-mapped) or EXR (linear)
+// out, per-frame pass timings and counters in a stats JSON.
 #include <filesystem>
 #include <fstream>
 
@@ -12,9 +13,11 @@
 #include "io/image.h"
 #include "io/output_path.h"
 #include "io/scene_loader.h"
+#include "io/tone_mapping.h"
 #include "renderer/camera_rays.h"
 #include "renderer/raster_render.h"
 #include "renderer/reference_render.h"
+#include "scene/default_staging.h"
 
 namespace dv::cli {
 
@@ -32,10 +35,11 @@ std::string frame_path(const std::string& path, int frame, int frames) {
 
 Runner add_render(CLI::App& app) {
   struct Options {
-    std::string scene, out, stats, backend, renderer = "raster";
+    std::string scene, out, stats, backend, renderer = "raster", tonemap = "none";
     ShadowOptions shadows;
     int frames = 1, width = 0, height = 0;
-    double orbit = 0.0;
+    double orbit = 0.0, exposure = 0.0;
+    bool ground = false;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd =
@@ -57,6 +61,15 @@ Runner add_render(CLI::App& app) {
       ->check(CLI::Range(1, 16384));
   cmd->add_option("--height", opt->height, "override the camera's image height")
       ->check(CLI::Range(1, 16384));
+  cmd->add_option("--exposure", opt->exposure,
+                  "PNG only: multiply linear values by 2^EV before the tone curve")
+      ->check(CLI::Range(-64.0, 64.0))
+      ->capture_default_str();
+  cmd->add_option("--tonemap", opt->tonemap, "PNG only: tone curve after the exposure")
+      ->check(CLI::IsMember({"none", "reinhard", "aces"}))
+      ->capture_default_str();
+  cmd->add_flag("--ground", opt->ground,
+                "add an opaque ground plane just below the scene bounds (if none is named ground)");
   return [opt] {
     check_image_path(opt->out);  // before any work: an unwritable output would lose the render
     if (!opt->stats.empty()) check_output_path(opt->stats, {".json"}, "stats JSON");
@@ -64,15 +77,19 @@ Runner add_render(CLI::App& app) {
     require_backend(backend);
     auto method = make_shadow_method(opt->shadows);
     Scene scene = load_scene(opt->scene);
+    if (opt->ground) add_ground_plane(scene);
+    const DisplayTransform display{opt->exposure, parse_tone_curve(opt->tonemap)};
     if (opt->width) scene.camera.width = opt->width;
     if (opt->height) scene.camera.height = opt->height;
     const SceneData data(scene, memory_of(backend));
-    nlohmann::json stats = {{"meta", run_metadata(backend)},
-                            {"scene", opt->scene},
-                            {"shadows", {{"name", method->name()}, {"params", method->params()}}},
-                            {"triangles", data.triangle_count()},
-                            {"bvh_depth", data.bvh_depth()},
-                            {"frames", nlohmann::json::array()}};
+    nlohmann::json stats = {
+        {"meta", run_metadata(backend)},
+        {"scene", opt->scene},
+        {"shadows", {{"name", method->name()}, {"params", method->params()}}},
+        {"display", {{"exposure_ev", opt->exposure}, {"tonemap", opt->tonemap}}},
+        {"triangles", data.triangle_count()},
+        {"bvh_depth", data.bvh_depth()},
+        {"frames", nlohmann::json::array()}};
     int exit_code = 0;
     for (int f = 0; f < opt->frames; ++f) {
       const Camera cam = orbit_camera(scene.camera, opt->orbit, f, opt->frames);
@@ -88,7 +105,7 @@ Runner add_render(CLI::App& app) {
         frame["renderer"] = "raytrace";
       }
       const std::string path = frame_path(opt->out, f, opt->frames);
-      write_image(path, r.image);
+      write_image(path, r.image, display);
       frame["image"] = path;
       stats["frames"].push_back(frame);
       log_info("render: frame " + std::to_string(f) + " " + std::to_string(r.image.width) + "x" +

@@ -16,6 +16,11 @@
 #include "io/layer_heatmap.h"
 #include "io/scene_loader.h"
 #include "oracle/transmittance.h"
+#include "tests/gltf/gltf_builder.h"
+
+#if DEEPVOX_FULL_BINARY
+#include <OpenImageIO/imageio.h>
+#endif
 
 namespace dv {
 namespace {
@@ -184,7 +189,86 @@ TEST_F(Cli, MeshFileIsASceneOfOneObject) {
   const nlohmann::json j = nlohmann::json::parse(r.output);
   EXPECT_EQ(j["objects"].size(), 1u);
   EXPECT_EQ(j["triangles"].get<int>(), 3674);
-  EXPECT_EQ(j["lights"].size(), 1u);
+  EXPECT_EQ(j["lights"].size(), 2u);  // the default key and fill lights
+}
+
+TEST_F(Cli, InfoListsLightColoursAndUnitsAndWarnsAboutFullyTransmissiveGlass) {
+  test::GltfBuilder b;
+  b.use_extension("KHR_lights_punctual");
+  b.use_extension("KHR_materials_transmission");
+  const int glass = b.add_material(
+      {{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}});
+  b.add_node({{"name", "vase"}, {"mesh", test::add_box_mesh(b, {{"material", glass}})}});
+  const int lamp =
+      b.add_light({{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 68.3}});
+  b.add_node(
+      {{"translation", {0, 3, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", lamp}}}}}});
+  const std::string gltf = b.write_gltf(path("glass.gltf"));
+  const CommandResult text = run("info " + gltf);
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  for (const char* needle : {"color [1.0,0.5,0.25]", "intensity 0.1 W/sr (from 68.3 cd)", "warning",
+                             "'vase' is fully transmissive"})
+    EXPECT_NE(text.output.find(needle), std::string::npos) << needle << " in " << text.output;
+  const CommandResult js = run("info " + gltf + " --json");
+  ASSERT_EQ(js.exit_code, 0) << js.output;
+  const nlohmann::json j = nlohmann::json::parse(js.output);
+  ASSERT_EQ(j["lights"].size(), 1u);
+  EXPECT_EQ(j["lights"][0]["unit"], "W/sr");
+  EXPECT_EQ(j["lights"][0]["source"]["unit"], "cd");
+  EXPECT_DOUBLE_EQ(j["lights"][0]["source"]["intensity"].get<double>(), 68.3);
+  EXPECT_DOUBLE_EQ(j["lights"][0]["color"][2].get<double>(), 0.25);
+  ASSERT_EQ(j["warnings"].size(), 1u);
+  const CommandResult own = run("info " + write("scene.json", kSmallScene) + " --json");
+  EXPECT_TRUE(nlohmann::json::parse(own.output)["warnings"].empty());
+}
+
+std::string file_bytes(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+#if DEEPVOX_FULL_BINARY
+// The float pixels of an EXR file (its header holds a capture date, so files never match).
+std::vector<float> exr_pixels(const std::string& file) {
+  auto in = OIIO::ImageInput::open(file);
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  return pixels;
+}
+#endif
+
+TEST_F(Cli, ExposureAndToneCurveChangePngsOnlyAndGroundAddsAPlane) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string base = "render " + scene + " --backend cpu --width 32 --height 24 --out ";
+  const std::string look = " --exposure 1.5 --tonemap aces";
+  ASSERT_EQ(run(base + path("plain.png")).exit_code, 0);
+  const CommandResult r = run(base + path("look.png") + look + " --stats " + path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(file_bytes(path("plain.png")), file_bytes(path("look.png")));
+  std::ifstream in(path("s.json"));
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["display"]["tonemap"], "aces");
+  EXPECT_DOUBLE_EQ(stats["display"]["exposure_ev"].get<double>(), 1.5);
+#if DEEPVOX_FULL_BINARY
+  ASSERT_EQ(run(base + path("plain.exr")).exit_code, 0);
+  ASSERT_EQ(run(base + path("look.exr") + look).exit_code, 0);
+  EXPECT_EQ(exr_pixels(path("plain.exr")), exr_pixels(path("look.exr")));  // linear, untouched
+  EXPECT_FALSE(exr_pixels(path("plain.exr")).empty());
+#endif
+  const std::string mesh =
+      std::string(DEEPVOX_SOURCE_DIR) + "/assets/meshes/stanford-bunny-lowres.obj";
+  const CommandResult g =
+      run("render " + mesh + " --backend cpu --width 32 --height 24 --ground --out " +
+          path("g.png") + " --stats " + path("g.json"));
+  ASSERT_EQ(g.exit_code, 0) << g.output;
+  std::ifstream gin(path("g.json"));
+  EXPECT_EQ(nlohmann::json::parse(gin)["triangles"].get<int>(), 3674 + 2);
+  const CommandResult bad = run(base + path("x.png") + " --tonemap filmic");
+  EXPECT_NE(bad.exit_code, 0) << bad.output;  // CLI11 rejects it, naming the value
+  EXPECT_LT(bad.exit_code, 128) << bad.output;
+  EXPECT_NE(bad.output.find("filmic"), std::string::npos) << bad.output;
 }
 
 TEST_F(Cli, BadInputGivesClearErrors) {

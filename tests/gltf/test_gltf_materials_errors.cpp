@@ -85,7 +85,7 @@ TEST(GltfMaterials, VolumeGivesConstantInteriorUnlessThinWalled) {
   EXPECT_DOUBLE_EQ(scene.objects[2].interior.sigma, 0.0);
 }
 
-TEST(GltfMaterials, ColouredAttenuationUsesTheMeanAndWarnsOncePerMaterial) {
+TEST(GltfMaterials, ColouredAttenuationTintsPerChannelAndShadowsUseTheMean) {
   ScratchDir dir;
   GltfBuilder b;
   int m = b.add_material({{"extensions",
@@ -96,12 +96,34 @@ TEST(GltfMaterials, ColouredAttenuationUsesTheMeanAndWarnsOncePerMaterial) {
   int mesh = test::add_box_mesh(b, {{"material", m}});
   b.add_node({{"mesh", mesh}});
   b.add_node({{"mesh", mesh}, {"translation", {3, 0, 0}}});
-  int before = warning_count();
   Scene scene = load_gltf_scene(b.write_gltf(dir.file("tinted.gltf")));
-  EXPECT_EQ(warning_count(), before + 1);
   ASSERT_EQ(scene.objects.size(), 2u);
-  // Channel extinctions ln 2, 2 ln 2 and 0: mean ln 2.
-  EXPECT_NEAR(scene.objects[1].interior.sigma, std::log(2.0), 1e-12);
+  // Channel extinctions ln 2, 2 ln 2 and 0: mean ln 2 for shadows, per channel for the camera.
+  const Interior& in = scene.objects[1].interior;
+  EXPECT_NEAR(in.sigma, std::log(2.0), 1e-12);
+  EXPECT_NEAR(in.sigma * in.sigma_tint.x, std::log(2.0), 1e-12);
+  EXPECT_NEAR(in.sigma * in.sigma_tint.y, 2.0 * std::log(2.0), 1e-12);
+  EXPECT_DOUBLE_EQ(in.sigma * in.sigma_tint.z, 0.0);
+}
+
+TEST(GltfMaterials, TransmissivePartKeepsTheBaseColourForTheCameraPass) {
+  ScratchDir dir;
+  GltfBuilder b;
+  b.use_extension("KHR_materials_transmission");
+  auto glass = [](double transmission, const char* mode, double coverage) {
+    return json{
+        {"alphaMode", mode},
+        {"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.3, 0.2, coverage}}}},
+        {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", transmission}}}}}};
+  };
+  Scene scene = load_boxes(
+      dir, b, {glass(1.0, "OPAQUE", 1.0), glass(0.25, "BLEND", 0.5), glass(0, "OPAQUE", 1)});
+  EXPECT_DOUBLE_EQ(scene.objects[0].material.alpha, 0.0);  // shadows: unchanged mapping
+  EXPECT_DOUBLE_EQ(scene.objects[0].material.transmission, 1.0);
+  EXPECT_DOUBLE_EQ(scene.objects[1].material.alpha, 0.375);  // 0.5 * (1 - 0.25)
+  EXPECT_DOUBLE_EQ(scene.objects[1].material.transmission, 0.125);
+  EXPECT_DOUBLE_EQ(scene.objects[2].material.transmission, 0.0);
+  EXPECT_DOUBLE_EQ(scene.objects[0].material.color.x, 0.9);
 }
 
 TEST(GltfMaterials, PhongFromRoughness) {

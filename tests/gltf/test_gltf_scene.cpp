@@ -9,6 +9,7 @@
 #include "core/log.h"
 #include "generators/mesh_topology.h"
 #include "io/gltf_import.h"
+#include "scene/default_staging.h"
 #include "tests/gltf/gltf_builder.h"
 
 namespace dv {
@@ -134,22 +135,24 @@ TEST(GltfScene, FirstCameraNodeGivesPositionOrientationAndFov) {
   EXPECT_DOUBLE_EQ(cam.near_plane, 0.1);
 }
 
-TEST(GltfScene, WithoutCameraOrLightsDefaultsFrameTheScene) {
+TEST(GltfScene, WithoutCameraOrLightsTheDefaultStagingFramesTheScene) {
   ScratchDir dir;
   GltfBuilder b;
   b.add_node({{"mesh", test::add_box_mesh(b)}, {"translation", {5, 0, 0}}});
   Scene scene = load_gltf_scene(b.write_gltf(dir.file("bare.gltf")));
   expect_near(scene.camera.target, dvec3(5, 0, 0));
-  EXPECT_NEAR(scene.camera.position.x, 5.0, 1e-12);
-  EXPECT_GT(scene.camera.position.z, 1.0 + std::sqrt(3.0));  // outside the bounding sphere
   EXPECT_EQ(scene.camera.height, 480);
-  ASSERT_EQ(scene.lights.size(), 1u);
-  const Light& light = scene.lights[0];
-  EXPECT_EQ(light.type, LightType::omni);
-  EXPECT_GT(light.position.y, 1.0);  // above the box
-  EXPECT_NEAR(light.position.x, 5.0, 1e-12);
-  double d = glm::length(light.position - dvec3(5, 0, 0));
-  EXPECT_NEAR(light.intensity, d * d, 1e-9);
+  // The default staging itself is tested in tests/render/test_default_staging.cpp.
+  const Camera expected = default_camera(world_bounds(scene));
+  expect_near(scene.camera.position, expected.position);
+  ASSERT_EQ(scene.lights.size(), 2u);
+  EXPECT_EQ(scene.lights[0].type, LightType::spot);
+  EXPECT_EQ(scene.lights[1].type, LightType::directional);
+  EXPECT_TRUE(scene.lights[0].source_unit.empty());  // deepvox's own units
+
+  GltfImportOptions no_defaults;
+  no_defaults.default_lights = false;
+  EXPECT_TRUE(load_gltf_scene(dir.file("bare.gltf"), no_defaults).lights.empty());
 }
 
 TEST(GltfScene, PunctualLightsMapToDeepvoxLights) {
@@ -172,8 +175,10 @@ TEST(GltfScene, PunctualLightsMapToDeepvoxLights) {
   b.add_node({{"translation", {1, 2, 3}}, {"extensions", light_ext(point)}});
   b.add_node({{"rotation", {0, kHalf, 0, kHalf}}, {"extensions", light_ext(sun)}});
   b.add_node({{"extensions", light_ext(default_spot)}});
+  int ranged = b.add_light({{"type", "point"}, {"intensity", 683}, {"range", 2.0}});
+  b.add_node({{"translation", {0, 0, 4}}, {"extensions", light_ext(ranged)}});
   Scene scene = load_gltf_scene(b.write_gltf(dir.file("lights.gltf")));
-  ASSERT_EQ(scene.lights.size(), 4u);
+  ASSERT_EQ(scene.lights.size(), 5u);
   const Light& s = scene.lights[0];
   EXPECT_EQ(s.type, LightType::spot);
   expect_near(s.position, dvec3(0, 5, 0));
@@ -181,13 +186,22 @@ TEST(GltfScene, PunctualLightsMapToDeepvoxLights) {
   EXPECT_NEAR(s.cutoff_deg, 0.5 * 180.0 / kPi, 1e-9);
   EXPECT_NEAR(s.penumbra_deg, 0.2 * 180.0 / kPi, 1e-9);
   expect_near(s.color, dvec3(1.0, 0.5, 0.25));
-  EXPECT_DOUBLE_EQ(s.intensity, 40.0);
+  // Photometric to radiometric at the spec's 683 lm/W: candela -> W/sr, lux -> W/m^2.
+  EXPECT_DOUBLE_EQ(s.intensity, 40.0 / 683.0);
+  EXPECT_EQ(s.source_unit, "cd");
+  EXPECT_DOUBLE_EQ(s.source_intensity, 40.0);
+  EXPECT_TRUE(s.gltf_cone);
   EXPECT_EQ(scene.lights[1].type, LightType::omni);
   expect_near(scene.lights[1].position, dvec3(1, 2, 3));
-  EXPECT_DOUBLE_EQ(scene.lights[1].intensity, 7.5);
+  EXPECT_DOUBLE_EQ(scene.lights[1].intensity, 7.5 / 683.0);
+  EXPECT_FALSE(scene.lights[1].gltf_cone);
+  EXPECT_DOUBLE_EQ(scene.lights[1].range, 0.0);
   EXPECT_EQ(scene.lights[2].type, LightType::directional);
   expect_near(scene.lights[2].direction, dvec3(-1, 0, 0));  // -Z turned 90 degrees about +Y
-  EXPECT_DOUBLE_EQ(scene.lights[2].intensity, 1.0);
+  EXPECT_DOUBLE_EQ(scene.lights[2].intensity, 1.0 / 683.0);
+  EXPECT_EQ(scene.lights[2].source_unit, "lx");
+  EXPECT_DOUBLE_EQ(scene.lights[4].intensity, 1.0);
+  EXPECT_DOUBLE_EQ(scene.lights[4].range, 2.0);
   EXPECT_NEAR(scene.lights[3].cutoff_deg, 45.0, 1e-6);  // outerConeAngle defaults to pi/4
   EXPECT_NEAR(scene.lights[3].penumbra_deg, 45.0, 1e-6);
 }
