@@ -32,9 +32,10 @@ Runner add_suite(CLI::App& app) {
     }
     if (opt->suite.empty()) throw InputError("suite", "give a suite name or file (or --list)");
     const SuiteOutcome r = run_suite(*opt);
-    std::printf("deepvox suite: %s%d of %d experiments, %d failed; report: %s/report.md\n",
-                r.interrupted ? "interrupted after " : "ran ", r.done, r.total, r.failed,
-                r.folder.c_str());
+    std::printf(
+        "deepvox suite: %s%d of %d experiments, %d failed, %d skipped; report: %s/report.md\n",
+        r.interrupted ? "interrupted after " : "ran ", r.done, r.total, r.failed, r.skipped,
+        r.folder.c_str());
     return r.exit_code;
   };
 }

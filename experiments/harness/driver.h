@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "core/execute.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/suite_file.h"
@@ -20,6 +21,13 @@
 namespace dv {
 
 class SceneCache;
+
+// Thrown by a driver when the item cannot run here for a reason that is no failure (a
+// voxelizer that does not run on this backend): recorded as a `skipped` row, the suite goes on.
+class SkippedRun : public Error {
+ public:
+  using Error::Error;
+};
 
 // What a driver gets besides its item: backend, repetitions, where images go, the per-run
 // cache of scenes, probe points and exact answers.

@@ -73,7 +73,7 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
   std::vector<Row> rows;
   Json params = Json::array(), shards = Json::array();
   std::string commands = command_line() + "\n";
-  int done = 0, failed = 0, items = 0;
+  int done = 0, failed = 0, skipped = 0, items = 0;
   bool interrupted = false;
   for (const auto& [index, folder] : by_index) {
     const fs::path f(folder);
@@ -84,6 +84,7 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
     commands += "# shard " + std::to_string(index) + ": " + read_text(f / "command.txt");
     done += meta["done"].get<int>();
     failed += meta["failed"].get<int>();
+    skipped += meta.value("skipped", 0);
     items += meta["items"].get<int>();
     interrupted |= meta["interrupted"].get<bool>();
     shards.push_back({{"index", index}, {"folder", folder}, {"run", meta["run"]}});
@@ -100,6 +101,7 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
   meta["merged_from"] = shards;
   meta["done"] = done;
   meta["failed"] = failed;
+  meta["skipped"] = skipped;
   meta["items"] = items;
   meta["interrupted"] = interrupted;
   write_rows_csv((dir / "rows.csv").string(), rows);

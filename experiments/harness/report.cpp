@@ -133,17 +133,19 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     line.push_back(first.strategy);
     line.push_back(first.params.empty() ? "-" : first.params);
     const Row* failed = find_row(rows, {"failed", "value"});
+    const Row* skipped = find_row(rows, {"skipped", "value"});
     for (const Column& c : columns) {
       const Row* r = find_row(rows, c);
-      line.push_back(failed ? "failed" : r ? format_value(r->value) : "-");
+      line.push_back(failed ? "failed" : skipped ? "skipped" : r ? format_value(r->value) : "-");
     }
     body.push_back(std::move(line));
   }
   write_table(md, header, body);
   for (const auto& [index, rows] : items)
-    if (const Row* failed = find_row(rows, {"failed", "value"}))
-      md << "- item " << index << " (" << failed->strategy << " " << failed->params
-         << ") failed: " << failed->note << "\n";
+    for (const char* what : {"failed", "skipped"})
+      if (const Row* r = find_row(rows, {what, "value"}))
+        md << "- item " << index << " (" << r->strategy << " " << r->params << ") " << what << ": "
+           << r->note << "\n";
   if (!e.paper.is_null()) {
     md << "\nPaper values"
        << (e.paper.contains("source") ? " (" + cell(e.paper["source"]) + ")" : "") << ":\n\n";
@@ -222,7 +224,8 @@ void build_report(const std::string& folder) {
      << (meta.contains("merged_from") ? " (merged shards)" : "");
   if (meta["shard"]["count"].get<int>() > 1)
     md << ", shard " << cell(meta["shard"]["index"]) << "/" << cell(meta["shard"]["count"]);
-  md << ", " << cell(meta["failed"]) << " failed\n";
+  md << ", " << cell(meta["failed"]) << " failed, " << meta.value("skipped", 0)
+     << " skipped (not for this backend)\n";
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)
      << "\n- files: rows.csv (one row per measurement), params.json (echoed parameters), "
         "meta.json, command.txt\n\n";

@@ -94,6 +94,10 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
       auto& driver = drivers[item.kind];
       if (!driver) driver = driver_registry().create(item.kind);
       echoed["echoed"] = driver->run(item, context, sink);
+    } catch (const SkippedRun& e) {
+      sink.add("skipped", "value", 1.0, "", e.what());
+      echoed["skipped"] = e.what();
+      ++outcome.skipped;
     } catch (const std::exception& e) {
       sink.add("failed", "value", 1.0, "", e.what());
       echoed["error"] = e.what();
@@ -110,6 +114,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
   outcome.interrupted = interrupt_requested();
   meta["done"] = outcome.done;
   meta["failed"] = outcome.failed;
+  meta["skipped"] = outcome.skipped;
   meta["interrupted"] = outcome.interrupted;
   meta["elapsed_s"] = progress.elapsed_seconds();
   write_rows_csv((dir / "rows.csv").string(), rows);

@@ -1,7 +1,7 @@
 // Runs a suite: expands it, takes this shard's slice (and --only's), runs every item through
-// its driver, records failures and goes on, and writes the result folder (command.txt,
-// suite.json, meta.json, rows.csv after every item, params.json, images/, report.md). Ctrl-C
-// stops after the current item with a report of what was done (exit 130).
+// its driver, records failures and skipped items and goes on, and writes the result folder
+// (command.txt, suite.json, meta.json, rows.csv after every item, params.json, images/, report.md).
+// Ctrl-C stops after the current item with a report of what was done (exit 130).
 #pragma once
 
 #include <string>
@@ -22,7 +22,7 @@ struct SuiteOptions {
 struct SuiteOutcome {
   int exit_code = 0;  // 0 all ran, 3 some failed, 130 interrupted
   std::string folder;
-  int done = 0, total = 0, failed = 0;
+  int done = 0, total = 0, failed = 0, skipped = 0;
   bool interrupted = false;
 };
 

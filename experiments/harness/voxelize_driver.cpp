@@ -37,8 +37,8 @@ class VoxelizeDriver : public Driver {
     auto voxelizer =
         voxelizer_registry().create(item.strategy, StrategyParams::parse(item.param_items()));
     if (!voxelizer->supports(ctx.backend))
-      throw InputError("voxelizer '" + item.strategy + "'",
-                       std::string("does not run on the ") + to_string(ctx.backend) + " backend");
+      throw SkippedRun("voxelizer '" + item.strategy + "' does not run on the " +
+                       to_string(ctx.backend) + " backend");
     PassTimes times;
     VoxelizeResult result;
     for (int rep = 0; rep <= ctx.repeat; ++rep) {

@@ -173,6 +173,35 @@ TEST_F(Runner, FailedExperimentIsRecordedAndTheSuiteGoesOn) {
   EXPECT_NE(md.find("failed: shadow method 'no-such-method' not found"), std::string::npos) << md;
 }
 
+// An experiment kind registered by the test whose runs cannot run on this backend.
+class SkippingDriver : public Driver {
+ public:
+  std::vector<std::string> settings() const override { return {}; }
+  std::vector<std::string> default_columns() const override { return {"ran"}; }
+  nlohmann::json run(const RunItem& item, RunContext&, RowSink& rows) override {
+    if (item.strategy == "gpu-only") throw SkippedRun("gpu-only does not run on the cpu backend");
+    rows.add("ran", "value", 1.0, "count");
+    return nlohmann::json::object();
+  }
+};
+
+TEST_F(Runner, SkippedRunIsRecordedAndIsNoFailure) {
+  driver_registry().add("test-skip", "skips gpu-only",
+                        [](const StrategyParams&) { return std::make_unique<SkippingDriver>(); });
+  const SuiteOutcome r = run(write("skip.json", R"({"suite": "skip", "repeat": 1,
+    "experiments": [{"name": "e", "kind": "test-skip", "scene": "none.json",
+                     "strategy": ["gpu-only", "any"]}]})"));
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.skipped, 1);
+  EXPECT_EQ(r.failed, 0);
+  const std::vector<Row> rows = read_rows_csv(r.folder + "/rows.csv");
+  EXPECT_EQ(value_of(rows, 0, "skipped", "value"), 1.0);
+  EXPECT_EQ(value_of(rows, 1, "ran", "value"), 1.0);
+  std::ifstream report(r.folder + "/report.md");
+  const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("| gpu-only | - | skipped |"), std::string::npos) << md;
+}
+
 // An experiment kind registered by the test: Ctrl-C arrives while it runs.
 class SigintDriver : public Driver {
  public:
