@@ -206,7 +206,9 @@ void build_report(const std::string& folder) {
     for (size_t e = 0; e < suite.experiments.size(); ++e)
       if (suite.experiments[e].name == r.experiment) by_experiment[e][r.item].push_back(&r);
 
-  const std::string plot_problem = draw_plots(dir);
+  bool plots_asked = false;
+  for (const ExperimentSpec& e : suite.experiments) plots_asked |= !e.plots.empty();
+  const std::string plot_problem = plots_asked ? draw_plots(dir) : "none asked for";
   std::ostringstream md;
   const Json& run = meta["run"];
   md << "# Suite `" << suite.name << "`\n\n";

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/merge.h"
+#include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
 #include "io/json_reader.h"
@@ -129,6 +130,12 @@ TEST_F(Runner, TinySuiteWritesEveryFileAndTheOracleMatchesItself) {
   EXPECT_NE(md.find("ran 8 of 8 experiments"), std::string::npos);
   EXPECT_NE(md.find("![](images/0_reference.png)"), std::string::npos);
   EXPECT_NE(md.find("plots"), std::string::npos);
+  // `deepvox report` rebuilds the same report from the folder's files.
+  fs::remove(folder / "report.md");
+  build_report(folder.string());
+  std::ifstream rebuilt(folder / "report.md");
+  EXPECT_EQ(
+      std::string((std::istreambuf_iterator<char>(rebuilt)), std::istreambuf_iterator<char>()), md);
   // A second run makes a new folder.
   EXPECT_NE(run(write("tiny.json", tiny_suite())).folder, r.folder);
 }
