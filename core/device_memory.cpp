@@ -52,9 +52,9 @@ CudaDeviceInfo cuda_device_info() {
   DV_CUDA_CHECK(cudaDriverGetVersion(&info.driver_version));
   int khz = 0;
   DV_CUDA_CHECK(cudaDeviceGetAttribute(&khz, cudaDevAttrClockRate, device));
-  info.sm_clock_mhz = khz / 1000;
+  info.sm_clock_max_mhz = khz / 1000;
   DV_CUDA_CHECK(cudaDeviceGetAttribute(&khz, cudaDevAttrMemoryClockRate, device));
-  info.memory_clock_mhz = khz / 1000;
+  info.memory_clock_max_mhz = khz / 1000;
   return info;
 }
 

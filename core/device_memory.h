@@ -13,13 +13,14 @@ bool cuda_device_available(std::string* why_not = nullptr);
 std::string cuda_device_name();
 
 // What run metadata records about the CUDA side: versions as CUDA encodes them (12040 = 12.4),
-// clocks in MHz. Throws Error without a usable device (or in a CPU-only build).
+// the device's peak SM and memory clocks in MHz. Throws Error without a usable device (or in a
+// CPU-only build).
 struct CudaDeviceInfo {
   std::string name;
   int runtime_version = 0;
   int driver_version = 0;
-  int sm_clock_mhz = 0;
-  int memory_clock_mhz = 0;
+  int sm_clock_max_mhz = 0;
+  int memory_clock_max_mhz = 0;
   int multiprocessors = 0;
   size_t memory_bytes = 0;
 };

@@ -75,10 +75,12 @@ nlohmann::json run_metadata(Backend backend) {
   if (cuda_device_available()) {
     const CudaDeviceInfo info = cuda_device_info();
     m["device"] = info.name;
-    m["cuda"] = {
-        {"runtime_version", info.runtime_version}, {"driver_version", info.driver_version},
-        {"sm_clock_mhz", info.sm_clock_mhz},       {"memory_clock_mhz", info.memory_clock_mhz},
-        {"multiprocessors", info.multiprocessors}, {"memory_bytes", info.memory_bytes}};
+    m["cuda"] = {{"runtime_version", info.runtime_version},
+                 {"driver_version", info.driver_version},
+                 {"sm_clock_max_mhz", info.sm_clock_max_mhz},
+                 {"memory_clock_max_mhz", info.memory_clock_max_mhz},
+                 {"multiprocessors", info.multiprocessors},
+                 {"memory_bytes", info.memory_bytes}};
   }
   return m;
 }
