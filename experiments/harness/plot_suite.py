@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Plots of a suite result folder (deepvox report runs it): for each experiment of suite.json
 with "plots", each plot {"x": "metric[:stat]", "y": "metric[:stat]", "type": "scatter"|"bar",
-"logx": bool, "logy": bool, "title": str} drawn from rows.csv into plots/<experiment>_<n>.png.
-A bar plot takes only "y" (one bar per item). Exit 3 when matplotlib is missing."""
+"logx": bool, "logy": bool, "pareto": bool, "title": str} drawn from rows.csv into
+plots/<experiment>_<n>.png. "pareto" adds the front of the scatter's points that no other point
+beats in both x and y (smaller is better). A bar plot takes only "y" (one bar per item). Exit 3
+when matplotlib is missing."""
 import csv
 import json
 import math
@@ -24,6 +26,16 @@ def metric_value(rows, spec):
             if r["metric"] == metric and r["stat"] == wanted:
                 return float(r["value"]), r["unit"]
     return None, ""
+
+
+def pareto_front(points):
+    """The points no other point beats in both coordinates (smaller is better), by x."""
+    front, best_y = [], math.inf
+    for x, y in sorted(points):
+        if y < best_y:
+            front.append((x, y))
+            best_y = y
+    return front
 
 
 def label(rows):
@@ -51,17 +63,27 @@ def main(folder):
                 unit = next((metric_value(r, spec["y"])[1] for r in runs), "")
                 ax.set_xlabel(spec["y"] + (" (" + unit + ")" if unit else ""))
                 ax.invert_yaxis()
+                if spec.get("pareto") and points:
+                    front = pareto_front(points)
+                    ax.step([p[0] for p in front], [p[1] for p in front], where="post",
+                            color="grey", linewidth=0.8, label="Pareto front")
                 if spec.get("logx"):
                     ax.set_xscale("log")
             else:
+                points = []
                 for rows in runs:
                     x, xu = metric_value(rows, spec["x"])
                     y, yu = metric_value(rows, spec["y"])
                     if x is None or y is None or (spec.get("logx") and x <= 0):
                         continue  # a log axis cannot show x <= 0 (e.g. methods keeping no bytes)
                     ax.scatter([x], [y], label=label(rows))
+                    points.append((x, y))
                     ax.set_xlabel(spec["x"] + (" (" + xu + ")" if xu else ""))
                     ax.set_ylabel(spec["y"] + (" (" + yu + ")" if yu else ""))
+                if spec.get("pareto") and points:
+                    front = pareto_front(points)
+                    ax.step([p[0] for p in front], [p[1] for p in front], where="post",
+                            color="grey", linewidth=0.8, label="Pareto front")
                 if spec.get("logx"):
                     ax.set_xscale("log")
                 if spec.get("logy"):
