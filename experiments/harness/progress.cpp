@@ -23,8 +23,10 @@ void Progress::start(int done, const std::string& what) {
   const double elapsed = elapsed_seconds();
   char eta[32] = "?";
   if (done > 0) std::snprintf(eta, sizeof eta, "%.0fs", elapsed / done * (total_ - done));
-  std::fprintf(stderr, "\r\033[K[%d/%d, %d left] %.0fs elapsed, ~%s to go: %s", done + 1, total_,
-               total_ - done, elapsed, eta, what.c_str());
+  // One line that fits a terminal: \r rewrites it only while it does not wrap.
+  const std::string shown = what.size() > 72 ? what.substr(0, 69) + "..." : what;
+  std::fprintf(stderr, "\r\033[K[%d/%d] %d done, %d left, %.0fs elapsed, ~%s to go: %s", done + 1,
+               total_, done, total_ - done, elapsed, eta, shown.c_str());
   std::fflush(stderr);
 }
 
