@@ -30,6 +30,14 @@ void restore_interrupt_handler() {
   g_installed = false;
 }
 
+InterruptScope::InterruptScope() {
+  clear_interrupt();
+  install_interrupt_handler();
+}
+InterruptScope::~InterruptScope() {
+  restore_interrupt_handler();
+}
+
 bool interrupt_requested() {
   return g_interrupted != 0;
 }

@@ -7,6 +7,15 @@ namespace dv {
 
 void install_interrupt_handler();
 void restore_interrupt_handler();
+
+// Installs the handler (clearing the flag) for its lifetime.
+class InterruptScope {
+ public:
+  InterruptScope();
+  ~InterruptScope();
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+};
 bool interrupt_requested();
 // What the handler does; tests and drivers may call it directly.
 void request_interrupt();

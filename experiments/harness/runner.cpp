@@ -81,8 +81,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
   outcome.folder = dir.string();
   outcome.total = int(items.size());
   Progress progress(outcome.total, o.progress && Progress::stderr_is_terminal());
-  clear_interrupt();
-  install_interrupt_handler();
+  const InterruptScope ctrl_c;  // until the report is written: a Ctrl-C then still leaves it
   for (const RunItem& item : items) {
     if (interrupt_requested()) break;
     progress.start(outcome.done, describe(item));
@@ -110,8 +109,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
     write_rows_csv((dir / "rows.csv").string(), rows);  // a crash later loses nothing finished
   }
   progress.finish();
-  restore_interrupt_handler();
-  outcome.interrupted = interrupt_requested();
+  outcome.interrupted = interrupt_requested() && outcome.done < outcome.total;
   meta["done"] = outcome.done;
   meta["failed"] = outcome.failed;
   meta["skipped"] = outcome.skipped;

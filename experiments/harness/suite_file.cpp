@@ -1,8 +1,6 @@
 // Suite files: strict loading, sweep expansion, shards and built-in suite lookup (suite_file.h).
 #include "experiments/harness/suite_file.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
