@@ -231,7 +231,11 @@ void build_report(const std::string& folder) {
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)
      << "\n- files: rows.csv (one row per measurement), params.json (echoed parameters), "
         "meta.json, command.txt\n\n";
-  md << "Command: `" << cell(run["command_line"]) << "`\n\n";
+  std::ifstream command_in(dir / "command.txt");
+  std::stringstream command;
+  command << command_in.rdbuf();
+  md << "Command (command.txt; a merged folder lists its shards' too):\n\n```\n"
+     << command.str() << "```\n\n";
   for (size_t e = 0; e < suite.experiments.size(); ++e)
     write_experiment(md, dir, suite.experiments[e], by_experiment[e]);
   std::ofstream out(dir / "report.md");
