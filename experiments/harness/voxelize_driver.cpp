@@ -4,6 +4,7 @@
 // missing and extra voxels against `exact` (also outside the borderline band), the exact grid
 // computed once per scene and grid in the run.
 #include <map>
+#include <tuple>
 
 #include "experiments/harness/driver.h"
 #include "experiments/harness/scene_cache.h"
