@@ -39,6 +39,25 @@ std::string cuda_device_name() {
   return prop.name;
 }
 
+CudaDeviceInfo cuda_device_info() {
+  int device = 0;
+  DV_CUDA_CHECK(cudaGetDevice(&device));
+  cudaDeviceProp prop{};
+  DV_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
+  CudaDeviceInfo info;
+  info.name = prop.name;
+  info.multiprocessors = prop.multiProcessorCount;
+  info.memory_bytes = prop.totalGlobalMem;
+  DV_CUDA_CHECK(cudaRuntimeGetVersion(&info.runtime_version));
+  DV_CUDA_CHECK(cudaDriverGetVersion(&info.driver_version));
+  int khz = 0;
+  DV_CUDA_CHECK(cudaDeviceGetAttribute(&khz, cudaDevAttrClockRate, device));
+  info.sm_clock_max_mhz = khz / 1000;
+  DV_CUDA_CHECK(cudaDeviceGetAttribute(&khz, cudaDevAttrMemoryClockRate, device));
+  info.memory_clock_max_mhz = khz / 1000;
+  return info;
+}
+
 namespace {
 
 // Device buffers come from the device's default memory pool, stream-ordered on the legacy
@@ -126,6 +145,9 @@ bool cuda_device_available(std::string* why_not) {
 }
 std::string cuda_device_name() {
   no_cuda("cuda_device_name");
+}
+CudaDeviceInfo cuda_device_info() {
+  no_cuda("cuda_device_info");
 }
 void* device_allocate(size_t, const char*) {
   no_cuda("device_allocate");

@@ -12,6 +12,20 @@ namespace dv {
 bool cuda_device_available(std::string* why_not = nullptr);
 std::string cuda_device_name();
 
+// What run metadata records about the CUDA side: versions as CUDA encodes them (12040 = 12.4),
+// the device's peak SM and memory clocks in MHz. Throws Error without a usable device (or in a
+// CPU-only build).
+struct CudaDeviceInfo {
+  std::string name;
+  int runtime_version = 0;
+  int driver_version = 0;
+  int sm_clock_max_mhz = 0;
+  int memory_clock_max_mhz = 0;
+  int multiprocessors = 0;
+  size_t memory_bytes = 0;
+};
+CudaDeviceInfo cuda_device_info();
+
 void* device_allocate(size_t bytes, const char* what);
 // Bytes the device can still hand out: free device memory plus what the memory pool holds
 // unused.

@@ -4,6 +4,7 @@
 // (so the error is that of the visibility function, not of texel placement; bias 0) is compared
 // with the oracle. Reports nodes, bytes, generation time and mean / 99th-percentile / max error;
 // pairs of rows at equal node count compare the table with plain sampling (Hadwiger 2006 §3.2).
+// (Error summary: experiments/harness/error_summary.h, as the suite harness reports it.)
 // Run: build/bin/dsm_accuracy [--backend cpu|cuda] [--points N] [--res R] > results.json
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/device_memory.h"
+#include "experiments/harness/error_summary.h"
 #include "io/scene_loader.h"
 #include "strategies/shadow/light_faces.h"
 #include "strategies/shadow/probe.h"
@@ -71,9 +73,7 @@ nlohmann::json run(const std::string& scene_name, const Config& c, Backend backe
   std::vector<double> errors;
   for (size_t i = 0; i < exact.size(); ++i)  // every (point, light) answer
     errors.push_back(std::abs(r.transmittance[i] - exact[i]));
-  std::sort(errors.begin(), errors.end());
-  double mean = 0.0;
-  for (double e : errors) mean += e / double(errors.size());
+  const ErrorSummary e = summarize_errors(std::move(errors));
   const nlohmann::json stats = method->stats();
   return {{"scene", scene_name},
           {"volume", c.volume},
@@ -85,9 +85,9 @@ nlohmann::json run(const std::string& scene_name, const Config& c, Backend backe
           {"bytes_in_nodes", stats["storage"]["bytes_in_nodes"]},
           {"generation_ms", stats["generation_ms"]},
           {"points", points.size()},
-          {"mean_error", mean},
-          {"p99_error", errors[std::min(errors.size() - 1, errors.size() * 99 / 100)]},
-          {"max_error", errors.back()}};
+          {"mean_error", e.mean},
+          {"p99_error", e.p99},
+          {"max_error", e.max}};
 }
 
 }  // namespace

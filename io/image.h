@@ -31,6 +31,11 @@ void write_image(const std::string& path, const Image& image);
 // io/output_path.h), without writing.
 void check_image_path(const std::string& path);
 void write_png(const std::string& path, const Image& image);
+// 8-bit sRGB bytes, 3 per pixel, rows from the top, as write_png stores them.
+void write_png_bytes(const std::string& path, int width, int height,
+                     const std::vector<unsigned char>& rgb);
+// The 8-bit sRGB value write_png stores for a linear channel value (clamped to [0, 1]).
+unsigned char srgb_byte(float linear);
 
 // Provided by io/image_exr_oiio.cpp (full build) or io/image_exr_unavailable.cpp (lean build).
 bool exr_supported();

@@ -16,21 +16,22 @@
 
 namespace dv {
 
-namespace {
-
 unsigned char srgb_byte(float linear) {
   const double c = std::clamp(double(linear), 0.0, 1.0);
   const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
   return static_cast<unsigned char>(std::lround(s * 255.0));
 }
 
-}  // namespace
+void write_png_bytes(const std::string& path, int width, int height,
+                     const std::vector<unsigned char>& rgb) {
+  if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3))
+    throw InputError(path, "cannot write PNG file");
+}
 
 void write_png(const std::string& path, const Image& image) {
   std::vector<unsigned char> bytes(image.rgb.size());
   for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(image.rgb[i]);
-  if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3))
-    throw InputError(path, "cannot write PNG file");
+  write_png_bytes(path, image.width, image.height, bytes);
 }
 
 void check_image_path(const std::string& path) {

@@ -3,8 +3,9 @@
 # CUDA smoke test, CPU/CUDA parity, the oracle, raster, render, voxel and DSM tests, renders of the
 # committed scenes on both backends, and the benchmarks. Logs and outputs are packed into
 # $OUT/gpu-check.tar.gz (the device tool returns few files); the summary goes to stdout.
-# Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]; SECTIONS="tests renders benches experiments"
-# (the default) picks what runs.
+# Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]; SECTIONS="tests renders benches experiments
+# suites" (the default) picks what runs. `suites` runs the quick suite on CUDA (rows and PNGs;
+# rebuild the report with plots on the host: deepvox report <folder from the tarball>).
 set -uo pipefail
 build=${1:?build dir}
 out=${OUT:-gpu-out}
@@ -14,7 +15,7 @@ export DEEPVOX_SOURCE_DIR="$PWD" DEEPVOX_ASSETS="$PWD/assets"
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem --format=csv > "$work/gpu.txt" 2>&1
 cat "$work/gpu.txt"
 status=0
-sections=${SECTIONS:-tests renders benches experiments}
+sections=${SECTIONS:-tests renders benches experiments suites}
 has() { [[ " $sections " == *" $1 "* ]]; }
 # Packs what exists so far: a run cut short by the device's time limit still returns its logs.
 pack() { mkdir -p "$out" && tar -czf "$out/gpu-check.tar.gz" -C "$work" .; }
@@ -55,6 +56,11 @@ if has experiments && [ -x "$build/bin/voxel_tables" ]; then
   timeout "$limit" "$build/bin/voxel_tables" --backend cuda --exact-max-voxels 8388608 \
     > "$work/voxel_tables.json" 2> "$work/voxel_tables.log" || status=1
   tail -n 5 "$work/voxel_tables.log"
+fi
+if has suites; then
+  timeout "$limit" "$bin" suite quick --backend cuda --out "$work/suites" > "$work/suite.log" 2>&1 ||
+    status=1
+  tail -n 3 "$work/suite.log"
 fi
 pack
 echo "gpu-check status $status"

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "apps/deepvox/commands.h"
-#include "apps/deepvox/run_metadata.h"
+#include "experiments/harness/run_metadata.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/text.h"

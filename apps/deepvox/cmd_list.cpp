@@ -3,6 +3,7 @@
 
 #include "apps/deepvox/commands.h"
 #include "core/device_memory.h"
+#include "experiments/harness/driver.h"
 #include "generators/mesh_generators.h"
 #include "generators/volume_generators.h"
 #include "strategies/shadow/shadow_method.h"
@@ -35,6 +36,7 @@ Runner add_list(CLI::App& app) {
     print_family(shadow_registry());
     print_family(storage_registry());
     print_family(voxelizer_registry());
+    print_family(driver_registry());
     print_names("mesh generators", mesh_generator_names());
     print_names("volume generators", volume_generator_names());
     std::string why;

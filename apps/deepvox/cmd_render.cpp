@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "apps/deepvox/commands.h"
-#include "apps/deepvox/run_metadata.h"
+#include "experiments/harness/run_metadata.h"
 #include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
 #include "io/image.h"

@@ -8,7 +8,7 @@
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
-#include "apps/deepvox/run_metadata.h"
+#include "experiments/harness/run_metadata.h"
 #include "core/log.h"
 #include "strategies/voxelizer/voxelize_job.h"
 #include "strategies/voxelizer/voxelizer.h"

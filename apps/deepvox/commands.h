@@ -16,5 +16,8 @@ Runner add_info(CLI::App& app);
 Runner add_list(CLI::App& app);
 Runner add_voxelize(CLI::App& app);
 Runner add_dsm(CLI::App& app);
+Runner add_suite(CLI::App& app);
+Runner add_merge(CLI::App& app);
+Runner add_report(CLI::App& app);
 
 }  // namespace dv::cli

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "apps/deepvox/commands.h"
-#include "apps/deepvox/run_metadata.h"
 #include "apps/deepvox/usage_errors.h"
 #include "core/error.h"
+#include "experiments/harness/run_metadata.h"
 #if DEEPVOX_WITH_GL
 #include "gl/gl_voxelizers.h"
 #include "strategies/voxelizer/voxelizer.h"
@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   CLI::App app{"deepvox " DEEPVOX_VERSION
                ": deep shadow maps and voxelization for translucent scenes (research testbed)"};
   app.require_subcommand(1);
-  dv::cli::remember_command_line(argc, argv);
+  dv::remember_command_line(argc, argv);
 #if DEEPVOX_WITH_GL
   dv::gl::register_gl_voxelizers(dv::gl_voxelizer_registry());  // voxelize --backend gl
 #endif
@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
   runners["list"] = dv::cli::add_list(app);
   runners["voxelize"] = dv::cli::add_voxelize(app);
   runners["dsm"] = dv::cli::add_dsm(app);
+  runners["suite"] = dv::cli::add_suite(app);
+  runners["merge"] = dv::cli::add_merge(app);
+  runners["report"] = dv::cli::add_report(app);
   if (const int parse_exit = dv::cli::parse_command_line(app, argc, argv); parse_exit >= 0)
     return parse_exit;
   try {

@@ -1,0 +1,246 @@
+// Markdown reports of result folders (report.h).
+#include "experiments/harness/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "experiments/harness/driver.h"
+#include "experiments/harness/rows.h"
+#include "experiments/harness/suite_file.h"
+#include "io/json_reader.h"
+
+namespace dv {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string format_value(double v) {
+  char buf[40];
+  if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15)
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  else
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+std::string cell(const nlohmann::json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number()) return format_value(v.get<double>());
+  return v.dump();
+}
+
+struct Column {
+  std::string metric, stat;  // stat empty: "value", else "median"
+};
+
+Column parse_column(const std::string& text) {
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) return {text, ""};
+  return {text.substr(0, colon), text.substr(colon + 1)};
+}
+
+const Row* find_row(const std::vector<const Row*>& rows, const Column& c) {
+  for (const std::string& stat :
+       c.stat.empty() ? std::vector<std::string>{"value", "median"} : std::vector{c.stat})
+    for (const Row* r : rows)
+      if (r->metric == c.metric && r->stat == stat) return r;
+  return nullptr;
+}
+
+// Runs the plot script; returns an empty string when plots were made, else why not.
+std::string draw_plots(const fs::path& dir) {
+  fs::path script;
+  for (const std::string& root : data_roots()) {
+    const fs::path p = fs::path(root) / "experiments" / "harness" / "plot_suite.py";
+    if (fs::is_regular_file(p)) {
+      script = p;
+      break;
+    }
+  }
+  if (script.empty()) return "plot script experiments/harness/plot_suite.py not found";
+  // Debian's interpreter first: python3-matplotlib installs there, while a python3 earlier
+  // in PATH (pyenv, venv) may lack it.
+  std::vector<std::string> pythons{"python3"};
+  if (fs::exists("/usr/bin/python3")) pythons.insert(pythons.begin(), "/usr/bin/python3");
+  std::string why = "python3 is not installed";
+  for (const std::string& python : pythons) {
+    const std::string cmd = python + " '" + script.string() + "' '" + dir.string() + "' 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) continue;
+    std::string out;
+    char buf[512];
+    while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+    const int status = pclose(pipe);
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (code == 0) return "";
+    if (code == 3)
+      why = "python3-matplotlib is not installed";
+    else if (code != 127)
+      return "the plot script failed: " + out.substr(0, 400);
+  }
+  return why;
+}
+
+void write_table(std::ostream& md, const std::vector<std::string>& header,
+                 const std::vector<std::vector<std::string>>& body) {
+  md << "|";
+  for (const std::string& h : header) md << " " << h << " |";
+  md << "\n|";
+  for (size_t i = 0; i < header.size(); ++i) md << " --- |";
+  md << "\n";
+  for (const auto& row : body) {
+    md << "|";
+    for (const std::string& c : row) md << " " << c << " |";
+    md << "\n";
+  }
+  md << "\n";
+}
+
+void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpec& e,
+                      const std::map<int, std::vector<const Row*>>& items) {
+  md << "## " << e.name << " (" << e.kind << ")\n\n";
+  if (!e.description.empty()) md << e.description << "\n\n";
+  if (items.empty()) {
+    md << "Not run here (other shard, --only, or interrupted).\n\n";
+    return;
+  }
+  std::vector<Column> columns;
+  const std::vector<std::string> names =
+      e.columns.empty() ? driver_registry().create(e.kind)->default_columns() : e.columns;
+  for (const std::string& c : names) columns.push_back(parse_column(c));
+  std::vector<std::string> header;
+  if (e.scenes.size() > 1) header.push_back("scene");
+  header.insert(header.end(), {"strategy", "params"});
+  for (const Column& c : columns) {
+    std::string unit;
+    for (const auto& [index, rows] : items)
+      if (const Row* r = find_row(rows, c); r && unit.empty()) unit = r->unit;
+    header.push_back(c.metric + (c.stat.empty() ? "" : " " + c.stat) +
+                     (unit.empty() || unit == "1" ? "" : " (" + unit + ")"));
+  }
+  std::vector<std::vector<std::string>> body;
+  for (const auto& [index, rows] : items) {
+    const Row& first = *rows.front();
+    std::vector<std::string> line;
+    if (e.scenes.size() > 1) line.push_back(first.scene);
+    line.push_back(first.strategy);
+    line.push_back(first.params.empty() ? "-" : first.params);
+    const Row* failed = find_row(rows, {"failed", "value"});
+    const Row* skipped = find_row(rows, {"skipped", "value"});
+    for (const Column& c : columns) {
+      const Row* r = find_row(rows, c);
+      line.push_back(failed ? "failed" : skipped ? "skipped" : r ? format_value(r->value) : "-");
+    }
+    body.push_back(std::move(line));
+  }
+  write_table(md, header, body);
+  for (const auto& [index, rows] : items)
+    for (const char* what : {"failed", "skipped"})
+      if (const Row* r = find_row(rows, {what, "value"}))
+        md << "- item " << index << " (" << r->strategy << " " << r->params << ") " << what << ": "
+           << r->note << "\n";
+  if (!e.paper.is_null()) {
+    md << "\nPaper values"
+       << (e.paper.contains("source") ? " (" + cell(e.paper["source"]) + ")" : "") << ":\n\n";
+    std::vector<std::string> paper_header;
+    for (const auto& h : e.paper["columns"]) paper_header.push_back(cell(h));
+    std::vector<std::vector<std::string>> paper_body;
+    for (const auto& r : e.paper["rows"]) {
+      std::vector<std::string> line;
+      for (const auto& v : r) line.push_back(cell(v));
+      paper_body.push_back(std::move(line));
+    }
+    write_table(md, paper_header, paper_body);
+  }
+  // Image strip: the reference, then each render with its difference below.
+  std::string reference;
+  std::vector<std::string> labels, renders, diffs;
+  for (const auto& [index, rows] : items) {
+    const Row* ref = find_row(rows, {"image", "reference"});
+    const Row* render = find_row(rows, {"image", "render"});
+    const Row* diff = find_row(rows, {"image", "difference"});
+    if (!render) continue;
+    if (ref && reference.empty()) reference = ref->note;
+    labels.push_back(render->strategy + (render->params.empty() ? "" : " " + render->params));
+    renders.push_back("![](" + render->note + ")");
+    diffs.push_back(diff ? "![](" + diff->note + ")" : "");
+  }
+  if (!renders.empty()) {
+    md << "\nImages (second row: largest channel difference to the reference x4):\n\n";
+    labels.insert(labels.begin(), "reference (exact oracle)");
+    renders.insert(renders.begin(), reference.empty() ? "" : "![](" + reference + ")");
+    diffs.insert(diffs.begin(), "");
+    write_table(md, labels, {renders, diffs});
+  }
+  std::set<std::string> plots;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir / "plots", ec))
+    if (entry.path().filename().string().rfind(e.name + "_", 0) == 0)
+      plots.insert(entry.path().filename().string());
+  for (const std::string& p : plots) md << "![" << p << "](plots/" << p << ")\n";
+  md << "\n";
+}
+
+}  // namespace
+
+void build_report(const std::string& folder) {
+  const fs::path dir(folder);
+  const fs::path meta_path = dir / "meta.json";
+  if (!fs::is_regular_file(meta_path))
+    throw InputError(folder, "not a suite result folder (no meta.json)");
+  const Json meta = parse_json_file(meta_path.string());
+  std::ifstream suite_in(dir / "suite.json", std::ios::binary);
+  std::stringstream suite_text;
+  suite_text << suite_in.rdbuf();
+  const Suite suite = parse_suite(suite_text.str(), (dir / "suite.json").string());
+  const std::vector<Row> rows = read_rows_csv((dir / "rows.csv").string());
+  std::vector<std::map<int, std::vector<const Row*>>> by_experiment(suite.experiments.size());
+  for (const Row& r : rows)
+    for (size_t e = 0; e < suite.experiments.size(); ++e)
+      if (suite.experiments[e].name == r.experiment) by_experiment[e][r.item].push_back(&r);
+
+  bool plots_asked = false;
+  for (const ExperimentSpec& e : suite.experiments) plots_asked |= !e.plots.empty();
+  const std::string plot_problem = plots_asked ? draw_plots(dir) : "none asked for";
+  std::ostringstream md;
+  const Json& run = meta["run"];
+  md << "# Suite `" << suite.name << "`\n\n";
+  if (!suite.description.empty()) md << suite.description << "\n\n";
+  md << "- when: " << cell(run["utc_time"]) << ", git " << cell(run["git_sha"]) << ", "
+     << cell(run["build_type"]) << " build, " << cell(run["compiler"]) << "\n";
+  md << "- backend: " << cell(run["backend"]) << " on "
+     << (run.contains("device") ? cell(run["device"]) + ", " : "") << cell(run["cpu_model"]) << ", "
+     << cell(run["cpu_threads"]) << " threads\n";
+  md << "- timings: one warm-up, then " << cell(meta["repeat"])
+     << " repetitions, median (min, max in rows.csv)\n";
+  const int done = meta["done"].get<int>(), items = meta["items"].get<int>();
+  md << "- status: " << (meta["interrupted"].get<bool>() ? "interrupted after " : "ran ") << done
+     << " of " << items << " experiments"
+     << (meta.contains("merged_from") ? " (merged shards)" : "");
+  if (meta["shard"]["count"].get<int>() > 1)
+    md << ", shard " << cell(meta["shard"]["index"]) << "/" << cell(meta["shard"]["count"]);
+  md << ", " << cell(meta["failed"]) << " failed, " << meta.value("skipped", 0)
+     << " skipped (not for this backend)\n";
+  md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)
+     << "\n- files: rows.csv (one row per measurement), params.json (echoed parameters), "
+        "meta.json, command.txt\n\n";
+  std::ifstream command_in(dir / "command.txt");
+  std::stringstream command;
+  command << command_in.rdbuf();
+  md << "Command (command.txt; a merged folder lists its shards' too):\n\n```\n"
+     << command.str() << "```\n\n";
+  for (size_t e = 0; e < suite.experiments.size(); ++e)
+    write_experiment(md, dir, suite.experiments[e], by_experiment[e]);
+  std::ofstream out(dir / "report.md");
+  if (!out) throw InputError((dir / "report.md").string(), "cannot write report");
+  out << md.str();
+}
+
+}  // namespace dv

@@ -1,0 +1,123 @@
+// rows.csv writing and reading (rows.h).
+#include "experiments/harness/rows.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace dv {
+
+namespace {
+
+constexpr const char* kHeader =
+    "suite,item,experiment,kind,scene,strategy,params,metric,stat,value,unit,note";
+
+std::string quoted(const std::string& field) {
+  if (field.find_first_of(",\"\n\r") == std::string::npos) return field;
+  std::string out = "\"";
+  for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// Shortest text that reads back as the same double.
+std::string number_text(double v) {
+  char buf[40];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+// Splits one record; `in` supplies continuation lines of quoted fields with line breaks.
+std::vector<std::string> split_record(std::string line, std::ifstream& in, int& line_number) {
+  std::vector<std::string> fields(1);
+  bool in_quotes = false;
+  for (size_t i = 0;; ++i) {
+    if (i == line.size()) {
+      if (!in_quotes) break;
+      std::string next;
+      if (!std::getline(in, next)) break;
+      ++line_number;
+      line += "\n" + next;
+    }
+    const char c = line[i];
+    if (in_quotes) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        in_quotes = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      in_quotes = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else if (c != '\r') {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+}  // namespace
+
+void write_rows_csv(const std::string& path, const std::vector<Row>& rows) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, "cannot write rows file");
+  out << kHeader << "\n";
+  for (const Row& r : rows)
+    out << quoted(r.suite) << "," << r.item << "," << quoted(r.experiment) << "," << quoted(r.kind)
+        << "," << quoted(r.scene) << "," << quoted(r.strategy) << "," << quoted(r.params) << ","
+        << quoted(r.metric) << "," << quoted(r.stat) << "," << number_text(r.value) << ","
+        << quoted(r.unit) << "," << quoted(r.note) << "\n";
+  if (!out) throw InputError(path, "write failed");
+}
+
+std::vector<Row> read_rows_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot read rows file");
+  std::string line;
+  if (!std::getline(in, line) || line.substr(0, line.find_last_not_of("\r") + 1) != kHeader)
+    throw InputError(path, "line 1: expected the header " + std::string(kHeader));
+  std::vector<Row> rows;
+  for (int n = 2; std::getline(in, line); ++n) {
+    if (line.empty()) continue;
+    const int first = n;
+    const std::vector<std::string> f = split_record(line, in, n);
+    if (f.size() != 12)
+      throw InputError(path, "line " + std::to_string(first) + ": expected 12 fields, got " +
+                                 std::to_string(f.size()));
+    Row r;
+    try {
+      r.item = std::stoi(f[1]);
+      r.value = std::stod(f[9]);
+    } catch (const std::exception&) {
+      throw InputError(path, "line " + std::to_string(first) + ": item or value is no number");
+    }
+    r.suite = f[0];
+    r.experiment = f[2];
+    r.kind = f[3];
+    r.scene = f[4];
+    r.strategy = f[5];
+    r.params = f[6];
+    r.metric = f[7];
+    r.stat = f[8];
+    r.unit = f[10];
+    r.note = f[11];
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+void sort_rows_by_item(std::vector<Row>& rows) {
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const Row& a, const Row& b) { return a.item < b.item; });
+}
+
+}  // namespace dv

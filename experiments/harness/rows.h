@@ -1,0 +1,28 @@
+// Measurement rows and rows.csv: tidy, one row per measurement, with the unit in its own column
+// (docs/suite-format.md). Columns: suite,item,experiment,kind,scene,strategy,params,metric,stat,
+// value,unit,note. `stat` says what the value is (value, median, min, max, ...); `note` carries
+// text (an error message, an image path). Fields are quoted as RFC 4180 when needed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace dv {
+
+struct Row {
+  std::string suite;
+  int item = 0;
+  std::string experiment, kind, scene, strategy, params;
+  std::string metric, stat;
+  double value = 0.0;
+  std::string unit, note;
+};
+
+void write_rows_csv(const std::string& path, const std::vector<Row>& rows);
+// InputError naming the file and line on a malformed file.
+std::vector<Row> read_rows_csv(const std::string& path);
+
+// Rows in item order (stable within an item): the order of an unsharded run.
+void sort_rows_by_item(std::vector<Row>& rows);
+
+}  // namespace dv

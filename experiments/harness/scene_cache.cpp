@@ -1,0 +1,64 @@
+// The per-run cache of scenes, probe sets and reference renders (scene_cache.h).
+#include "experiments/harness/scene_cache.h"
+
+#include "io/scene_loader.h"
+#include "renderer/raster_render.h"
+#include "strategies/shadow/probe.h"
+
+namespace dv {
+
+SceneCache::Entry& SceneCache::entry(const std::string& path) {
+  auto it = scenes_.find(path);
+  if (it != scenes_.end()) return it->second;
+  Entry e;
+  e.scene = load_scene(path);
+  e.host = std::make_unique<SceneData>(e.scene, Memory::host);
+  if (memory_of(backend_) != Memory::host)
+    e.device = std::make_unique<SceneData>(e.scene, memory_of(backend_));
+  return scenes_.emplace(path, std::move(e)).first->second;
+}
+
+const Scene& SceneCache::scene(const std::string& path) {
+  return entry(path).scene;
+}
+
+const SceneData& SceneCache::host_data(const std::string& path) {
+  return *entry(path).host;
+}
+
+const SceneData& SceneCache::data(const std::string& path) {
+  Entry& e = entry(path);
+  return e.device ? *e.device : *e.host;
+}
+
+const ProbeSet& SceneCache::probes(const std::string& path, int count, double medium_fraction,
+                                   uint64_t seed) {
+  const auto key = std::make_tuple(path, count, medium_fraction, seed);
+  auto it = probes_.find(key);
+  if (it != probes_.end()) return it->second;
+  ProbeSet set;
+  set.points = make_probe_points(scene(path), host_data(path), count, medium_fraction, seed);
+  auto oracle = shadow_registry().create("reference");
+  const ProbeResults r = probe_transmittance(backend_, data(path), *oracle, set.points.points);
+  set.exact = r.transmittance;
+  set.exact_flags = r.flags;
+  set.light_count = r.light_count;
+  set.oracle_ms = r.milliseconds;
+  return probes_.emplace(key, std::move(set)).first->second;
+}
+
+ReferenceRender& SceneCache::reference(const std::string& path, int width, int height) {
+  const auto key = std::make_tuple(path, width, height);
+  auto it = references_.find(key);
+  if (it != references_.end()) return it->second;
+  Camera camera = scene(path).camera;
+  camera.width = width;
+  camera.height = height;
+  auto oracle = shadow_registry().create("reference");
+  RasterRenderResult r =
+      render_raster(backend_, data(path), camera, *oracle, scene(path).background);
+  ReferenceRender ref{std::move(r.render.image), r.raster_ms + r.fragment_ms, ""};
+  return references_.emplace(key, std::move(ref)).first->second;
+}
+
+}  // namespace dv

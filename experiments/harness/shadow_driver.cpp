@@ -1,0 +1,206 @@
+// Experiment kind `shadow`: a shadow method (any registered name, its parameters including the
+// dsm storage) on a scene. Per item: generation (prepare) timed by PassTimer and per pass from
+// the method's stats, one warm-up and `repeat` timed repetitions with a fresh method each; the
+// render (raster renderer at the setting's size) timed the same way; bytes; the transmittance
+// at the run's probe points against the exact oracle (|T' - T| max, mean, p99, split into
+// surface and medium points); image error against the reference render, and PNGs (the
+// render and its difference) for the report's image strip.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/pass_timer.h"
+#include "experiments/harness/driver.h"
+#include "experiments/harness/error_summary.h"
+#include "experiments/harness/image_metrics.h"
+#include "experiments/harness/scene_cache.h"
+#include "experiments/harness/timing.h"
+#include "renderer/raster_render.h"
+#include "strategies/shadow/probe.h"
+
+namespace dv {
+
+namespace {
+
+struct ShadowSettings {
+  int width, height, probe_points;
+  double medium_fraction;
+  uint64_t seed;
+  bool images;
+};
+
+ShadowSettings read_settings(const RunItem& item, const Scene& scene) {
+  const StrategyParams p(item.settings);
+  ShadowSettings s{p.integer("width", scene.camera.width), p.integer("height", scene.camera.height),
+                   p.integer("probe_points", 400),         p.number("medium_fraction", 0.5),
+                   uint64_t(p.integer("seed", 1)),         p.integer("images", 1) != 0};
+  p.finish("experiment '" + item.experiment_name + "' settings");
+  if (s.width < 1 || s.height < 1 || s.probe_points < 0)
+    throw InputError("experiment '" + item.experiment_name + "'",
+                     "width, height must be positive and probe_points not negative");
+  return s;
+}
+
+// The canonical memory figure: the DSM storage's bytes allocated, else the method's "bytes"
+// and "*_bytes" figures summed (0 for methods that keep nothing).
+double method_bytes(const nlohmann::json& stats) {
+  if (stats.contains("storage") && stats["storage"].contains("bytes_allocated"))
+    return stats["storage"]["bytes_allocated"].get<double>();
+  double sum = 0.0;
+  for (const auto& [key, v] : stats.items())
+    if (v.is_number() &&
+        (key == "bytes" || (key.size() > 6 && key.compare(key.size() - 6, 6, "_bytes") == 0)))
+      sum += v.get<double>();
+  return sum;
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// Numeric stats leaves: "*_ms" figures and {pass, ms} arrays become pass times, the rest values.
+void collect_stats(const nlohmann::json& j, const std::string& path, PassTimes* times,
+                   std::vector<std::pair<std::string, double>>* values) {
+  for (const auto& [key, v] : j.items()) {
+    const std::string name = path.empty() ? key : path + "." + key;
+    if (v.is_object()) {
+      collect_stats(v, name, times, values);
+    } else if (v.is_array()) {
+      for (const auto& e : v)
+        if (e.is_object() && e.contains("pass") && e.contains("ms") && times)
+          times->add(name + "." + e["pass"].get<std::string>(), e["ms"].get<double>());
+    } else if (v.is_number() && ends_with(key, "_ms")) {
+      if (times) times->add(name.substr(0, name.size() - 3), v.get<double>());
+    } else if (v.is_number() && values) {
+      values->push_back({name, v.get<double>()});
+    }
+  }
+}
+
+void emit_errors(RowSink& rows, const std::string& metric, std::vector<double> errors) {
+  const ErrorSummary e = summarize_errors(std::move(errors));
+  rows.add(metric, "count", double(e.count), "count");
+  if (e.count == 0) return;
+  rows.add(metric, "max", e.max, "T");
+  rows.add(metric, "mean", e.mean, "T");
+  rows.add(metric, "p99", e.p99, "T");
+}
+
+class ShadowDriver : public Driver {
+ public:
+  std::vector<std::string> settings() const override {
+    return {"width", "height", "probe_points", "medium_fraction", "seed", "images"};
+  }
+  std::vector<std::string> default_columns() const override {
+    return {
+        "generate_ms:median",     "render_ms:median",     "bytes",      "probe_error_surface:max",
+        "probe_error_medium:max", "probe_error_all:mean", "image_rmse", "image_over_8"};
+  }
+
+  nlohmann::json run(const RunItem& item, RunContext& ctx, RowSink& rows) override {
+    SceneCache& cache = *ctx.scenes;
+    const Scene& scene = cache.scene(item.scene_path);
+    const SceneData& data = cache.data(item.scene_path);
+    const ShadowSettings s = read_settings(item, scene);
+    Camera camera = scene.camera;
+    camera.width = s.width;
+    camera.height = s.height;
+    const StrategyParams params = StrategyParams::parse(item.param_items());
+
+    // Generation: a fresh method per repetition, the first one a warm-up.
+    PassTimes generation;
+    std::unique_ptr<ShadowMethod> method;
+    for (int rep = 0; rep <= ctx.repeat; ++rep) {
+      method = shadow_registry().create(item.strategy, params);
+      PassTimer timer(ctx.backend);
+      method->prepare(data, ctx.backend, &camera);
+      const double ms = timer.stop();
+      if (rep == 0) continue;
+      generation.add("generate", ms);
+      collect_stats(method->stats(), "generate", &generation, nullptr);
+    }
+    generation.emit(rows, "");
+    const nlohmann::json stats = method->stats();
+    rows.add("bytes", "value", method_bytes(stats), "bytes");
+    std::vector<std::pair<std::string, double>> figures;
+    collect_stats(stats, "", nullptr, &figures);
+    for (const auto& [name, value] : figures) rows.add("stats." + name, "value", value, "");
+
+    // Rendering: one warm-up, then timed repetitions (raster binning + fragment pass).
+    PassTimes render;
+    RasterRenderResult last;
+    for (int rep = 0; rep <= ctx.repeat; ++rep) {
+      last = render_raster(ctx.backend, data, camera, *method, scene.background);
+      if (rep == 0) continue;
+      render.add("render", last.raster_ms + last.fragment_ms);
+      render.add("render.raster", last.raster_ms);
+      render.add("render.fragment", last.fragment_ms);
+    }
+    render.emit(rows, "");
+    rows.add("render_flagged_pixels", "value",
+             double(last.render.counters.overflow_pixels + last.render.counters.oracle_flag_pixels),
+             "count");
+
+    probe_errors(item, ctx, s, *method, rows);
+    image_errors(item, ctx, s, last.render.image, rows);
+    return {{"strategy", method->name()}, {"params", method->params()}};
+  }
+
+ private:
+  static void probe_errors(const RunItem& item, RunContext& ctx, const ShadowSettings& s,
+                           ShadowMethod& method, RowSink& rows) {
+    if (s.probe_points == 0) return;
+    const ProbeSet& probes =
+        ctx.scenes->probes(item.scene_path, s.probe_points, s.medium_fraction, s.seed);
+    const ProbeResults r = probe_transmittance(ctx.backend, ctx.scenes->data(item.scene_path),
+                                               method, probes.points.points);
+    rows.add("probe_ms", "value", r.milliseconds, "ms");
+    std::vector<double> surface, medium, all;
+    size_t flagged = 0;
+    for (size_t i = 0; i < r.transmittance.size(); ++i) {
+      const double e = std::abs(r.transmittance[i] - probes.exact[i]);
+      const ProbeClass c = probes.points.classes[i / size_t(r.light_count)];
+      (c == ProbeClass::surface ? surface : medium).push_back(e);
+      all.push_back(e);
+      flagged += r.flags[i] != 0 || probes.exact_flags[i] != 0;
+    }
+    emit_errors(rows, "probe_error_surface", surface);
+    emit_errors(rows, "probe_error_medium", medium);
+    emit_errors(rows, "probe_error_all", all);
+    rows.add("probe_flagged", "value", double(flagged), "count");
+  }
+
+  static void image_errors(const RunItem& item, RunContext& ctx, const ShadowSettings& s,
+                           const Image& image, RowSink& rows) {
+    ReferenceRender& ref = ctx.scenes->reference(item.scene_path, s.width, s.height);
+    const ImageError e = image_error(image, ref.image);
+    rows.add("image_rmse", "value", e.rmse, "1");
+    rows.add("image_psnr", "value", e.psnr_db, "dB");
+    rows.add("image_over_8", "value", e.fraction_over_8, "fraction");
+    if (!s.images) return;
+    namespace fs = std::filesystem;
+    fs::create_directories(ctx.run_dir / "images");
+    if (ref.png.empty()) {
+      ref.png = "images/reference_" + fs::path(item.scene_path).stem().string() + "_" +
+                std::to_string(s.width) + "x" + std::to_string(s.height) + ".png";
+      write_png((ctx.run_dir / ref.png).string(), ref.image);
+    }
+    const std::string stem = "images/" + std::to_string(item.index) + "_" + item.strategy;
+    write_png((ctx.run_dir / (stem + ".png")).string(), image);
+    write_difference_png((ctx.run_dir / (stem + "_diff.png")).string(), image, ref.image);
+    rows.add("image", "reference", 0.0, "", ref.png);
+    rows.add("image", "render", 0.0, "", stem + ".png");
+    rows.add("image", "difference", 0.0, "", stem + "_diff.png");
+  }
+};
+
+}  // namespace
+
+void register_shadow_driver(Registry<Driver>& registry) {
+  registry.add("shadow",
+               "a shadow method on a scene: generation and render time per pass, bytes, error at "
+               "probe points against the exact oracle, image error against the reference render",
+               [](const StrategyParams&) { return std::make_unique<ShadowDriver>(); });
+}
+
+}  // namespace dv

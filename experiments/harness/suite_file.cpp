@@ -1,0 +1,289 @@
+// Suite files: strict loading, sweep expansion, shards and built-in suite lookup (suite_file.h).
+#include "experiments/harness/suite_file.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "experiments/harness/driver.h"
+#include "io/json_reader.h"
+
+namespace dv {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A parameter value as StrategyParams reads it: strings as they are, numbers in JSON's
+// shortest round-trip form, booleans as 1 / 0.
+std::string value_text(const Json& v, const JsonReader& at, const std::string& key) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
+  if (v.is_number()) return v.dump();
+  at.fail(key, "expected a string, number or boolean");
+}
+
+std::vector<std::string> one_or_many(JsonReader& r, const std::string& key) {
+  const Json& v = r.raw(key);
+  std::vector<std::string> out;
+  if (v.is_string()) out.push_back(v.get<std::string>());
+  if (v.is_array())
+    for (const Json& item : v) {
+      if (!item.is_string()) r.fail(key, "expected strings");
+      out.push_back(item.get<std::string>());
+    }
+  if (out.empty()) r.fail(key, "expected a string or a non-empty array of strings");
+  return out;
+}
+
+std::map<std::string, std::string> value_map(JsonReader& r, const std::string& key) {
+  std::map<std::string, std::string> out;
+  if (!r.has(key)) return out;
+  const Json& v = r.raw(key);
+  if (!v.is_object()) r.fail(key, "expected an object of key: value");
+  for (const auto& [k, item] : v.items()) out[k] = value_text(item, r, key + "/" + k);
+  return out;
+}
+
+// "name", or an array of "name" and {"name": ..., "params": {...}} items.
+std::vector<StrategySpec> strategy_list(JsonReader& r) {
+  const Json& v = r.raw("strategy");
+  std::vector<StrategySpec> out;
+  if (v.is_string()) out.push_back({v.get<std::string>(), {}});
+  for (size_t i = 0; v.is_array() && i < v.size(); ++i) {
+    if (v[i].is_string()) {
+      out.push_back({v[i].get<std::string>(), {}});
+      continue;
+    }
+    if (!v[i].is_object()) r.fail("strategy", "expected names or {\"name\", \"params\"} objects");
+    JsonReader item(v[i], r.file(), r.path() + "/strategy/" + std::to_string(i));
+    StrategySpec spec{item.string("name"), value_map(item, "params")};
+    item.finish();
+    out.push_back(std::move(spec));
+  }
+  if (out.empty()) r.fail("strategy", "expected a name or a non-empty array of strategies");
+  return out;
+}
+
+std::string resolve_scene(const std::string& scene, const std::string& suite_file) {
+  const fs::path p(scene);
+  if (p.is_absolute()) return scene;
+  std::vector<fs::path> candidates{fs::path(suite_file).parent_path() / p, p};
+  for (const std::string& root : data_roots()) candidates.push_back(fs::path(root) / p);
+  for (const fs::path& c : candidates)
+    if (fs::exists(c)) return c.string();
+  return scene;  // the scene loader names the missing file
+}
+
+ExperimentSpec parse_experiment(JsonReader& r, const std::string& file) {
+  ExperimentSpec e;
+  e.name = r.string("name");
+  e.kind = r.string("kind");
+  const std::vector<std::string> kinds = driver_names();
+  if (std::find(kinds.begin(), kinds.end(), e.kind) == kinds.end()) {
+    std::string known;
+    for (const std::string& n : kinds) known += (known.empty() ? "" : ", ") + n;
+    r.fail("kind", "unknown experiment kind '" + e.kind + "' (known: " + known + ")");
+  }
+  e.description = r.string("description", "");
+  e.scenes = one_or_many(r, "scene");
+  for (const std::string& s : e.scenes) e.scene_paths.push_back(resolve_scene(s, file));
+  e.strategies = strategy_list(r);
+  e.params = value_map(r, "params");
+  e.settings = value_map(r, "settings");
+  for (const auto& [key, value] : e.settings)
+    if (!driver_accepts_setting(e.kind, key))
+      r.fail("settings", "unknown setting '" + key + "' for kind '" + e.kind +
+                             "' (known: " + driver_settings_text(e.kind) + ")");
+  if (r.has("sweep")) {
+    const Json& sweep = r.raw("sweep");
+    if (!sweep.is_object()) r.fail("sweep", "expected an object of key: [values]");
+    for (const auto& [key, values] : sweep.items()) {
+      if (!values.is_array() || values.empty())
+        r.fail("sweep", "'" + key + "' needs a non-empty array of values");
+      if (e.params.count(key)) r.fail("sweep", "'" + key + "' is also a fixed parameter");
+      std::vector<std::string> texts;
+      for (const Json& v : values) texts.push_back(value_text(v, r, "sweep/" + key));
+      e.sweep.emplace_back(key, texts);
+    }
+  }
+  if (r.has("columns")) e.columns = one_or_many(r, "columns");
+  if (r.has("paper")) {
+    e.paper = r.raw("paper");
+    if (!e.paper.is_object() || !e.paper.contains("columns") || !e.paper.contains("rows") ||
+        !e.paper["columns"].is_array() || !e.paper["rows"].is_array())
+      r.fail("paper", "expected {\"columns\": [...], \"rows\": [[...], ...]}");
+  }
+  if (r.has("plots")) {
+    e.plots = r.raw("plots");
+    if (!e.plots.is_array()) r.fail("plots", "expected an array of plot objects");
+  }
+  r.finish();
+  return e;
+}
+
+void check_unique_names(const Suite& s) {
+  for (size_t i = 0; i < s.experiments.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (s.experiments[i].name == s.experiments[j].name)
+        throw InputError(s.file, "experiment name '" + s.experiments[i].name + "' used twice");
+}
+
+}  // namespace
+
+std::string RunItem::params_text() const {
+  std::string out;
+  for (const std::string& item : param_items()) out += (out.empty() ? "" : " ") + item;
+  return out;
+}
+
+std::vector<std::string> RunItem::param_items() const {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : params) out.push_back(k + "=" + v);
+  return out;
+}
+
+std::string fnv1a_hex(const std::string& bytes) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+Suite parse_suite(const std::string& text, const std::string& path) {
+  Json doc;
+  try {
+    doc = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    throw InputError(path, std::string("not valid JSON: ") + e.what());
+  }
+  if (!doc.is_object()) throw InputError(path, "a suite file holds one JSON object");
+  JsonReader r(doc, path, "");
+  Suite s;
+  s.file = path;
+  s.hash = fnv1a_hex(text);
+  s.name = r.string("suite");
+  if (s.name.empty() || s.name.find_first_of("/\\ ") != std::string::npos)
+    r.fail("suite", "the name must be non-empty without spaces or slashes (it names a folder)");
+  s.description = r.string("description", "");
+  s.repeat = r.integer("repeat", 3);
+  if (s.repeat < 1 || s.repeat > 1000) r.fail("repeat", "expected 1..1000");
+  for (JsonReader& e : r.children("experiments"))
+    s.experiments.push_back(parse_experiment(e, path));
+  if (s.experiments.empty()) r.fail("experiments", "a suite needs at least one experiment");
+  r.finish();
+  check_unique_names(s);
+  return s;
+}
+
+Suite load_suite(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot read suite file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_suite(text.str(), path);
+}
+
+std::vector<RunItem> expand_suite(const Suite& suite) {
+  std::vector<RunItem> items;
+  for (size_t ei = 0; ei < suite.experiments.size(); ++ei) {
+    const ExperimentSpec& e = suite.experiments[ei];
+    size_t points = 1;
+    for (const auto& [key, values] : e.sweep) points *= values.size();
+    for (size_t si = 0; si < e.scenes.size(); ++si)
+      for (const StrategySpec& strategy : e.strategies)
+        for (size_t p = 0; p < points; ++p) {
+          RunItem item;
+          item.index = int(items.size());
+          item.experiment = int(ei);
+          item.experiment_name = e.name;
+          item.kind = e.kind;
+          item.scene = e.scenes[si];
+          item.scene_path = e.scene_paths[si];
+          item.strategy = strategy.name;
+          item.params = e.params;
+          for (const auto& [key, value] : strategy.params) item.params[key] = value;
+          item.settings = e.settings;
+          size_t rest = p;  // mixed-radix digits, the last sweep key fastest
+          for (size_t k = e.sweep.size(); k-- > 0;) {
+            const auto& [key, values] = e.sweep[k];
+            item.params[key] = values[rest % values.size()];
+            rest /= values.size();
+          }
+          items.push_back(std::move(item));
+        }
+  }
+  return items;
+}
+
+Shard parse_shard(const std::string& text, const std::string& where) {
+  Shard s;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &s.index, &s.count, &tail) != 2 || s.count < 1 ||
+      s.index < 1 || s.index > s.count)
+    throw InputError(where, "expected I/N with 1 <= I <= N, got '" + text + "'");
+  return s;
+}
+
+std::vector<RunItem> shard_items(const std::vector<RunItem>& items, const Shard& shard) {
+  std::vector<RunItem> out;
+  for (const RunItem& item : items)
+    if (item.index % shard.count == shard.index - 1) out.push_back(item);
+  return out;
+}
+
+std::vector<RunItem> filter_items(const std::vector<RunItem>& items, const std::string& pattern) {
+  if (pattern.empty()) return items;
+  std::vector<RunItem> out;
+  for (const RunItem& item : items)
+    for (const std::string* field : {&item.experiment_name, &item.kind, &item.strategy})
+      if (field->find(pattern) != std::string::npos) {
+        out.push_back(item);
+        break;
+      }
+  return out;
+}
+
+std::vector<std::string> data_roots() {
+  std::vector<std::string> roots;
+  if (const char* env = std::getenv("DEEPVOX_SOURCE_DIR"); env && *env) roots.push_back(env);
+#ifdef DEEPVOX_SOURCE_DIR
+  roots.push_back(DEEPVOX_SOURCE_DIR);
+#endif
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) roots.push_back((exe.parent_path().parent_path() / "share" / "deepvox").string());
+  return roots;
+}
+
+std::vector<std::string> builtin_suite_names() {
+  std::vector<std::string> names;
+  for (const std::string& root : data_roots()) {
+    const fs::path dir = fs::path(root) / "experiments" / "suites";
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) continue;
+    for (const auto& entry : fs::directory_iterator(dir))
+      if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+    break;  // the first root that has suites
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string resolve_suite_path(const std::string& name_or_file) {
+  if (fs::is_regular_file(name_or_file)) return name_or_file;
+  for (const std::string& root : data_roots()) {
+    const fs::path p = fs::path(root) / "experiments" / "suites" / (name_or_file + ".json");
+    if (fs::is_regular_file(p)) return p.string();
+  }
+  std::string known;
+  for (const std::string& n : builtin_suite_names()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError(name_or_file, "no such suite file or built-in suite (built-in: " + known + ")");
+}
+
+}  // namespace dv

@@ -1,0 +1,95 @@
+// Suite files (docs/suite-format.md): a named list of experiments, each a kind (the driver that
+// runs it), one or more scenes, one or more strategies of the kind's family, fixed strategy
+// parameters and a sweep (the cartesian product of parameter lists). Loading is strict: unknown
+// keys, unknown kinds and bad values are InputErrors naming the file and the JSON path.
+// expand_suite turns a suite into the deterministic, ordered list of runs that shards slice.
+#pragma once
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace dv {
+
+// A strategy of the experiment's family by registered name, with parameters of its own (merged
+// over the experiment's fixed parameters).
+struct StrategySpec {
+  std::string name;
+  std::map<std::string, std::string> params;
+};
+
+struct ExperimentSpec {
+  std::string name;
+  std::string kind;  // driver name (driver.h)
+  std::string description;
+  std::vector<std::string> scenes;       // as written in the file
+  std::vector<std::string> scene_paths;  // resolved (suite folder, working folder, data roots)
+  std::vector<StrategySpec> strategies;
+  std::map<std::string, std::string> params;  // fixed strategy parameters
+  // Swept strategy parameters, in file order; the last one varies fastest.
+  std::vector<std::pair<std::string, std::vector<std::string>>> sweep;
+  std::map<std::string, std::string> settings;  // the driver's own knobs (image size, ...)
+  std::vector<std::string> columns;             // report table columns; empty: driver default
+  nlohmann::json paper;  // optional reference values printed beside the measured ones
+  nlohmann::json plots;  // optional plot specs for the plot script (array)
+};
+
+struct Suite {
+  std::string name;
+  std::string description;
+  std::string file;  // path it was loaded from
+  std::string hash;  // FNV-1a 64 of the file's bytes, 16 hex digits
+  int repeat = 3;
+  std::vector<ExperimentSpec> experiments;
+};
+
+// One run of one experiment: a scene, a strategy and one point of the sweep.
+struct RunItem {
+  int index = 0;  // position in the expanded list of the whole suite
+  int experiment = 0;
+  std::string experiment_name;
+  std::string kind;
+  std::string scene;       // as written
+  std::string scene_path;  // resolved
+  std::string strategy;
+  std::map<std::string, std::string> params;  // fixed and swept together
+  std::map<std::string, std::string> settings;
+
+  // "key=value key=value" in key order (the `params` column of rows.csv).
+  std::string params_text() const;
+  std::vector<std::string> param_items() const;  // "key=value" each
+};
+
+Suite load_suite(const std::string& path);
+// `text` is the file's content; `path` names it in errors and anchors relative scene paths.
+Suite parse_suite(const std::string& text, const std::string& path);
+
+// Scenes x strategies x the sweep's cartesian product, per experiment in file order.
+std::vector<RunItem> expand_suite(const Suite& suite);
+
+struct Shard {
+  int index = 1;  // 1-based
+  int count = 1;
+  bool whole() const { return count == 1; }
+};
+// "I/N" with 1 <= I <= N; InputError(where) otherwise.
+Shard parse_shard(const std::string& text, const std::string& where = "--shard");
+// The items of shard I/N: index % N == I - 1, in order.
+std::vector<RunItem> shard_items(const std::vector<RunItem>& items, const Shard& shard);
+// The items whose experiment name, kind or strategy contains `pattern` (all when empty).
+std::vector<RunItem> filter_items(const std::vector<RunItem>& items, const std::string& pattern);
+
+// Built-in suites: files experiments/suites/NAME.json under the data roots.
+std::vector<std::string> builtin_suite_names();
+// A file path as is when it exists, else the built-in suite of that name; InputError otherwise.
+std::string resolve_suite_path(const std::string& name_or_file);
+// Where repository files are found: $DEEPVOX_SOURCE_DIR, the source tree the binary was built
+// from, and <executable>/../share/deepvox (installed bundles).
+std::vector<std::string> data_roots();
+
+std::string fnv1a_hex(const std::string& bytes);
+
+}  // namespace dv

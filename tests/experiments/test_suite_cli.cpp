@@ -1,0 +1,109 @@
+// `deepvox suite | merge | report` as commands: the suite list, exit code 2 naming the file for
+// a bad suite file, and Ctrl-C sent to a running suite (exit 130, rows and a report of what was
+// done).
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "tests/support/paths.h"
+
+extern char** environ;
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kBinary = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox";
+
+struct CommandResult {
+  int exit_code;
+  std::string output;
+};
+
+CommandResult run(const std::string& args) {
+  FILE* pipe = popen((kBinary + " " + args + " 2>&1").c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_tmp" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(SuiteCli, ListShowsTheBuiltInSuitesWithADescription) {
+  const CommandResult r = run("suite --list");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("quick "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("one page"), std::string::npos) << r.output;
+}
+
+TEST(SuiteCli, BadSuiteFileExitsTwoNamingTheFileAndTheProblem) {
+  const fs::path dir = temp_dir("cli_bad");
+  const fs::path bad = dir / "bad-suite.json";
+  std::ofstream(bad) << R"({"suite": "x", "experiments": [{"name": "a", "kind": "shadw",
+                           "scene": "s", "strategy": "none"}]})";
+  const CommandResult r = run("suite " + bad.string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("bad-suite.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("unknown experiment kind 'shadw'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out")) << "no result folder for a bad file";
+  EXPECT_EQ(run("suite no-such-suite").exit_code, 2);
+  EXPECT_EQ(run("report " + dir.string()).exit_code, 2);
+  EXPECT_EQ(run("merge " + dir.string()).exit_code, 2);
+}
+
+TEST(SuiteCli, SigintStopsARunningSuiteWithRowsAndAReport) {
+  const fs::path dir = temp_dir("cli_sigint");
+  const std::string scene = test::source_dir() + "/scenes/demo.json";
+  std::string eps;
+  for (int i = 1; i <= 40; ++i) eps += (i > 1 ? ", " : "") + std::to_string(0.01 * i);
+  std::ofstream(dir / "slow.json") << R"({"suite": "slow", "repeat": 1, "experiments": [
+    {"name": "e", "kind": "shadow", "scene": ")" +
+                                          scene + R"(", "strategy": "dsm",
+     "params": {"res": 32}, "sweep": {"eps": [)" +
+                                          eps + R"(]},
+     "settings": {"width": 48, "height": 32, "probe_points": 20, "images": 0}}]})";
+  const std::string suite = (dir / "slow.json").string(), out = (dir / "out").string();
+  std::vector<std::string> args = {kBinary, "suite", suite, "--out", out, "--backend", "cpu"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, kBinary.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  // Wait until the first experiment's rows are written, then press Ctrl-C.
+  fs::path rows;
+  for (int i = 0; i < 600 && rows.empty(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    std::error_code ec;
+    for (const auto& e : fs::recursive_directory_iterator(out, ec))
+      if (e.path().filename() == "rows.csv") rows = e.path();
+  }
+  ASSERT_FALSE(rows.empty()) << "the suite wrote no rows";
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  std::ifstream report(rows.parent_path() / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("interrupted after "), std::string::npos) << md;
+  EXPECT_EQ(md.find("of 40 experiments") == std::string::npos, false) << md;
+  EXPECT_EQ(md.find("after 40 of 40"), std::string::npos) << md;
+}
+
+}  // namespace
+}  // namespace dv

@@ -1,0 +1,196 @@
+// Suite files: strict parsing of good and bad files, sweep expansion order, shard slices, the
+// rows.csv round trip, timing spreads and result folders that are never overwritten.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "core/error.h"
+#include "experiments/harness/rows.h"
+#include "experiments/harness/run_folder.h"
+#include "experiments/harness/suite_file.h"
+#include "experiments/harness/timing.h"
+#include "tests/support/paths.h"
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kGood = R"({
+  "suite": "good", "description": "two experiments", "repeat": 2,
+  "experiments": [
+    {"name": "a", "kind": "shadow", "scene": ["s1.json", "s2.json"],
+     "strategy": ["none", {"name": "dsm", "params": {"res": 64}}],
+     "params": {"bias": 0}, "sweep": {"eps": [0.01, 0.1], "storage": ["compact", "blocked", "chunked"]},
+     "settings": {"width": 32, "images": false},
+     "paper": {"source": "Knecht 2011", "columns": ["x"], "rows": [[1]]}},
+    {"name": "b", "kind": "voxelize", "scene": "s1.json", "strategy": "sat",
+     "settings": {"res": "32x32x32"}}
+  ]})";
+
+TEST(SuiteFile, ParsesEveryField) {
+  const Suite s = parse_suite(kGood, "good.json");
+  EXPECT_EQ(s.name, "good");
+  EXPECT_EQ(s.repeat, 2);
+  ASSERT_EQ(s.experiments.size(), 2u);
+  const ExperimentSpec& a = s.experiments[0];
+  EXPECT_EQ(a.kind, "shadow");
+  EXPECT_EQ(a.scenes, (std::vector<std::string>{"s1.json", "s2.json"}));
+  ASSERT_EQ(a.strategies.size(), 2u);
+  EXPECT_EQ(a.strategies[1].name, "dsm");
+  EXPECT_EQ(a.strategies[1].params.at("res"), "64");
+  EXPECT_EQ(a.params.at("bias"), "0");
+  EXPECT_EQ(a.settings.at("images"), "0");
+  ASSERT_EQ(a.sweep.size(), 2u);
+  EXPECT_EQ(a.sweep[0].first, "eps");
+  EXPECT_EQ(a.sweep[0].second, (std::vector<std::string>{"0.01", "0.1"}));
+  EXPECT_EQ(a.paper["source"], "Knecht 2011");
+  EXPECT_EQ(s.hash, fnv1a_hex(kGood));
+}
+
+TEST(SuiteFile, SweepIsTheCartesianProductLastKeyFastest) {
+  const std::vector<RunItem> items = expand_suite(parse_suite(kGood, "good.json"));
+  // a: 2 scenes x 2 strategies x 2 eps x 3 storages = 24; b: 1.
+  ASSERT_EQ(items.size(), 25u);
+  for (size_t i = 0; i < items.size(); ++i) EXPECT_EQ(items[i].index, int(i));
+  EXPECT_EQ(items[0].params_text(), "bias=0 eps=0.01 storage=compact");
+  EXPECT_EQ(items[1].params_text(), "bias=0 eps=0.01 storage=blocked");
+  EXPECT_EQ(items[3].params_text(), "bias=0 eps=0.1 storage=compact");
+  EXPECT_EQ(items[6].strategy, "dsm");
+  EXPECT_EQ(items[6].params_text(), "bias=0 eps=0.01 res=64 storage=compact");
+  EXPECT_EQ(items[12].scene, "s2.json");
+  EXPECT_EQ(items[24].experiment_name, "b");
+  EXPECT_EQ(items[24].settings.at("res"), "32x32x32");
+  std::set<std::string> distinct;
+  for (const RunItem& item : items)
+    distinct.insert(item.scene + item.strategy + item.params_text());
+  EXPECT_EQ(distinct.size(), items.size());
+}
+
+TEST(SuiteFile, BadFilesNameTheFileAndTheProblem) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"{", "not valid JSON"},
+      {"[]", "one JSON object"},
+      {R"({"experiments": []})", "suite"},
+      {R"({"suite": "x", "experiments": []})", "at least one experiment"},
+      {R"({"suite": "x", "typo": 1, "experiments": [{"name": "a", "kind": "shadow", "scene": "s", "strategy": "none"}]})",
+       "typo"},
+      {R"({"suite": "x", "experiments": [{"name": "a", "kind": "nope", "scene": "s", "strategy": "none"}]})",
+       "unknown experiment kind 'nope'"},
+      {R"({"suite": "x", "experiments": [{"name": "a", "kind": "shadow", "scene": "s", "strategy": "none", "settings": {"res": 1}}]})",
+       "unknown setting 'res'"},
+      {R"({"suite": "x", "experiments": [{"name": "a", "kind": "shadow", "scene": "s", "strategy": "none", "sweep": {"eps": []}}]})",
+       "non-empty array"},
+      {R"({"suite": "x", "experiments": [{"name": "a", "kind": "shadow", "scene": "s", "strategy": "dsm", "params": {"eps": 1}, "sweep": {"eps": [1]}}]})",
+       "also a fixed parameter"},
+      {R"({"suite": "x", "experiments": [{"name": "a", "kind": "shadow", "scene": "s", "strategy": []}]})",
+       "strategy"},
+      {R"({"suite": "x", "experiments": [{"name": "a", "kind": "shadow", "scene": "s", "strategy": "none"}, {"name": "a", "kind": "shadow", "scene": "s", "strategy": "none"}]})",
+       "used twice"},
+      {R"({"suite": "x y", "experiments": [{"name": "a", "kind": "shadow", "scene": "s", "strategy": "none"}]})",
+       "names a folder"},
+      {R"({"suite": "x", "experiments": [{"name": "a", "kind": "shadow", "scene": "s", "strategy": "none", "paper": {"rows": 1}}]})",
+       "paper"},
+  };
+  for (const auto& [text, fragment] : cases) {
+    try {
+      parse_suite(text, "bad-suite.json");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("bad-suite.json"), std::string::npos) << message;
+      EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " not in: " << message;
+    }
+  }
+}
+
+TEST(SuiteFile, BuiltInSuitesLoadAndQuickIsAmongThem) {
+  const std::vector<std::string> names = builtin_suite_names();
+  EXPECT_NE(std::find(names.begin(), names.end(), "quick"), names.end());
+  for (const std::string& name : names) {
+    const Suite s = load_suite(resolve_suite_path(name));
+    EXPECT_EQ(s.name, name);
+    for (const ExperimentSpec& e : s.experiments)
+      for (const std::string& scene : e.scene_paths) EXPECT_TRUE(fs::exists(scene)) << scene;
+  }
+  EXPECT_THROW(resolve_suite_path("no-such-suite"), InputError);
+}
+
+TEST(SuiteFile, ShardsPartitionTheItemsInOrder) {
+  const std::vector<RunItem> items = expand_suite(parse_suite(kGood, "good.json"));
+  for (int count : {1, 2, 3, 7, 40}) {
+    std::vector<int> seen;
+    for (int i = 1; i <= count; ++i)
+      for (const RunItem& item : shard_items(items, {i, count})) {
+        EXPECT_EQ(item.index % count, i - 1);
+        seen.push_back(item.index);
+      }
+    std::sort(seen.begin(), seen.end());
+    ASSERT_EQ(seen.size(), items.size()) << count;
+    for (size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], int(k));
+  }
+  EXPECT_EQ(parse_shard("2/3").index, 2);
+  for (const char* bad : {"0/2", "3/2", "1", "a/b", "1/0", "1/2x"})
+    EXPECT_THROW(parse_shard(bad), InputError) << bad;
+}
+
+TEST(SuiteFile, OnlyFiltersByExperimentKindOrStrategy) {
+  const std::vector<RunItem> items = expand_suite(parse_suite(kGood, "good.json"));
+  EXPECT_EQ(filter_items(items, "voxelize").size(), 1u);
+  EXPECT_EQ(filter_items(items, "dsm").size(), 12u);
+  EXPECT_EQ(filter_items(items, "").size(), items.size());
+}
+
+TEST(Rows, CsvRoundTripKeepsQuotesCommasLineBreaksAndNumbers) {
+  const fs::path path = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_rows.csv";
+  const std::vector<Row> rows = {
+      {"s", 3, "e,1", "shadow", "a.json", "dsm", "eps=0.05 res=64", "m", "median", 0.1 + 0.2, "ms",
+       ""},
+      {"s", 4, "e", "shadow", "a.json", "x", "", "failed", "value", 1.0, "",
+       "bad \"quote\", comma\nnext line"},
+      {"s", 5, "e", "shadow", "a.json", "x", "", "image_psnr", "value", 1.0 / 0.0, "dB", ""}};
+  write_rows_csv(path.string(), rows);
+  const std::vector<Row> back = read_rows_csv(path.string());
+  ASSERT_EQ(back.size(), rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(back[i].experiment, rows[i].experiment);
+    EXPECT_EQ(back[i].params, rows[i].params);
+    EXPECT_EQ(back[i].note, rows[i].note);
+    EXPECT_EQ(back[i].value, rows[i].value);  // bit for bit
+    EXPECT_EQ(back[i].item, rows[i].item);
+  }
+  std::ofstream(path) << "not,the,header\n";
+  EXPECT_THROW(read_rows_csv(path.string()), InputError);
+}
+
+TEST(Timing, MedianMinMax) {
+  const Spread odd = spread_of({5.0, 1.0, 3.0});
+  EXPECT_EQ(odd.median, 3.0);
+  EXPECT_EQ(odd.min, 1.0);
+  EXPECT_EQ(odd.max, 5.0);
+  EXPECT_EQ(spread_of({4.0, 1.0, 2.0, 3.0}).median, 2.5);
+}
+
+TEST(RunFolder, NeverOverwritesAnExistingFolder) {
+  const fs::path out = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_folders";
+  fs::remove_all(out);
+  const fs::path a = make_run_folder(out, "quick", "0123456789ab-dirty", "");
+  std::ofstream(a / "rows.csv") << "keep me\n";
+  const fs::path b = make_run_folder(out, "quick", "0123456789ab-dirty", "");
+  const fs::path c = make_run_folder(out, "quick", "0123456789ab-dirty", "");
+  EXPECT_NE(a, b);
+  EXPECT_NE(b, c);
+  EXPECT_NE(a, c);
+  EXPECT_EQ(a.parent_path(), out / "quick");
+  EXPECT_NE(a.filename().string().find("_0123456-dirty"), std::string::npos) << a;
+  std::ifstream kept(a / "rows.csv");
+  std::string line;
+  std::getline(kept, line);
+  EXPECT_EQ(line, "keep me");
+  EXPECT_EQ(short_git_sha("0123456789ab"), "0123456");
+}
+
+}  // namespace
+}  // namespace dv
