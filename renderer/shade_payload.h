@@ -29,7 +29,8 @@ struct ShadePayload {
 
   DV_HD bool done() const { return transmittance <= kSaturatedTransmittance; }
 
-  // A translucent surface: its Phong colour over what lies behind, weighted by its opacity.
+  // A translucent surface: its Phong colour over what lies behind, weighted by its opacity; its
+  // shadow receiver carries the geometric normal.
   DV_HD void surface(const RayHit& h, int32_t object) {
     const ObjectView& o = s.objects[object];
     if (o.alpha <= 0.0) return;
@@ -39,7 +40,8 @@ struct ShadePayload {
     const double len = glm::length(n);
     n = len > 0.0 ? n / len : -dir;
     if (glm::dot(n, dir) > 0.0) n = -n;  // two-sided: face the viewer
-    const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, origin + dir * h.t, n, -dir);
+    const ShadowReceiver at{origin + dir * h.t, n};
+    const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir);
     color += transmittance * o.alpha * c;
     transmittance *= 1.0 - o.alpha;
   }
@@ -89,7 +91,9 @@ struct ShadePayload {
       const double len = glm::length(n);
       n = len > 1e-12 ? -n / len : dvec3(0.0);
       if (glm::dot(n, dir) > 0.0) n = -n;
-      const dvec3 c = shade_phong(s, shadows, cursor, o, weighted_color / sigma_volume, x, n, -dir);
+      const ShadowReceiver at{x};  // a medium point: no surface bias
+      const dvec3 c =
+          shade_phong(s, shadows, cursor, o, weighted_color / sigma_volume, at, n, -dir);
       color += transmittance * alpha * (sigma_volume / sigma) * c;
     }
     transmittance *= 1.0 - alpha;
