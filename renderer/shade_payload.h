@@ -29,8 +29,10 @@ struct ShadePayload {
 
   DV_HD bool done() const { return transmittance <= kSaturatedTransmittance; }
 
-  // A translucent surface: its Phong colour over what lies behind, weighted by its opacity; its
-  // shadow receiver carries the geometric normal.
+  // A translucent surface: its Phong colour over what lies behind, weighted by its opacity. The
+  // shaded point is the crossing moved onto its triangle (a rasterized crossing can lie just
+  // outside it, on the plane's extension behind a neighbour, and would shadow itself), and
+  // its shadow receiver carries the geometric normal.
   DV_HD void surface(const RayHit& h, int32_t object) {
     const ObjectView& o = s.objects[object];
     if (o.alpha <= 0.0) return;
@@ -40,7 +42,7 @@ struct ShadePayload {
     const double len = glm::length(n);
     n = len > 0.0 ? n / len : -dir;
     if (glm::dot(n, dir) > 0.0) n = -n;  // two-sided: face the viewer
-    const ShadowReceiver at{origin + dir * h.t, n};
+    const ShadowReceiver at{nearest_point_on_triangle(origin + dir * h.t, p0, p1, p2), n};
     const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir);
     color += transmittance * o.alpha * c;
     transmittance *= 1.0 - o.alpha;
