@@ -102,6 +102,28 @@ TEST(ShadowBias, GrazingBackdropBehindTranslucentSlabsIsClean) {
   EXPECT_LE(reported_fraction(true, "dsm", "eps=0.01"), 0.01);
 }
 
+// The bias helper itself: surface receivers get the constant plus slope x reach x texel x
+// tan(theta), capped at kMaxBiasTangent; receivers not on a surface get none.
+TEST(ShadowBias, ReceiverDepthFollowsTheAngleToTheLight) {
+  SceneBuilder b;
+  b.add(make_box({-1, -0.1, -1}, {1, 0, 1}));
+  b.spot({0.0, 2.0, 0.0}, {0.0, -1.0, 0.0}, 40.0);
+  const SceneData data = b.build();
+  const ShadowFace f =
+      light_map_faces(data.view().lights[0], data.view().bounds, data.view().diagonal, 256)[0];
+  const dvec3 p(0.0, 0.0, 0.0);
+  const double depth = shadow_depth(f, p), texel = depth * f.texel_size;
+  EXPECT_EQ(receiver_depth(f, ShadowReceiver{p}, depth, 0.01, 2.0, 1.5), depth);
+  for (double deg : {0.0, 45.0, 80.0, 85.0, 89.0}) {
+    const double a = deg * 3.14159265358979323846 / 180.0;
+    const ShadowReceiver r{p, dvec3(std::sin(a), std::cos(a), 0.0)};
+    const double tangent = std::min(std::tan(a), kMaxBiasTangent);
+    EXPECT_NEAR(depth - receiver_depth(f, r, depth, 0.01, 2.0, 1.5),
+                0.01 + 2.0 * 1.5 * texel * tangent, 1e-12)
+        << deg;
+  }
+}
+
 // What the receiver bias lets leak at a contact shadow: behind a 2 mm opaque card standing on
 // the grazing-lit floor (81.5 degrees from the normal at the card), floor points closer to the
 // card along the light's ray than their own bias are lit; none farther than that (plus the
