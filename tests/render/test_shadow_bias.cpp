@@ -1,8 +1,9 @@
 // Shadow bias and self-shadowing (issue 9), on analytic stand-ins for the Khronos scenes:
-// a backdrop lit at a grazing angle behind translucent slabs and an opaque block (acne of the
-// map methods at their defaults against the exact reference image), a constant-extinction cube
-// under a spot light (no surface bias inside media), and a draped cloth (rasterized and ray
-// traced reference images agree away from silhouettes: no self-shadowing speckles).
+// a backdrop lit at a grazing angle behind tinted slabs and an opaque block (acne of the map
+// methods at their defaults against the exact reference image), the receiver bias against its
+// formula and what it lets leak behind a thin card at contact, a constant-extinction cube under
+// a spot light (no surface bias inside media), and a draped cloth (rasterized and ray traced
+// reference images agree away from silhouettes: no self-shadowing speckles).
 #include <gtest/gtest.h>
 
 #include <algorithm>
