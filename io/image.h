@@ -2,6 +2,8 @@
 // in every build) and OpenEXR (linear half/float, through OpenImageIO, full build only).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -34,8 +36,12 @@ void write_png(const std::string& path, const Image& image);
 // 8-bit sRGB bytes, 3 per pixel, rows from the top, as write_png stores them.
 void write_png_bytes(const std::string& path, int width, int height,
                      const std::vector<unsigned char>& rgb);
-// The 8-bit sRGB value write_png stores for a linear channel value (clamped to [0, 1]).
-unsigned char srgb_byte(float linear);
+// The 8-bit sRGB value a PNG holds for a linear channel value (clamped to [0, 1]).
+inline unsigned char srgb_byte(float linear) {
+  const double c = std::clamp(double(linear), 0.0, 1.0);
+  const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return static_cast<unsigned char>(std::lround(s * 255.0));
+}
 
 // Provided by io/image_exr_oiio.cpp (full build) or io/image_exr_unavailable.cpp (lean build).
 bool exr_supported();

@@ -1,7 +1,5 @@
 // PNG output through stb_image_write (header-only, compiled here) and extension dispatch.
-#include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <filesystem>
 
 #include "core/error.h"
@@ -15,12 +13,6 @@
 #include <stb_image_write.h>
 
 namespace dv {
-
-unsigned char srgb_byte(float linear) {
-  const double c = std::clamp(double(linear), 0.0, 1.0);
-  const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(s * 255.0));
-}
 
 void write_png_bytes(const std::string& path, int width, int height,
                      const std::vector<unsigned char>& rgb) {

@@ -36,7 +36,10 @@ struct ShadePayload {
   }
 
   // A translucent surface: its Phong colour over what lies behind, weighted by its opacity;
-  // its transmissive part adds highlights and tints what lies behind by its colour.
+  // its transmissive part adds highlights and tints what lies behind by its colour. The shaded
+  // point is the crossing moved onto its triangle (a rasterized crossing can lie just outside
+  // it, on the plane's extension behind a neighbour, and would shadow itself), and its shadow
+  // receiver carries the geometric normal.
   DV_HD void surface(const RayHit& h, int32_t object) {
     const ObjectView& o = s.objects[object];
     if (o.alpha <= 0.0 && o.transmission <= 0.0) return;
@@ -46,16 +49,16 @@ struct ShadePayload {
     const double len = glm::length(n);
     n = len > 0.0 ? n / len : -dir;
     if (glm::dot(n, dir) > 0.0) n = -n;  // two-sided: face the viewer
-    const dvec3 p = origin + dir * h.t;
+    const ShadowReceiver at{nearest_point_on_triangle(origin + dir * h.t, p0, p1, p2), n};
     if (o.alpha > 0.0) {
-      const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, p, n, -dir);
+      const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir);
       color += transmittance * o.alpha * c;
     }
     if (o.transmission <= 0.0) {
       transmittance *= 1.0 - o.alpha;
       return;
     }
-    const dvec3 highlight = shade_phong(s, shadows, cursor, o, o.color, p, n, -dir, true);
+    const dvec3 highlight = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir, true);
     color += transmittance * o.transmission * highlight;
     transmittance *= (1.0 - o.alpha - o.transmission) + o.transmission * o.color;
   }
@@ -108,7 +111,9 @@ struct ShadePayload {
       const double len = glm::length(n);
       n = len > 1e-12 ? -n / len : dvec3(0.0);
       if (glm::dot(n, dir) > 0.0) n = -n;
-      const dvec3 c = shade_phong(s, shadows, cursor, o, weighted_color / sigma_volume, x, n, -dir);
+      const ShadowReceiver at{x};  // a medium point: no surface bias
+      const dvec3 c =
+          shade_phong(s, shadows, cursor, o, weighted_color / sigma_volume, at, n, -dir);
       color += transmittance * alpha * (sigma_volume / sigma) * c;
     }
     transmittance *= 1.0 - alpha;

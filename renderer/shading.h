@@ -9,6 +9,7 @@
 #include "core/hd.h"
 #include "core/math.h"
 #include "scene/scene_view.h"
+#include "strategies/shadow/shadow_receiver.h"
 
 namespace dv {
 
@@ -52,14 +53,16 @@ DV_HD inline LightArrival light_arrival(const LightView& l, const dvec3& p) {
   return {to_light, l.intensity * fade / dist2};
 }
 
-// Phong colour of a point with unit normal n (facing the viewer) or n = 0 for unoriented
-// volume samples (then the diffuse term takes no angle and there is no highlight). With
-// `highlight_only` just the specular highlights (what a transmissive surface shows).
+// Phong colour of the point `at` (its shadow receiver: a surface point carries its geometric
+// normal, a volume sample none) with unit shading normal n (facing the viewer) or n = 0 for
+// unoriented volume samples (then the diffuse term takes no angle and there is no highlight).
+// With `highlight_only` just the specular highlights (what a transmissive surface shows).
 template <class Source>
 DV_HD dvec3 shade_phong(const SceneView& s, const Source& shadows, typename Source::Cursor& cursor,
-                        const ObjectView& o, const dvec3& color, const dvec3& p, const dvec3& n,
-                        const dvec3& to_eye, bool highlight_only = false) {
+                        const ObjectView& o, const dvec3& color, const ShadowReceiver& at,
+                        const dvec3& n, const dvec3& to_eye, bool highlight_only = false) {
   if (highlight_only && !(o.specular > 0.0 && glm::dot(n, n) > 0.0)) return dvec3(0.0);
+  const dvec3& p = at.point;
   dvec3 out = highlight_only ? dvec3(0.0) : o.ambient * color;
   const bool oriented = glm::dot(n, n) > 0.0;
   for (int li = 0; li < int(s.lights.size); ++li) {
@@ -68,7 +71,7 @@ DV_HD dvec3 shade_phong(const SceneView& s, const Source& shadows, typename Sour
     if (a.intensity <= 0.0) continue;
     const double n_dot_l = oriented ? glm::dot(n, a.to_light) : 1.0;
     if (n_dot_l <= 0.0) continue;
-    const double t = shadows.transmittance(cursor, p, li);
+    const double t = shadows.transmittance(cursor, at, li);
     if (t <= 0.0) continue;
     double spec = 0.0;
     if (oriented && o.specular > 0.0) {

@@ -98,6 +98,31 @@ DV_HD inline bool triangle_plane_hit(const SceneView& s, uint32_t tri, const dve
   return true;
 }
 
+// The point of triangle (a, b, c) nearest to p, for p in its plane (Ericson 2005, §5.1.5); p
+// itself when it lies inside. A rasterized fragment's plane point can lie outside its triangle
+// by the coverage test's fixed-point rounding, where the plane's extension passes behind (or in
+// front of) the neighbouring triangle; moved onto the triangle it is a point of the surface.
+DV_HD inline dvec3 nearest_point_on_triangle(const dvec3& p, const dvec3& a, const dvec3& b,
+                                             const dvec3& c) {
+  const dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+  const dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  return p;
+}
+
 // Slab test of the ray against a box for t in [t_min, t_max].
 DV_HD inline bool ray_hits_box(const ShearedRay& r, const Aabb& box, double t_min, double t_max) {
   for (int axis = 0; axis < 3; ++axis) {

@@ -17,7 +17,8 @@
 namespace dv {
 
 // res (texels per side, default 1024), pcf (kernel side, default 2), bias (world units; < 0:
-// 1e-4 of the scene diagonal, the default), slope (texel sizes added to the bias, default 1.5).
+// 1e-4 of the scene diagonal, the default) and slope (texel sizes times the receiver's tangent
+// to the light, default 1.5), the receiver bias of surface points (light_faces.h).
 struct DepthMapParams {
   int res = 1024;
   int pcf = 2;

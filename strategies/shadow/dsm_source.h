@@ -1,12 +1,13 @@
 // Kernel side of the `dsm` shadow method: the transmittance of a light at a point from that
 // light's deep shadow maps. The point's face and texel-centre coordinates come from the shared
 // light-face helpers (light_faces.h), its depth (distance from the light, or from an
-// orthographic map's near plane) less a bias against self-shadowing: a constant plus `slope_bias`
-// texel sizes at the point's depth, widened by the filter's reach, since the lookup knows no
-// surface normal. Unfiltered: the nearest texel's V'(z). Bilinear (Knecht eq. 4.18/4.19): the
-// four texels around the point, V' of each weighted bilinearly, so attenuation is filtered, not
-// optical depth. Texels outside the map count as lit; points outside a spot cone get nothing.
-// The per-ray cursor keeps each (light, tap)'s last node index for the coherent search.
+// orthographic map's near plane) less the receiver bias against self-shadowing (receiver_depth:
+// for a surface point a constant plus `slope_bias` texel sizes times its tangent to the light,
+// over the filter's reach; none for points in media and volume samples). Unfiltered: the nearest
+// texel's V'(z). Bilinear (Knecht eq. 4.18/4.19): the four texels around the point, V' of each
+// weighted bilinearly, so attenuation is filtered, not optical depth. Texels outside the map count
+// as lit; points outside a spot cone get nothing. The per-ray cursor keeps each (light, tap)'s last
+// node index for the coherent search.
 #pragma once
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "core/buffer.h"
 #include "core/hd.h"
 #include "strategies/shadow/light_faces.h"
+#include "strategies/shadow/shadow_receiver.h"
 #include "strategies/storage/dsm_reader.h"
 
 namespace dv {
@@ -44,13 +46,14 @@ struct DsmSource {
     return reader.visibility(f.offset + int64_t(y) * resolution + x, z, hint);
   }
 
-  DV_HD double transmittance(Cursor& cursor, const dvec3& p, int light) const {
+  DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    const dvec3& p = r.point;
     const LightView& l = lights[light];
     if (outside_light_cone(l, p)) return 0.0;
     const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
     FacePoint fp;
     if (!project_to_face(f, resolution, p, fp)) return 1.0;
-    const float z = float(biased_depth(f, fp.depth, bias, slope_bias, bilinear ? 1.0 : 0.5));
+    const float z = float(receiver_depth(f, r, fp.depth, bias, slope_bias, bilinear ? 1.0 : 0.5));
     int scratch[4] = {-1, -1, -1, -1};
     int* hint = light < kDsmCursorLights ? cursor.hint + 4 * light : scratch;
     if (!bilinear)

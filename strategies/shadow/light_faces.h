@@ -1,12 +1,13 @@
 // The faces of light-space maps (shadow maps, deep shadow maps): per light one face (spot:
 // perspective over the cone; directional: orthographic fitted to the casters) or six 90-degree
 // faces (omni), each a square map of res x res texels, and the kernel-side helpers every map
-// lookup shares: which face a point falls on, where it projects, its depth, the bias.
+// lookup shares: which face a point falls on, where it projects, its depth, the receiver bias.
 // Depth everywhere (generation, storage, lookups) is the distance from the light for
 // perspective faces and the distance along the axis from the near plane for orthographic ones,
 // which is the parameter t of the face's pixel rays (renderer/raster/raster_projection.h).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "core/math.h"
 #include "renderer/raster/raster_projection.h"
 #include "scene/scene_view.h"
+#include "strategies/shadow/shadow_receiver.h"
 
 namespace dv {
 
@@ -71,13 +73,32 @@ DV_HD inline bool project_to_face(const ShadowFace& f, int resolution, const dve
   return true;
 }
 
-// The depth compared against the map: less a constant bias and `slope_bias` texel sizes at the
-// point's depth, times `texels` (the filter's half-width; lookups know no surface normal, so
-// grazing surfaces need the widening to escape self-shadowing).
-DV_HD inline double biased_depth(const ShadowFace& f, double depth, double bias, double slope_bias,
-                                 double texels) {
+// Largest receiver tangent the slope bias follows: 86.4 degrees between the normal and the
+// light, where the diffuse term n.l has fallen to 0.062.
+inline constexpr double kMaxBiasTangent = 16.0;
+
+// The depth a lookup compares against the map for receiver r at `depth` on face f. A surface
+// point is moved towards the light by the constant `bias` plus `slope` x `texels` (the
+// filter's reach) texel sizes at its depth times tan(theta), theta the angle between its
+// normal and the direction to the light (capped at kMaxBiasTangent): the depth its own plane
+// changes by over that reach (receiver-plane bias; Brabec 2003 ch. 5), so grazing receivers
+// escape self-shadowing and surfaces facing the light keep only the constant. A point not on a
+// surface (media, volume samples, free probe points) is not biased.
+DV_HD inline double receiver_depth(const ShadowFace& f, const ShadowReceiver& r, double depth,
+                                   double bias, double slope, double texels) {
+  if (!r.on_surface()) return depth;
+  dvec3 to_light = -f.axis;
+  if (!f.orthographic) {
+    const dvec3 d = f.eye - r.point;
+    const double len = glm::length(d);
+    if (len > 0.0) to_light = d / len;
+  }
+  const double c = glm::dot(r.normal, to_light), cos_theta = c < 0.0 ? -c : c;
+  const double sin_theta = sqrt(max_value(0.0, 1.0 - cos_theta * cos_theta));
+  const double tangent =
+      sin_theta >= kMaxBiasTangent * cos_theta ? kMaxBiasTangent : sin_theta / cos_theta;
   const double texel = f.orthographic ? f.texel_size : depth * f.texel_size;
-  return depth - bias - slope_bias * texel * texels;
+  return depth - bias - slope * texel * texels * tangent;
 }
 
 // The faces of one light's map at res x res texels, fitted to `bounds` (the casters): near

@@ -15,13 +15,17 @@ struct ProbeAnswer {
   uint32_t flags;
 };
 
+// A probe point on a surface (by the oracle's convention) is a surface receiver; see
+// probe_receiver.
 template <class Source>
-void probe_points(Backend backend, const Source& source, int lights, View<const dvec3> points,
-                  View<ProbeAnswer> out) {
+void probe_points(Backend backend, const SceneView& s, const Source& source, int lights,
+                  View<const dvec3> points, View<ProbeAnswer> out) {
   parallel_for(
       backend, "probe_transmittance", out.size, DV_KERNEL_LAMBDA(int64_t i) {
         typename Source::Cursor cursor{};
-        const double t = source.transmittance(cursor, points[i / lights], int(i % lights));
+        const int light = int(i % lights);
+        const ShadowReceiver r = probe_receiver(s, s.lights[light], points[i / lights]);
+        const double t = source.transmittance(cursor, r, light);
         out[i] = {t, cursor.flags};
       });
 }
@@ -38,8 +42,10 @@ ProbeResults probe_transmittance(Backend backend, const SceneData& scene, Shadow
   Buffer<ProbeAnswer> out(memory, int64_t(points.size()) * lights, "probe results");
   const ShadowSourceVariant source = method.prepare(scene, backend, nullptr);
   const auto start = std::chrono::steady_clock::now();
-  std::visit([&](const auto& s) { probe_points(backend, s, lights, pts.const_view(), out.view()); },
-             source);
+  const SceneView& view = scene.view();
+  std::visit(
+      [&](const auto& s) { probe_points(backend, view, s, lights, pts.const_view(), out.view()); },
+      source);
   if (backend == Backend::cuda) device_synchronize("probe_transmittance");
   ProbeResults r;
   r.milliseconds =

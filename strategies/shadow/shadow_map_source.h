@@ -1,9 +1,9 @@
 // Kernel side of the conventional depth shadow map (Williams 1978; Brabec 2003 ch. 4-5): per
 // light one face (spot: perspective over the cone; directional: orthographic fitted to the
 // casters) or six 90-degree faces (omni), each a square map of the nearest caster's depth.
-// A point is lit where its own depth, less the bias, does not exceed the stored depth (the bias
-// is a constant plus a number of texel sizes at the point's depth, widened with the PCF
-// kernel, since the lookup knows no surface normal); PCF
+// A point is lit where its own depth, less the receiver bias, does not exceed the stored depth
+// (light_faces.h, receiver_depth: for surface points a constant plus `slope_bias` texel sizes
+// times the receiver's tangent to the light, over the PCF kernel's reach; none elsewhere); PCF
 // averages that test over pcf x pcf texels around the point's projection (Reeves et al.:
 // compare, then filter). Every surface with alpha > 0 casts a full shadow; media are not
 // represented: this is the opaque-shadow baseline. Host and device code.
@@ -15,6 +15,7 @@
 #include "core/hd.h"
 #include "scene/scene_view.h"
 #include "strategies/shadow/light_faces.h"
+#include "strategies/shadow/shadow_receiver.h"
 
 namespace dv {
 
@@ -25,20 +26,21 @@ struct ShadowMapSource {
   View<const float> depths;  // +inf where no caster
   int resolution;
   int pcf;            // kernel side in texels (1: a single nearest-texel test)
-  double bias;        // world units subtracted from the point's depth ...
-  double slope_bias;  // ... plus this many texel sizes at the point's depth (grazing surfaces)
+  double bias;        // world units subtracted from a surface point's depth ...
+  double slope_bias;  // ... plus this many texel sizes x tan(angle to the light) per reach
 
   struct Cursor {
     uint32_t flags = 0;
   };
 
-  DV_HD double transmittance(Cursor&, const dvec3& p, int light) const {
+  DV_HD double transmittance(Cursor&, const ShadowReceiver& r, int light) const {
+    const dvec3& p = r.point;
     const LightView& l = lights[light];
     if (outside_light_cone(l, p)) return 0.0;
     const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
     FacePoint fp;
     if (!project_to_face(f, resolution, p, fp)) return 1.0;
-    const double depth = biased_depth(f, fp.depth, bias, slope_bias, 0.5 * double(pcf + 1));
+    const double depth = receiver_depth(f, r, fp.depth, bias, slope_bias, 0.5 * double(pcf + 1));
     const int x0 = int(floor(fp.u - 0.5 * (pcf - 1) + 0.5)),
               y0 = int(floor(fp.v - 0.5 * (pcf - 1) + 0.5));
     int lit = 0, taps = 0;

@@ -1,6 +1,7 @@
 // Shadow sources as kernels see them. A shadow source answers
-//   transmittance(cursor, point, light)
-// for points of non-decreasing distance along one camera ray; the small per-ray Cursor lets
+//   transmittance(cursor, receiver, light)
+// for receivers (shadow_receiver.h: a point, with its geometric normal when it lies on a
+// surface) of non-decreasing distance along one camera ray; the small per-ray Cursor lets
 // coherent methods (the DSM's incremental lookup) keep state. Kernels are templated on the
 // concrete source chosen on the host (std::visit over ShadowSourceVariant): no virtual calls
 // in device code. A new shadow method adds its source type here and its host class in its own
@@ -15,6 +16,7 @@
 #include "scene/scene_view.h"
 #include "strategies/shadow/dsm_source.h"
 #include "strategies/shadow/shadow_map_source.h"
+#include "strategies/shadow/shadow_receiver.h"
 #include "strategies/shadow/transmittance_slicemap_source.h"
 
 namespace dv {
@@ -24,7 +26,7 @@ struct NoShadowSource {
   struct Cursor {
     uint32_t flags = 0;
   };
-  DV_HD double transmittance(Cursor&, const dvec3&, int) const { return 1.0; }
+  DV_HD double transmittance(Cursor&, const ShadowReceiver&, int) const { return 1.0; }
 };
 
 // The exact oracle per shaded sample: slow, the ground truth.
@@ -33,10 +35,10 @@ struct ReferenceShadowSource {
   struct Cursor {
     uint32_t flags = 0;  // OracleFlag bits seen along this ray
   };
-  DV_HD double transmittance(Cursor& cursor, const dvec3& p, int light) const {
-    const OracleResult r = exact_transmittance(scene, scene.lights[light], p);
-    cursor.flags |= r.flags;
-    return r.transmittance;
+  DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    const OracleResult exact = exact_transmittance(scene, scene.lights[light], r.point);
+    cursor.flags |= exact.flags;
+    return exact.transmittance;
   }
 };
 

@@ -3,10 +3,10 @@
 // face's frustum (strategies/voxelizer/frustum_grid.h) of the translucent casters (0 < alpha <
 // 1). The light reaching p is the opaque map's answer times (1 - a)^n, n the set voxels of p's
 // column in the slices strictly in front of p's slice, a the casters' (mean) opacity; the
-// powers come from a table so that CPU and CUDA agree exactly. The point's depth is biased
-// towards the light like the shadow map's (constant plus slope texels), so that the receiver's
-// own surface voxel is not counted. Interiors (media, volumes) are not represented. Host and
-// device code.
+// powers come from a table so that CPU and CUDA agree exactly. A surface point's depth is
+// biased towards the light like the shadow map's (receiver_depth), so that the receiver's own
+// surface voxel is not counted; points not on a surface are not biased. Interiors (media, volumes)
+// are not represented. Host and device code.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +15,7 @@
 #include "core/hd.h"
 #include "strategies/shadow/light_faces.h"
 #include "strategies/shadow/shadow_map_source.h"
+#include "strategies/shadow/shadow_receiver.h"
 #include "strategies/voxelizer/voxel_geometry.h"
 #include "strategies/voxelizer/voxel_grid.h"
 
@@ -29,22 +30,23 @@ struct TransmittanceSlicemapSource {
 
   using Cursor = ShadowMapSource::Cursor;
 
-  DV_HD double transmittance(Cursor& cursor, const dvec3& p, int light) const {
-    const double lit = opaque.transmittance(cursor, p, light);
+  DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    const double lit = opaque.transmittance(cursor, r, light);
     if (lit == 0.0 || grids.empty()) return lit;
-    const int face = face_of(opaque.light_faces[light], opaque.lights[light], p);
-    return lit * attenuation[slices_in_front(face, p)];
+    const int face = face_of(opaque.light_faces[light], opaque.lights[light], r.point);
+    return lit * attenuation[slices_in_front(face, r)];
   }
 
-  // Set voxels of p's column in front of p's (biased) slice on `face`.
-  DV_HD int slices_in_front(int face, const dvec3& p) const {
+  // Set voxels of the receiver's column in front of its (biased) slice on `face`.
+  DV_HD int slices_in_front(int face, const ShadowReceiver& r) const {
+    const dvec3& p = r.point;
     const GridTransform& t = grids[face];
     const int res = opaque.resolution;
     const dvec3 g = t.apply(p);  // columns from the projection
     const int x = point_voxel(g.x, res), y = point_voxel(g.y, res);
     if (x < 0 || y < 0) return 0;
-    const double biased =
-        biased_depth(opaque.faces[face], t.axial_depth(p), opaque.bias, opaque.slope_bias, 1.0);
+    const double biased = receiver_depth(opaque.faces[face], r, t.axial_depth(p), opaque.bias,
+                                         opaque.slope_bias, 1.0);
     const double z = (biased - t.near) * t.depth_scale;
     const int slice = z >= double(slices) ? slices : (z > 0.0 ? int(z) : 0);
     const int64_t per_face = int64_t(res) * res * (slices / 32);

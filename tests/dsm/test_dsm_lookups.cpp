@@ -27,7 +27,7 @@ DsmSettings exact_depth_settings(float eps, int res, bool bilinear = false) {
 
 double dsm_at(const DeepShadowMaps& maps, const dvec3& p, int light) {
   DsmSource::Cursor cursor;
-  return maps.source().transmittance(cursor, p, light);
+  return maps.source().transmittance(cursor, ShadowReceiver{p}, light);
 }
 
 class LookupsOnRandomScenes : public ::testing::TestWithParam<unsigned> {};

@@ -113,7 +113,8 @@ TEST(ShadowMap, FocusingOnTheCameraSharpensWhatItSees) {
       const double approx = std::visit(
           [&](const auto& source) {
             typename std::decay_t<decltype(source)>::Cursor c{};
-            return source.transmittance(c, p, 0);
+            return source.transmittance(c, probe_receiver(data.view(), data.view().lights[0], p),
+                                        0);
           },
           src);
       wrong += std::abs(exact - approx) >= 0.5;
