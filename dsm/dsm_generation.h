@@ -12,6 +12,7 @@
 #include "dsm/dsm_generator.h"
 #include "renderer/raster/tile_raster.h"
 #include "scene/scene_view.h"
+#include "strategies/shadow/light_clusters.h"
 #include "strategies/shadow/light_faces.h"
 
 namespace dv {
@@ -27,8 +28,11 @@ struct DsmGenerationOptions {
 
 class DsmGeneration {
  public:
-  // Rasterizes every face of every light; throws if a tile list overflows.
-  DsmGeneration(const SceneData& scene, Backend backend, const DsmGenerationOptions& options);
+  // Rasterizes every face of every light; throws if a tile list overflows. With `clusters` the
+  // faces are the clusters' (at clusters->resolution, each seeing only its cluster's objects)
+  // instead of every light's standard faces at options.resolution.
+  DsmGeneration(const SceneData& scene, Backend backend, const DsmGenerationOptions& options,
+                const ClusteredLayout* clusters = nullptr);
 
   const DsmGenerator& generator() const { return generator_; }
   const LightMapLayout& layout() const { return layout_; }
@@ -46,6 +50,7 @@ class DsmGeneration {
   std::vector<TileLists> lists_;
   Buffer<TileListsView> list_views_;
   Buffer<InsideSet> ray_media_;
+  Buffer<uint32_t> object_masks_;
   Buffer<PrecompressedStep> table_steps_;
   Buffer<int32_t> object_table_;
   Buffer<dvec2> table_domain_;
