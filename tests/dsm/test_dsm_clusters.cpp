@@ -287,6 +287,46 @@ TEST(ClusteredMaps, ShadowMethodParametersStatsAndRebuilds) {
                InputError);
 }
 
+// Eq. 3.9 needs every light's own maps: 20 spot, omni and directional lights (beyond
+// kDsmCursorLights, which only limits coherent search) each match the oracle, unclustered and
+// clustered, through the shadow method's probe.
+TEST(ManyLights, TwentyLightsEachMatchTheOracle) {
+  Scene scene = test::random_scene(21);
+  scene.lights.clear();
+  test::SceneBuilder lights;
+  for (int k = 0; k < 20; ++k) {
+    const double a = 6.283185307179586 * k / 20.0;
+    const dvec3 p(4.0 * std::cos(a), 4.5 + 0.5 * (k % 3), 4.0 * std::sin(a));
+    if (k % 3 == 0) lights.spot(p, glm::normalize(-p), 35.0);
+    if (k % 3 == 1) lights.omni(p);
+    if (k % 3 == 2) lights.directional(glm::normalize(dvec3(-p.x, -6.0, -p.z)));
+  }
+  scene.lights = lights.scene.lights;
+  const SceneData data(scene, Memory::host);
+  std::mt19937 rng(8);
+  std::vector<dvec3> points;
+  for (int i = 0; i < 200; ++i)
+    points.push_back(dvec3(std::uniform_real_distribution<double>(-2.0, 2.0)(rng),
+                           std::uniform_real_distribution<double>(0.0, 2.0)(rng),
+                           std::uniform_real_distribution<double>(-2.0, 2.0)(rng)));
+  auto reference = shadow_registry().create("reference");
+  const ProbeResults exact = probe_transmittance(Backend::cpu, data, *reference, points);
+  for (const char* clusters : {"clusters=1", "clusters=4"}) {
+    auto method = shadow_registry().create(
+        "dsm", StrategyParams::parse({"res=256", "eps=0.01", "filter=bilinear", clusters}));
+    const ProbeResults r = probe_transmittance(Backend::cpu, data, *method, points);
+    ASSERT_EQ(r.transmittance.size(), exact.transmittance.size());
+    for (int l = 0; l < 20; ++l) {
+      double sum = 0.0;
+      for (size_t i = 0; i < points.size(); ++i) {
+        const size_t k = i * 20 + size_t(l);
+        sum += std::abs(r.transmittance[k] - exact.transmittance[k]);
+      }
+      EXPECT_LT(sum / double(points.size()), 0.04) << clusters << " light " << l;
+    }
+  }
+}
+
 // CPU and CUDA: the same clusters, node counts per texel and lookups (skipped without a GPU).
 TEST(ClusteredMaps, CpuAndCudaAgree) {
   std::string why;
