@@ -18,21 +18,38 @@ DeepShadowMaps::DeepShadowMaps(DsmSettings settings) : settings_(std::move(setti
   if (!(settings_.step_scale > 0.0)) throw InputError("dsm step_scale", "must be positive");
   if (settings_.clusters.max_clusters < 1) throw InputError("dsm clusters", "must be at least 1");
   if (!(settings_.clusters.d0 >= 0.0)) throw InputError("dsm cluster_d0", "must be >= 0");
+  if (!(settings_.clusters.hysteresis >= 0.0))
+    throw InputError("dsm cluster_hysteresis", "must be >= 0");
   storage_ = storage_registry().create(settings_.storage, settings_.storage_params);
 }
 
-ClusteredLayout DeepShadowMaps::plan_clusters(const SceneData& scene) const {
+ClusteredLayout DeepShadowMaps::plan_clusters(const SceneData& scene, const Camera* camera) const {
   const SceneView& s = scene.view();
-  return clustered_light_map_layout(scene.host_lights(), scene.host_object_bounds(), s.bounds,
-                                    s.diagonal, settings_.clusters, settings_.resolution);
+  const ClusterSettings& c = settings_.clusters;
+  return clustered_light_map_layout(scene.host_lights(), scene.host_object_bounds(),
+                                    light_distances(scene.host_lights(), scene.host_object_bounds(),
+                                                    s.bounds, s.diagonal, c, camera),
+                                    c, settings_.resolution);
 }
 
-void DeepShadowMaps::generate(const SceneData& scene, Backend backend) {
+bool DeepShadowMaps::clustering_holds(const SceneData& scene, const Camera* camera) const {
+  if (!clustered_) return true;
+  const SceneView& s = scene.view();
+  const std::vector<ObjectDistances> now =
+      light_distances(scene.host_lights(), scene.host_object_bounds(), s.bounds, s.diagonal,
+                      settings_.clusters, camera);
+  return dv::clustering_holds(clusters_, now, settings_.clusters) ||
+         clustered_light_map_layout(scene.host_lights(), scene.host_object_bounds(), now,
+                                    settings_.clusters, settings_.resolution)
+                 .signature == clusters_.signature;
+}
+
+void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Camera* camera) {
   passes_.clear();
   clustered_ = settings_.clusters.max_clusters > 1;
   if (clustered_) {
     PassTimer timer(backend);
-    clusters_ = plan_clusters(scene);
+    clusters_ = plan_clusters(scene, camera);
     passes_.push_back({"cluster", timer.stop()});
   }
   {

@@ -41,11 +41,15 @@ class DeepShadowMaps {
   explicit DeepShadowMaps(DsmSettings settings);
 
   // Generates every light's maps for `scene`, which lives in the memory of `backend`: the
-  // standard faces, or with clusters the faces of plan_clusters(scene).
-  void generate(const SceneData& scene, Backend backend);
+  // standard faces, or with clusters the faces of plan_clusters(scene, camera).
+  void generate(const SceneData& scene, Backend backend, const Camera* camera = nullptr);
 
-  // The clustered layout these settings give for `scene` (settings().clusters.max_clusters > 1).
-  ClusteredLayout plan_clusters(const SceneData& scene) const;
+  // The clustered layout these settings give for `scene` (settings().clusters.max_clusters > 1)
+  // seen by `camera` (lispsm only; null: every object, plain light space).
+  ClusteredLayout plan_clusters(const SceneData& scene, const Camera* camera) const;
+  // Whether the last generation's clustering still serves `camera`: its hysteresis holds
+  // (clustering_holds) or clustering anew gives the same clusters and frusta. True unclustered.
+  bool clustering_holds(const SceneData& scene, const Camera* camera) const;
   // The clustering of the last generation; null without clusters.
   const ClusteredLayout* clusters() const { return clustered_ ? &clusters_ : nullptr; }
   int resolution() const { return clustered_ ? clusters_.resolution : settings_.resolution; }

@@ -1,12 +1,14 @@
 // Shadow method "dsm": deep shadow maps (dsm/deep_shadow_maps.h). Parameters: storage (compact,
 // texture3d, chunked, blocked; default compact), res (texels per side, default 1024), eps (error
 // bound, default 0.05), filter (none | bilinear, default none), bias (world units, default 1e-4
-// of the scene diagonal), slope (texel sizes added to the bias, default 3), and storage.KEY
-// passed to the storage strategy (e.g. storage.alloc=thesis), clusters (m, default 1: one map
-// per light face) and cluster_d0 (distance threshold, NDC units, default 0.5) for clustered
-// maps (strategies/shadow/light_clusters.h). Maps are generated when the scene data or the
-// backend changes and, clustered, when a cluster or a cluster's frustum changes (the
-// clustering is recomputed on every prepare and compared by signature).
+// of the scene diagonal), slope (texel sizes added to the bias, default 3), storage.KEY passed
+// to the storage strategy (e.g. storage.alloc=thesis), and for clustered maps
+// (strategies/shadow/light_clusters.h) clusters (m, default 1: one map per light face),
+// cluster_d0 (distance threshold, NDC units, default 0.5), lispsm (0 | 1, default 0: cluster in
+// the light-space perspective of the camera, strategies/shadow/lispsm.h; without a camera as 0)
+// and cluster_hysteresis (fraction of d0 a distance may move before reclustering, default 0.5).
+// Maps are generated when the scene data or the backend changes and, clustered, when the
+// clustering no longer holds for the camera (DeepShadowMaps::clustering_holds).
 #include <memory>
 #include <vector>
 
@@ -32,6 +34,8 @@ DsmSettings dsm_settings(const StrategyParams& p) {
   s.step_scale = p.number("step_scale", s.step_scale);
   s.clusters.max_clusters = p.integer("clusters", s.clusters.max_clusters);
   s.clusters.d0 = p.number("cluster_d0", s.clusters.d0);
+  s.clusters.lispsm = p.choice("lispsm", "0", {"0", "1"}) == "1";
+  s.clusters.hysteresis = p.number("cluster_hysteresis", s.clusters.hysteresis);
   return s;
 }
 
@@ -77,7 +81,9 @@ class DsmShadows final : public ShadowMethod {
             {"table_bins", s.table_bins},
             {"step_scale", s.step_scale},
             {"clusters", s.clusters.max_clusters},
-            {"cluster_d0", s.clusters.d0}};
+            {"cluster_d0", s.clusters.d0},
+            {"lispsm", s.clusters.lispsm ? 1 : 0},
+            {"cluster_hysteresis", s.clusters.hysteresis}};
   }
   nlohmann::json stats() const override {
     nlohmann::json j = {{"maps_built", maps_.generations()}, {"prepare_calls", prepare_calls_}};
@@ -99,16 +105,17 @@ class DsmShadows final : public ShadowMethod {
     return j;
   }
 
-  ShadowSourceVariant prepare(const SceneData& scene, Backend backend, const Camera*) override {
+  ShadowSourceVariant prepare(const SceneData& scene, Backend backend,
+                              const Camera* view) override {
     bool stale = prepared_for_ != &scene || backend_ != backend || maps_.generations() == 0;
     const ClusteredLayout* current = maps_.clusters();
     if (!stale && current) {
-      stale = maps_.plan_clusters(scene).signature != current->signature;
+      stale = !maps_.clustering_holds(scene, view);
       cluster_changes_ += stale ? 1 : 0;
     }
     cluster_changed_.push_back(stale);
     if (stale) {
-      maps_.generate(scene, backend);
+      maps_.generate(scene, backend, view);
       prepared_for_ = &scene;
       backend_ = backend;
     }
@@ -130,7 +137,8 @@ class DsmShadows final : public ShadowMethod {
 void register_dsm_shadows(Registry<ShadowMethod>& registry) {
   registry.add("dsm",
                "deep shadow maps with an error bound (params: storage, res, eps, filter, bias, "
-               "slope, subrays, volume, table_bins, step_scale, clusters, cluster_d0, storage.KEY)",
+               "slope, subrays, volume, table_bins, step_scale, clusters, cluster_d0, lispsm, "
+               "cluster_hysteresis, storage.KEY)",
                [](const StrategyParams& p) { return std::make_unique<DsmShadows>(p); });
 }
 

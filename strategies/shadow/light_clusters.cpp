@@ -2,7 +2,10 @@
 #include "strategies/shadow/light_clusters.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+
+#include "strategies/shadow/lispsm.h"
 
 namespace dv {
 
@@ -35,15 +38,21 @@ double rect_distance(const NdcRect& a, const NdcRect& b) {
 }
 
 ObjectDistances light_object_distances(const LightView& light, const std::vector<Aabb>& objects,
-                                       const Aabb& scene_bounds, double diagonal) {
+                                       const Aabb& scene_bounds, double diagonal,
+                                       const Camera* camera) {
   ObjectDistances out;
   out.n = int(objects.size());
   out.d.assign(size_t(out.n) * out.n, 0.0);
   out.seen.assign(size_t(out.n), false);
   for (const ShadowFace& f : light_map_faces(light, scene_bounds, diagonal, 1)) {
+    LispsmSpace space;
+    if (camera) space = lispsm_space(f, light, *camera, scene_bounds, diagonal);
     std::vector<NdcRect> rects;
     for (int i = 0; i < out.n; ++i) {
-      rects.push_back(projected_rect(f, objects[size_t(i)]));
+      NdcRect r;
+      if (!camera) r = projected_rect(f, objects[size_t(i)]);
+      if (camera && !space.box_rect(objects[size_t(i)], r.lo, r.hi)) r = NdcRect{};
+      rects.push_back(r);
       if (!rects.back().empty()) out.seen[size_t(i)] = true;
     }
     for (int i = 0; i < out.n; ++i)
@@ -204,17 +213,48 @@ void append_signature(std::string& s, const ShadowFace& f) {
 
 }  // namespace
 
+std::vector<ObjectDistances> light_distances(const std::vector<LightView>& lights,
+                                             const std::vector<Aabb>& objects,
+                                             const Aabb& scene_bounds, double diagonal,
+                                             const ClusterSettings& settings,
+                                             const Camera* camera) {
+  std::vector<ObjectDistances> out;
+  for (const LightView& l : lights)
+    out.push_back(light_object_distances(l, objects, scene_bounds, diagonal,
+                                         settings.lispsm ? camera : nullptr));
+  return out;
+}
+
+bool clustering_holds(const ClusteredLayout& layout, const std::vector<ObjectDistances>& now,
+                      const ClusterSettings& settings) {
+  if (layout.distances.size() != now.size()) return false;
+  const double tolerance = settings.hysteresis * settings.d0;
+  for (size_t l = 0; l < now.size(); ++l) {
+    const ObjectDistances& a = layout.distances[l];
+    const ObjectDistances& b = now[l];
+    if (a.n != b.n) return false;
+    for (int i = 0; i < b.n; ++i) {
+      if (!b.seen[size_t(i)]) continue;
+      if (!a.seen[size_t(i)]) return false;
+      for (int j = 0; j < b.n; ++j)
+        if (b.seen[size_t(j)] && std::abs(b.at(i, j) - a.at(i, j)) > tolerance) return false;
+    }
+  }
+  return true;
+}
+
 ClusteredLayout clustered_light_map_layout(const std::vector<LightView>& lights,
                                            const std::vector<Aabb>& objects,
-                                           const Aabb& scene_bounds, double diagonal,
+                                           std::vector<ObjectDistances> distances,
                                            const ClusterSettings& settings, int res) {
   ClusteredLayout out;
   out.resolution = cluster_resolution(res, settings.max_clusters);
   out.mask_words = int(objects.size() + 31) / 32;
   out.layout.texels_per_face = int64_t(out.resolution) * out.resolution;
-  for (const LightView& l : lights) {
-    const ObjectDistances d = light_object_distances(l, objects, scene_bounds, diagonal);
-    std::vector<std::vector<int>> clusters = cluster_objects(d, settings.max_clusters, settings.d0);
+  for (size_t li = 0; li < lights.size(); ++li) {
+    const LightView& l = lights[li];
+    std::vector<std::vector<int>> clusters =
+        cluster_objects(distances[li], settings.max_clusters, settings.d0);
     const int32_t first = int32_t(out.layout.faces.size());
     out.signature += "L";
     for (size_t k = 0; k < clusters.size(); ++k) {
@@ -235,6 +275,7 @@ ClusteredLayout clustered_light_map_layout(const std::vector<LightView>& lights,
   }
   for (size_t i = 0; i < out.layout.faces.size(); ++i)
     out.layout.faces[i].offset = int64_t(i) * out.layout.texels_per_face;
+  out.distances = std::move(distances);
   return out;
 }
 

@@ -5,10 +5,12 @@
 // (eq. 3.12; strategies/shadow/dsm_source.h).
 //
 // Distance (§3.4.1): each object's box is projected corner by corner into the light's
-// unfocused face (NDC, clipped to the face); the distance of two objects is the larger of the
-// distances between the projected min points and between the projected max points. Omni lights
-// take the maximum over the six cube faces; a face that sees only one of the two counts as
-// kApartDistance. Objects that no face sees (outside a spot cone) get no map.
+// unfocused face (NDC, clipped to the face), or with lispsm into its light-space perspective
+// for the camera (strategies/shadow/lispsm.h; objects that miss the body B get no map); the
+// distance of two objects is the larger of the distances between the projected min points and
+// between the projected max points. Omni lights take the maximum over the six cube faces; a face
+// that sees only one of the two counts as kApartDistance. Objects that no face sees (outside a spot
+// cone) get no map.
 //
 // Focusing (§3.4.2): a cluster's faces are the light's faces refitted to the cluster's bounds
 // (far plane; directional: the orthographic box) and cropped to the window its objects project
@@ -32,8 +34,10 @@ namespace dv {
 inline constexpr double kApartDistance = 8.0;  // NDC: beyond any distance within one face
 
 struct ClusterSettings {
-  int max_clusters = 1;  // m; 1: one unclustered map per light face
-  double d0 = 0.5;       // distance threshold in NDC units of the light's face (width 2)
+  int max_clusters = 1;      // m; 1: one unclustered map per light face
+  double d0 = 0.5;           // distance threshold in NDC units of the light's face (width 2)
+  bool lispsm = false;       // distances in the light-space perspective of the camera (lispsm.h)
+  double hysteresis = 0.5;  // keep a clustering while no distance moved more than this * d0
 };
 
 // Projected rectangle in a face's NDC, clipped to [-1, 1]^2.
@@ -62,8 +66,11 @@ struct ObjectDistances {
   std::vector<bool> seen;
   double at(int i, int j) const { return d[size_t(i) * n + j]; }
 };
+// With `camera` the boxes are compared in each face's light-space perspective for it
+// (lispsm.h), and objects outside its body B are not seen.
 ObjectDistances light_object_distances(const LightView& light, const std::vector<Aabb>& objects,
-                                       const Aabb& scene_bounds, double diagonal);
+                                       const Aabb& scene_bounds, double diagonal,
+                                       const Camera* camera = nullptr);
 
 // Algorithm 4.2 over the seen objects: pairs in ascending distance (§3.4.1 step 1), each object
 // into the first cluster whose members are all within d0, else a new cluster while fewer than
@@ -91,11 +98,25 @@ struct ClusteredLayout {
   std::vector<uint32_t> object_masks;                   // per face mask_words words
   std::vector<std::vector<std::vector<int>>> clusters;  // per light, per cluster: object ids
   std::vector<int> face_cluster;                        // per face: its cluster within its light
+  std::vector<ObjectDistances> distances;               // per light: what the clusters came from
   std::string signature;
 };
+
+// Every light's object distances (light_object_distances; with settings.lispsm, for `camera`).
+std::vector<ObjectDistances> light_distances(const std::vector<LightView>& lights,
+                                             const std::vector<Aabb>& objects,
+                                             const Aabb& scene_bounds, double diagonal,
+                                             const ClusterSettings& settings, const Camera* camera);
+
+// Hysteresis: `layout` still serves distances `now` when every object seen now was seen then
+// (so it has a map) and no distance between two of them moved by more than hysteresis * d0
+// since the clustering was made.
+bool clustering_holds(const ClusteredLayout& layout, const std::vector<ObjectDistances>& now,
+                      const ClusterSettings& settings);
+// `distances`: light_distances() for the same lights and objects.
 ClusteredLayout clustered_light_map_layout(const std::vector<LightView>& lights,
                                            const std::vector<Aabb>& objects,
-                                           const Aabb& scene_bounds, double diagonal,
+                                           std::vector<ObjectDistances> distances,
                                            const ClusterSettings& settings, int res);
 
 }  // namespace dv

@@ -1,10 +1,12 @@
 // Clustered deep shadow maps (strategies/shadow/light_clusters.h): the memory rule, Knecht's
-// distance and Algorithm 4.2 on known distances; each cluster face holds exactly its cluster's
-// objects (lookups on its texel-centre rays match the oracle of a scene of those objects only);
-// clustered lookups (eq. 3.12) against the full oracle for spot, omni and directional lights;
-// the papers' claim at equal memory on a sparse scene (objects far apart over a large floor, the
-// camera close to one group): lower error near the camera than one map, with the dense case's
-// numbers recorded; the shadow method's parameters, stats and rebuild rule; CPU/CUDA parity.
+// distance, Algorithm 4.2 on known distances and the hysteresis; the light-space perspective's
+// body B (clipped hull, culling, warp; strategies/shadow/lispsm.h); each cluster face holds exactly
+// its cluster's objects (lookups on its texel-centre rays match the oracle of a scene of those
+// objects only); clustered lookups (eq. 3.12) against the full oracle for spot, omni and
+// directional lights; the papers' claim at equal memory on a sparse scene (objects far apart over a
+// large floor, the camera close to one group): lower error near the camera than one map, with the
+// dense case's numbers recorded; the shadow method's parameters, stats and rebuild rule; CPU/CUDA
+// parity.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +15,7 @@
 
 #include "core/device_memory.h"
 #include "dsm/deep_shadow_maps.h"
+#include "strategies/shadow/lispsm.h"
 #include "strategies/shadow/probe.h"
 #include "strategies/shadow/shadow_method.h"
 #include "tests/dsm/dsm_test_support.h"
@@ -52,6 +55,73 @@ TEST(ClusterLayout, Algorithm42GroupsWithinD0AndCapsTheCount) {
   EXPECT_EQ(cluster_objects(d, 1, 0.5), (Clusters{{0, 1, 2, 3, 4}}));
   EXPECT_EQ(cluster_objects(d, 8, 10.0), (Clusters{{0, 1, 2, 3, 4}}));
   EXPECT_EQ(cluster_objects(points_on_a_line({2.0}, {true}), 4, 0.5), (Clusters{{0}}));
+}
+
+TEST(Lispsm, ClippedConvexHullOfACube) {
+  std::vector<dvec3> cube;
+  for (int c = 0; c < 8; ++c) cube.push_back(dvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1));
+  // x + y <= 1 cuts the cube into a prism: 6 vertices, all on or below the plane.
+  const std::vector<dvec3> prism = clipped_convex_hull(cube, {HalfSpace(-1, -1, 0, 1)});
+  Aabb box;
+  for (const dvec3& p : prism) {
+    EXPECT_LE(p.x + p.y, 1.0 + 1e-12);
+    box.extend(p);
+  }
+  EXPECT_EQ(box.lo, dvec3(0.0));
+  EXPECT_EQ(box.hi, dvec3(1.0));
+  EXPECT_TRUE(clipped_convex_hull(cube, {HalfSpace(1, 0, 0, -2)}).empty());
+  // A point and a square (Algorithm 4.3's light and frustum): a pyramid cut at half height.
+  const std::vector<dvec3> pyramid = clipped_convex_hull(
+      {{0, 2, 0}, {-1, 0, -1}, {1, 0, -1}, {-1, 0, 1}, {1, 0, 1}}, {HalfSpace(0, -1, 0, 1)});
+  Aabb top;
+  for (const dvec3& p : pyramid)
+    if (p.y > 0.5) top.extend(p);
+  EXPECT_NEAR(top.hi.x, 0.5, 1e-12);
+  EXPECT_NEAR(top.lo.z, -0.5, 1e-12);
+}
+
+// The body B holds what the camera sees lit by the face; a box behind the camera (it looks
+// along -z from z = 10), outside the frustum's hull with the light, is not seen; the map plane
+// spans [-1, 1] over B.
+TEST(Lispsm, BodyCullsWhatTheCameraCannotSeeShadowed) {
+  test::SceneBuilder b;
+  b.add(make_quad(40.0));
+  const LightView light = make_light_view(b.spot(dvec3(0, 20, 0), dvec3(0, -1, 0), 45.0));
+  Aabb scene_bounds{dvec3(-20, -1, -20), dvec3(20, 3, 20)};
+  Camera camera;
+  camera.position = dvec3(0, 2, 10);
+  camera.target = dvec3(0, 0, 5);
+  const ShadowFace face = light_map_faces(light, scene_bounds, 60.0, 1)[0];
+  const LispsmSpace s = lispsm_space(face, light, camera, scene_bounds, 60.0);
+  ASSERT_FALSE(s.empty);
+  EXPECT_TRUE(s.warped);
+  dvec2 lo, hi;
+  EXPECT_TRUE(s.box_rect(Aabb{dvec3(-0.5, 0, 4), dvec3(0.5, 1, 5)}, lo, hi));  // in view
+  EXPECT_GE(lo.x, -1.0);
+  EXPECT_LE(hi.y, 1.0);
+  EXPECT_FALSE(s.box_rect(Aabb{dvec3(-0.5, 0, 15), dvec3(0.5, 1, 16)}, lo, hi));  // behind
+  // Near the camera a box takes more of the map than the same box far away (the warp).
+  dvec2 nlo, nhi, flo, fhi;
+  ASSERT_TRUE(s.box_rect(Aabb{dvec3(-0.5, 0, 7), dvec3(0.5, 1, 8)}, nlo, nhi));
+  ASSERT_TRUE(s.box_rect(Aabb{dvec3(-0.5, 0, -4), dvec3(0.5, 1, -3)}, flo, fhi));
+  EXPECT_GT((nhi.x - nlo.x) * (nhi.y - nlo.y), 2.0 * (fhi.x - flo.x) * (fhi.y - flo.y));
+}
+
+TEST(ClusterLayout, HysteresisKeepsAClusteringUntilADistanceMovesTooFar) {
+  ClusterSettings settings;
+  settings.max_clusters = 4;
+  settings.d0 = 0.5;
+  settings.hysteresis = 0.5;
+  const std::vector<LightView> lights(1);
+  const std::vector<Aabb> boxes(3);
+  ClusteredLayout layout;
+  layout.distances = {points_on_a_line({0.0, 0.1, 1.0}, {true, true, false})};
+  const auto now = [](double x, bool third) {
+    return std::vector<ObjectDistances>{points_on_a_line({0.0, x, 1.0}, {true, true, third})};
+  };
+  EXPECT_TRUE(clustering_holds(layout, now(0.3, false), settings));   // moved 0.2 <= 0.25
+  EXPECT_FALSE(clustering_holds(layout, now(0.4, false), settings));  // moved 0.3
+  EXPECT_FALSE(clustering_holds(layout, now(0.1, true), settings));   // object 2 needs a map
 }
 
 DsmSettings clustered(int clusters, int res, float eps, double d0 = 0.5) {
@@ -169,12 +239,18 @@ ErrorFigures error_near(const SceneData& data, const DsmSource& source, int ligh
   return e;
 }
 
-ErrorFigures measured_error(const Scene& scene, int clusters, int light, const dvec3& near) {
+// With lispsm the clustering is for a camera 3 units from `near`, looking at it.
+ErrorFigures measured_error(const Scene& scene, int clusters, int light, const dvec3& near,
+                            bool lispsm = false) {
   const SceneData data(scene, Memory::host);
   DsmSettings s = clustered(clusters, 128, 0.01f);
   s.bilinear = true;
+  s.clusters.lispsm = lispsm;
+  Camera camera = scene.camera;
+  camera.position = near + dvec3(2.0, 2.0, 2.0);
+  camera.target = near;
   DeepShadowMaps maps(s);
-  maps.generate(data, Backend::cpu);
+  maps.generate(data, Backend::cpu, &camera);
   return error_near(data, maps.source(), light, near, 1.5);
 }
 
@@ -196,6 +272,10 @@ TEST(ClusteredMaps, SparseSceneLowerErrorNearTheCameraAtEqualMemory) {
     RecordProperty("sparse_light" + std::to_string(light) + "_clusters_mean",
                    std::to_string(four.mean));
     EXPECT_LT(four.mean, 0.75 * one.mean) << "light " << light;
+    const ErrorFigures warped = measured_error(sparse, 4, light, near_group, true);
+    std::printf("sparse light %d: 4 clusters of 64^2 with lispsm mean %.5f max %.4f\n", light,
+                warped.mean, warped.max);
+    EXPECT_LT(warped.mean, 0.75 * one.mean) << "light " << light;
   }
   // Dense: the same groups close together, filling a floor of their own size.
   const Scene dense =
@@ -238,6 +318,35 @@ TEST(ClusteredMaps, LookupsMatchTheOracleForSpotOmniAndDirectional) {
   }
 }
 
+// With lispsm the clusters follow the camera: objects it cannot see shadowed get no map, and
+// the points it sees still match the oracle.
+TEST(ClusteredMaps, LispsmClustersServeTheCamera) {
+  const Scene scene = sparse_scene();
+  const SceneData data(scene, Memory::host);
+  DsmSettings s = clustered(4, 256, 0.01f);
+  s.bilinear = true;
+  s.clusters.lispsm = true;
+  Camera camera = scene.camera;
+  camera.position = dvec3(-4.0, 2.5, -4.0);
+  camera.target = dvec3(-7.0, 0.0, -7.0);
+  DeepShadowMaps maps(s);
+  maps.generate(data, Backend::cpu, &camera);
+  int mapped = 0;
+  for (const std::vector<int>& c : maps.clusters()->clusters[0]) mapped += int(c.size());
+  EXPECT_LT(mapped, int(scene.objects.size()));  // the spot light: some objects culled
+  EXPECT_FALSE(maps.clustering_holds(data, &scene.camera));
+  EXPECT_TRUE(maps.clustering_holds(data, &camera));
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  double sum = 0.0;
+  for (int k = 0; k < 300; ++k) {
+    const dvec3 p = dvec3(-7.0, 0.01, -7.0) + dvec3(u(rng), 0.0, u(rng));
+    DsmSource::Cursor cursor;
+    sum += std::abs(maps.source().transmittance(cursor, p, 0) - test::oracle_at(data, 0, p));
+  }
+  EXPECT_LT(sum / 300.0, 0.01);
+}
+
 TEST(ClusteredMaps, OmniLightToTheSideNeedsFewerThanSixMaps) {
   const Scene scene = sparse_scene();
   const SceneData data(scene, Memory::host);
@@ -264,6 +373,7 @@ TEST(ClusteredMaps, ShadowMethodParametersStatsAndRebuilds) {
       "dsm", StrategyParams::parse({"res=64", "clusters=4", "cluster_d0=0.4"}));
   EXPECT_EQ(method->params()["clusters"], 4);
   EXPECT_EQ(method->params()["cluster_d0"], 0.4);
+  EXPECT_EQ(method->params()["lispsm"], 0);
   Camera a = scene.camera, b = scene.camera;
   b.position = dvec3(3.0, 5.0, 9.0);
   method->prepare(data, Backend::cpu, &a);
@@ -285,6 +395,7 @@ TEST(ClusteredMaps, ShadowMethodParametersStatsAndRebuilds) {
   EXPECT_THROW(shadow_registry().create("dsm", StrategyParams::parse({"clusters=0"})), InputError);
   EXPECT_THROW(shadow_registry().create("dsm", StrategyParams::parse({"cluster_d0=-1"})),
                InputError);
+  EXPECT_THROW(shadow_registry().create("dsm", StrategyParams::parse({"lispsm=2"})), InputError);
 }
 
 // Eq. 3.9 needs every light's own maps: 20 spot, omni and directional lights (beyond
