@@ -15,6 +15,7 @@
 
 #include "core/device_memory.h"
 #include "dsm/deep_shadow_maps.h"
+#include "renderer/raster_render.h"
 #include "strategies/shadow/lispsm.h"
 #include "strategies/shadow/probe.h"
 #include "strategies/shadow/shadow_method.h"
@@ -436,6 +437,36 @@ TEST(ManyLights, TwentyLightsEachMatchTheOracle) {
       EXPECT_LT(sum / double(points.size()), 0.04) << clusters << " light " << l;
     }
   }
+}
+
+// The many-lights benchmark scene loads with its 32 lights and renders with clustered maps for
+// every light (each light's maps, at most 4 clusters, omni lights in cropped cube faces).
+TEST(ManyLights, ThirtyTwoLightSceneRenders) {
+  Scene scene = test::scene_file("knecht-32-lights.json");
+  int spots = 0, omnis = 0;
+  for (const Light& l : scene.lights) {
+    spots += l.type == LightType::spot;
+    omnis += l.type == LightType::omni;
+  }
+  EXPECT_EQ(spots, 16);
+  EXPECT_EQ(omnis, 16);
+  scene.camera.width = 48;
+  scene.camera.height = 32;
+  const SceneData data(scene, Memory::host);
+  auto method = shadow_registry().create(
+      "dsm", StrategyParams::parse({"res=32", "clusters=4", "filter=bilinear"}));
+  const RasterRenderResult r =
+      render_raster(Backend::cpu, data, scene.camera, *method, scene.background);
+  EXPECT_EQ(r.render.counters.overflow_pixels, 0u);
+  const nlohmann::json st = method->stats();
+  ASSERT_EQ(st["clusters"]["lights"].size(), 32u);
+  for (const nlohmann::json& l : st["clusters"]["lights"]) {
+    EXPECT_GE(l["maps"].get<int>(), 1);
+    EXPECT_LE(l["clusters"].size(), 4u);
+  }
+  double sum = 0.0;
+  for (float v : r.render.image.rgb) sum += v;
+  EXPECT_GT(sum, 0.0);
 }
 
 // CPU and CUDA: the same clusters, node counts per texel and lookups (skipped without a GPU).
