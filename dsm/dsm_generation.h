@@ -1,7 +1,8 @@
 // Host side of deep-shadow-map generation that does not depend on the storage strategy: the
 // faces of every light (strategies/shadow/light_faces.h; fitted to the casters only, never to a
-// camera, so a camera move never forces regeneration), the tile lists of each face from the
-// shared rasterizer, the media containing each face's ray origins, and the per-texel records.
+// camera, so a camera move never forces regeneration) or the clusters' faces with the objects
+// each sees (strategies/shadow/light_clusters.h), the tile lists of each face from the shared
+// rasterizer, the media containing each face's ray origins, and the per-texel records.
 // Storage strategies run their passes over DsmGeneration::generator() (dsm/dsm_generator.h).
 #pragma once
 

@@ -469,6 +469,28 @@ TEST(ManyLights, ThirtyTwoLightSceneRenders) {
   EXPECT_GT(sum, 0.0);
 }
 
+// With lispsm the maps follow the camera: a small move keeps them (hysteresis), a move to
+// another group rebuilds them.
+TEST(ClusteredMaps, LispsmRebuildsWhenTheClusteringNoLongerHolds) {
+  const Scene scene = sparse_scene();
+  const SceneData data(scene, Memory::host);
+  auto method =
+      shadow_registry().create("dsm", StrategyParams::parse({"res=64", "clusters=4", "lispsm=1"}));
+  Camera a = scene.camera;
+  a.position = dvec3(-4.0, 2.5, -4.0);
+  a.target = dvec3(-7.0, 0.0, -7.0);
+  Camera nudged = a;
+  nudged.position += dvec3(0.01, 0.0, 0.0);
+  Camera other = a;
+  other.position = dvec3(4.0, 2.5, -3.0);
+  other.target = dvec3(7.0, 0.0, -6.0);
+  for (const Camera* c : {&a, &nudged, &other}) method->prepare(data, Backend::cpu, c);
+  const nlohmann::json st = method->stats();
+  EXPECT_EQ(st["cluster_changed"], nlohmann::json({true, false, true}));
+  EXPECT_EQ(st["maps_built"], 2);
+  EXPECT_EQ(st["cluster_changes"], 1);
+}
+
 // CPU and CUDA: the same clusters, node counts per texel and lookups (skipped without a GPU).
 TEST(ClusteredMaps, CpuAndCudaAgree) {
   std::string why;
