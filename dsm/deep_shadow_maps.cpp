@@ -16,11 +16,42 @@ DeepShadowMaps::DeepShadowMaps(DsmSettings settings) : settings_(std::move(setti
   if (settings_.table_bins < 2 || settings_.table_bins > 1024)
     throw InputError("dsm table_bins", "must lie in [2, 1024]");
   if (!(settings_.step_scale > 0.0)) throw InputError("dsm step_scale", "must be positive");
+  if (settings_.clusters.max_clusters < 1) throw InputError("dsm clusters", "must be at least 1");
+  if (!(settings_.clusters.d0 >= 0.0)) throw InputError("dsm cluster_d0", "must be >= 0");
+  if (!(settings_.clusters.hysteresis >= 0.0))
+    throw InputError("dsm cluster_hysteresis", "must be >= 0");
   storage_ = storage_registry().create(settings_.storage, settings_.storage_params);
 }
 
-void DeepShadowMaps::generate(const SceneData& scene, Backend backend) {
+ClusteredLayout DeepShadowMaps::plan_clusters(const SceneData& scene, const Camera* camera) const {
+  const SceneView& s = scene.view();
+  const ClusterSettings& c = settings_.clusters;
+  return clustered_light_map_layout(scene.host_lights(), scene.host_object_bounds(),
+                                    light_distances(scene.host_lights(), scene.host_object_bounds(),
+                                                    s.bounds, s.diagonal, c, camera),
+                                    c, settings_.resolution);
+}
+
+bool DeepShadowMaps::clustering_holds(const SceneData& scene, const Camera* camera) const {
+  if (!clustered_) return true;
+  const SceneView& s = scene.view();
+  const std::vector<ObjectDistances> now =
+      light_distances(scene.host_lights(), scene.host_object_bounds(), s.bounds, s.diagonal,
+                      settings_.clusters, camera);
+  return dv::clustering_holds(clusters_, now, settings_.clusters) ||
+         clustered_light_map_layout(scene.host_lights(), scene.host_object_bounds(), now,
+                                    settings_.clusters, settings_.resolution)
+                 .signature == clusters_.signature;
+}
+
+void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Camera* camera) {
   passes_.clear();
+  clustered_ = settings_.clusters.max_clusters > 1;
+  if (clustered_) {
+    PassTimer timer(backend);
+    clusters_ = plan_clusters(scene, camera);
+    passes_.push_back({"cluster", timer.stop()});
+  }
   {
     PassTimer timer(backend);
     DsmGenerationOptions options;
@@ -29,7 +60,8 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend) {
     options.precompressed = settings_.precompressed;
     options.table_bins = settings_.table_bins;
     options.step_scale = settings_.step_scale;
-    generation_ = std::make_unique<DsmGeneration>(scene, backend, options);
+    generation_ =
+        std::make_unique<DsmGeneration>(scene, backend, options, clustered_ ? &clusters_ : nullptr);
     passes_.push_back({"raster", timer.stop()});
   }
   const DsmGenerator& g = generation_->generator();
@@ -43,7 +75,7 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend) {
                       generation_->lights(),
                       generation_->faces(),
                       storage_->reader(),
-                      settings_.resolution,
+                      resolution(),
                       settings_.bias >= 0.0 ? settings_.bias : 1e-4 * s.diagonal,
                       settings_.slope_bias,
                       settings_.bilinear};

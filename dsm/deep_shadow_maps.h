@@ -32,6 +32,7 @@ struct DsmSettings {
   double step_scale = 1.0;  // multiplies the volumes' steps during generation
   double bias = -1.0;       // world units; < 0: 1e-4 of the scene diagonal
   double slope_bias = 3.0;
+  ClusterSettings clusters;  // max_clusters > 1: clustered maps (light_clusters.h)
 };
 
 class DeepShadowMaps {
@@ -39,8 +40,19 @@ class DeepShadowMaps {
   // Creates the storage strategy (unknown names and parameters throw InputError).
   explicit DeepShadowMaps(DsmSettings settings);
 
-  // Generates every light's maps for `scene`, which lives in the memory of `backend`.
-  void generate(const SceneData& scene, Backend backend);
+  // Generates every light's maps for `scene`, which lives in the memory of `backend`: the
+  // standard faces, or with clusters the faces of plan_clusters(scene, camera).
+  void generate(const SceneData& scene, Backend backend, const Camera* camera = nullptr);
+
+  // The clustered layout these settings give for `scene` (settings().clusters.max_clusters > 1)
+  // seen by `camera` (lispsm only; null: every object, plain light space).
+  ClusteredLayout plan_clusters(const SceneData& scene, const Camera* camera) const;
+  // Whether the last generation's clustering still serves `camera`: its hysteresis holds
+  // (clustering_holds) or clustering anew gives the same clusters and frusta. True unclustered.
+  bool clustering_holds(const SceneData& scene, const Camera* camera) const;
+  // The clustering of the last generation; null without clusters.
+  const ClusteredLayout* clusters() const { return clustered_ ? &clusters_ : nullptr; }
+  int resolution() const { return clustered_ ? clusters_.resolution : settings_.resolution; }
 
   // Valid after generate(), while this object and the scene live.
   DsmSource source() const { return source_; }
@@ -63,6 +75,8 @@ class DeepShadowMaps {
   std::vector<DsmPass> passes_;
   nlohmann::json figures_;
   DsmSource source_{};
+  ClusteredLayout clusters_;
+  bool clustered_ = false;
   int generations_ = 0;
 };
 

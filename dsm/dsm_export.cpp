@@ -16,7 +16,7 @@ DeepMapFile deep_map_file(const DeepShadowMaps& maps, const std::string& commit)
     for (int i = 0; i < layout.lights[l].face_count; ++i) {
       const ShadowFace& sf = layout.faces[size_t(layout.lights[l].first_face) + i];
       DeepMapFace f;
-      f.resolution = maps.settings().resolution;
+      f.resolution = maps.resolution();
       const double* m = &sf.projection.world_to_clip[0][0];
       std::copy_n(m, 16, f.world_to_clip.begin());
       f.light = int(l);

@@ -24,12 +24,18 @@ void find_ray_media(Backend backend, const SceneView& s, View<const ShadowFace> 
 }  // namespace
 
 DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
-                             const DsmGenerationOptions& options)
+                             const DsmGenerationOptions& options, const ClusteredLayout* clusters)
     : backend_(backend) {
-  const int res = options.resolution;
+  const int res = clusters ? clusters->resolution : options.resolution;
   const SceneView& s = scene.view();
-  layout_ = light_map_layout(scene.host_lights(), s.bounds, s.diagonal, res);
+  layout_ = clusters ? clusters->layout
+                     : light_map_layout(scene.host_lights(), s.bounds, s.diagonal, res);
   const Memory memory = memory_of(backend);
+  if (clusters) {
+    object_masks_ = Buffer<uint32_t>(memory, clusters->object_masks, "dsm cluster object masks");
+    generator_.object_masks = object_masks_.const_view();
+    generator_.mask_words = clusters->mask_words;
+  }
   faces_ = Buffer<ShadowFace>(memory, layout_.faces, "dsm faces");
   lights_ = Buffer<ShadowLight>(memory, layout_.lights, "dsm lights");
   PassTimer timer(backend);

@@ -1,7 +1,8 @@
 // Host side of deep-shadow-map generation that does not depend on the storage strategy: the
 // faces of every light (strategies/shadow/light_faces.h; fitted to the casters only, never to a
-// camera, so a camera move never forces regeneration), the tile lists of each face from the
-// shared rasterizer, the media containing each face's ray origins, and the per-texel records.
+// camera, so a camera move never forces regeneration) or the clusters' faces with the objects
+// each sees (strategies/shadow/light_clusters.h), the tile lists of each face from the shared
+// rasterizer, the media containing each face's ray origins, and the per-texel records.
 // Storage strategies run their passes over DsmGeneration::generator() (dsm/dsm_generator.h).
 #pragma once
 
@@ -12,6 +13,7 @@
 #include "dsm/dsm_generator.h"
 #include "renderer/raster/tile_raster.h"
 #include "scene/scene_view.h"
+#include "strategies/shadow/light_clusters.h"
 #include "strategies/shadow/light_faces.h"
 
 namespace dv {
@@ -27,8 +29,11 @@ struct DsmGenerationOptions {
 
 class DsmGeneration {
  public:
-  // Rasterizes every face of every light; throws if a tile list overflows.
-  DsmGeneration(const SceneData& scene, Backend backend, const DsmGenerationOptions& options);
+  // Rasterizes every face of every light; throws if a tile list overflows. With `clusters` the
+  // faces are the clusters' (at clusters->resolution, each seeing only its cluster's objects)
+  // instead of every light's standard faces at options.resolution.
+  DsmGeneration(const SceneData& scene, Backend backend, const DsmGenerationOptions& options,
+                const ClusteredLayout* clusters = nullptr);
 
   const DsmGenerator& generator() const { return generator_; }
   const LightMapLayout& layout() const { return layout_; }
@@ -46,6 +51,7 @@ class DsmGeneration {
   std::vector<TileLists> lists_;
   Buffer<TileListsView> list_views_;
   Buffer<InsideSet> ray_media_;
+  Buffer<uint32_t> object_masks_;
   Buffer<PrecompressedStep> table_steps_;
   Buffer<int32_t> object_table_;
   Buffer<dvec2> table_domain_;

@@ -11,6 +11,7 @@
 
 #include "core/buffer.h"
 #include "core/hd.h"
+#include "dsm/object_mask.h"
 #include "dsm/prefilter.h"
 #include "dsm/visibility_compressor.h"
 #include "dsm/visibility_payload.h"
@@ -66,10 +67,16 @@ struct DsmGenerator {
   View<const TileListsView> lists;  // per face
   View<const InsideSet> ray_media;  // per face: media containing its rays' origin
   int resolution = 0;
-  int blocks_per_side = 0;     // ceil(resolution / 8)
-  int subrays = 1;             // > 1: pre-filtered texels (dsm/prefilter.h)
-  PrecompressedTables tables;  // bins > 0: volume steps from pre-compressed tables
-  double step_scale = 1.0;     // multiplies the volumes' steps
+  int blocks_per_side = 0;            // ceil(resolution / 8)
+  int subrays = 1;                    // > 1: pre-filtered texels (dsm/prefilter.h)
+  PrecompressedTables tables;         // bins > 0: volume steps from pre-compressed tables
+  double step_scale = 1.0;            // multiplies the volumes' steps
+  View<const uint32_t> object_masks;  // per face mask_words words (dsm/object_mask.h)
+  int mask_words = 0;                 // 0: every face sees every object
+
+  DV_HD ObjectMask mask_of(int face) const {
+    return mask_words == 0 ? ObjectMask{} : ObjectMask{object_masks, int64_t(face) * mask_words};
+  }
 
   DV_HD int64_t texel_count() const { return faces.size * int64_t(resolution) * resolution; }
   DV_HD int64_t blocks_per_face() const { return int64_t(blocks_per_side) * blocks_per_side; }
@@ -108,9 +115,12 @@ struct DsmGenerator {
                         double& final_visibility) const {
     const ShadowFace& f = faces[t.face];
     const PixelRay ray = pixel_ray(f.projection, t.x, t.y);
-    const NearPlaneStart front = start_at_near_plane(scene, f.projection, ray, ray_media[t.face]);
+    const ObjectMask mask = mask_of(t.face);
+    const NearPlaneStart front =
+        masked_start_at_near_plane(scene, f.projection, ray, ray_media[t.face], mask);
     VisibilityPayload<Target> payload = make_payload(target, ray, eps);
-    const RasterFragments fragments{&scene, lists[t.face], t.x, t.y, ray.origin, ray.direction};
+    const MaskedFragments<RasterFragments> fragments{
+        &scene, RasterFragments{&scene, lists[t.face], t.x, t.y, ray.origin, ray.direction}, mask};
     WalkStatus status =
         walk_fragments(scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
     status.overflow |= front.status.overflow;
@@ -145,16 +155,19 @@ struct DsmGenerator {
     bool overflow = false;
     float sub_error = 0.0f;
     double final_visibility = 0.0;
+    const ObjectMask mask = mask_of(t.face);
     for (int k = 0; k < nodes.rays; ++k) {
       const double px = t.x + (double(k % side) + subray_jitter(t.index, k, 0)) / side;
       const double py = t.y + (double(k / side % side) + subray_jitter(t.index, k, 1)) / side;
       const PixelRay ray = image_point_ray(f.projection, px, py);
-      const NearPlaneStart front = start_at_near_plane(scene, f.projection, ray, ray_media[t.face]);
+      const NearPlaneStart front =
+          masked_start_at_near_plane(scene, f.projection, ray, ray_media[t.face], mask);
       VisibilityCompressor<ArrayNodeSink> sub(0.5f * eps,
                                               ArrayNodeSink{nodes.z[k], nodes.v[k], kSubrayNodes});
       VisibilityPayload<VisibilityCompressor<ArrayNodeSink>> payload =
           make_payload(sub, ray, sample_eps);
-      const BvhFragments fragments{&scene, make_sheared_ray(ray.origin, ray.direction), 1e300};
+      const MaskedFragments<BvhFragments> fragments{
+          &scene, BvhFragments{&scene, make_sheared_ray(ray.origin, ray.direction), 1e300}, mask};
       const WalkStatus status =
           walk_fragments(scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
       sub.finish();

@@ -6,6 +6,7 @@
 // figures beside Knecht 2011 §5.8's formulas: texture3d d^2 * layers * 64 bit, chunked
 // d^2 * layers (variable) * 128 bit + d^2 * 64 bit. Knecht (GTX 480) took 7-65 ms to generate and
 // 46-57 ms to render.
+// lights32/*: scenes/knecht-32-lights.json (many lights, optionally clustered; see many_lights).
 // Run: build/bin/bench_dsm --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
@@ -16,6 +17,7 @@
 #include "dsm/deep_shadow_maps.h"
 #include "io/scene_loader.h"
 #include "renderer/raster_render.h"
+#include "strategies/shadow/shadow_method.h"
 #include "tests/support/paths.h"
 
 namespace dv {
@@ -95,7 +97,51 @@ void dsm_render(benchmark::State& state, std::string storage) {
   state.SetLabel(cuda_device_name());
 }
 
+// scenes/knecht-32-lights.json (the same objects under 16 spot and 16 omni lights): maps of
+// every light generated, then one rasterized frame with bilinear lookups of all 32 lights;
+// range(0) = res, range(1) = clusters. On the CPU at a small image and resolution so it runs
+// anywhere; on CUDA at the scene's image size.
+void many_lights(benchmark::State& state, Backend backend) {
+  std::string why;
+  if (backend == Backend::cuda && !cuda_device_available(&why))
+    return state.SkipWithError(why.c_str());
+  static const Scene many = load_scene(test::source_dir() + "/scenes/knecht-32-lights.json");
+  Scene scene = many;
+  if (backend == Backend::cpu) scene.camera.width = 120, scene.camera.height = 80;
+  const SceneData data(scene, memory_of(backend));
+  double generation_ms = 0.0, fragment_ms = 0.0;
+  for (auto _ : state) {
+    auto method = shadow_registry().create(
+        "dsm", StrategyParams::parse({"res=" + std::to_string(state.range(0)),
+                                      "clusters=" + std::to_string(state.range(1)), "eps=0.05",
+                                      "filter=bilinear"}));
+    const RasterRenderResult r =
+        render_raster(backend, data, scene.camera, *method, scene.background);
+    const nlohmann::json stats = method->stats();
+    generation_ms += stats["generation_ms"].get<double>();
+    fragment_ms += r.fragment_ms;
+    state.SetIterationTime((stats["generation_ms"].get<double>() + r.raster_ms + r.fragment_ms) /
+                           1e3);
+    state.counters["maps"] = stats["faces"].get<double>();
+  }
+  state.counters["lights"] = double(scene.lights.size());
+  state.counters["generation_ms"] = generation_ms / double(state.iterations());
+  state.counters["fragment_ms"] = fragment_ms / double(state.iterations());
+  state.SetLabel(backend == Backend::cuda ? cuda_device_name() : "cpu");
+}
+
 void register_all() {
+  benchmark::RegisterBenchmark("lights32/cpu", many_lights, Backend::cpu)
+      ->Args({64, 1})
+      ->Args({64, 4})
+      ->Iterations(1)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("lights32/cuda", many_lights, Backend::cuda)
+      ->Args({512, 1})
+      ->Args({1024, 4})
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
   for (const char* storage :
        {"compact", "texture3d", "chunked", "chunked:alloc=thesis", "blocked"}) {
     benchmark::RegisterBenchmark((std::string("generate/") + storage + "/cuda").c_str(),

@@ -59,15 +59,20 @@ struct NearPlaneStart {
   WalkStatus status;  // status.inside: the media at t
 };
 
-DV_HD inline NearPlaneStart start_at_near_plane(const SceneView& s,
-                                                const RasterProjection& projection,
-                                                const PixelRay& ray,
-                                                const InsideSet& origin_media) {
+// The ray parameter where the near plane cuts a pixel ray (0 when it starts in front of it).
+DV_HD inline double near_plane_ray_t(const RasterProjection& projection, const PixelRay& ray) {
   // The signed distance to the near plane is affine along the ray.
   const double d0 = near_plane_distance(projection, world_to_clip_point(projection, ray.origin));
   const double d1 =
       near_plane_distance(projection, world_to_clip_point(projection, ray.origin + ray.direction));
-  const double t_clip = d1 > d0 ? max_value(0.0, -d0 / (d1 - d0)) : 0.0;
+  return d1 > d0 ? max_value(0.0, -d0 / (d1 - d0)) : 0.0;
+}
+
+DV_HD inline NearPlaneStart start_at_near_plane(const SceneView& s,
+                                                const RasterProjection& projection,
+                                                const PixelRay& ray,
+                                                const InsideSet& origin_media) {
+  const double t_clip = near_plane_ray_t(projection, ray);
   NoPayload none;
   const BvhFragments before_near{&s, make_sheared_ray(ray.origin, ray.direction), t_clip};
   return {t_clip, walk_fragments(s, before_near, origin_media, 0.0, t_clip, t_clip, none)};

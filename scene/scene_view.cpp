@@ -116,6 +116,8 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
     const TriangleMesh& mesh = scene.meshes[obj.mesh];
     uint32_t base = uint32_t(vertices.size());
     for (const dvec3& p : mesh.positions) vertices.push_back(dvec3(obj.transform * dvec4(p, 1.0)));
+    Aabb& object_box = host_object_bounds_.emplace_back();
+    for (size_t v = base; v < vertices.size(); ++v) object_box.extend(vertices[v]);
     // A mirroring transform flips winding; keep outward normals outward.
     bool flip = glm::determinant(obj.transform) < 0.0;
     for (const u32vec3& t : mesh.triangles) {

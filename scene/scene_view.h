@@ -84,6 +84,8 @@ class SceneData {
   const std::vector<uint32_t>& bvh_order() const { return order_; }
   // The lights in host memory whatever memory the view is in (host-side planning needs them).
   const std::vector<LightView>& host_lights() const { return host_lights_; }
+  // World bounds of each object's triangles, in scene order (host-side planning: clusters).
+  const std::vector<Aabb>& host_object_bounds() const { return host_object_bounds_; }
 
  private:
   Memory memory_;
@@ -99,6 +101,7 @@ class SceneData {
   Buffer<LightView> lights_;
   std::vector<uint32_t> order_;
   std::vector<LightView> host_lights_;
+  std::vector<Aabb> host_object_bounds_;
   int bvh_depth_ = 0;
   SceneView view_{};
 };

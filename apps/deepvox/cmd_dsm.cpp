@@ -46,7 +46,7 @@ nlohmann::json generation_stats(const DsmOptions& o, const DeepShadowMaps& maps,
           {"scene", o.scene},
           {"settings",
            {{"storage", maps.settings().storage},
-            {"resolution", maps.settings().resolution},
+            {"resolution", maps.resolution()},
             {"eps", maps.settings().eps}}},
           {"lights", maps.layout().lights.size()},
           {"faces", maps.layout().faces.size()},
@@ -91,7 +91,7 @@ Runner add_dsm(CLI::App& app) {
     if (!opt->heatmap.empty())
       write_image(opt->heatmap,
                   layer_heatmap(stored_layers(maps), int(maps.layout().faces.size()),
-                                maps.settings().resolution, face_labels(maps.layout())));
+                                maps.resolution(), face_labels(maps.layout())));
     if (!opt->stats.empty()) {
       std::ofstream out(opt->stats);
       if (!out) throw InputError(opt->stats, "cannot write stats file");
@@ -99,7 +99,7 @@ Runner add_dsm(CLI::App& app) {
     }
     const nlohmann::json& f = maps.figures();
     log_info("dsm: " + std::to_string(maps.layout().faces.size()) + " faces at " +
-             std::to_string(maps.settings().resolution) + "^2 on " + to_string(backend) + ": " +
+             std::to_string(maps.resolution()) + "^2 on " + to_string(backend) + ": " +
              std::to_string(f["nodes"].get<int64_t>()) + " nodes, max " +
              std::to_string(f["max_layers"].get<int64_t>()) + " layers, " +
              std::to_string(maps.generation_milliseconds()) + " ms");

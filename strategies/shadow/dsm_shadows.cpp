@@ -2,11 +2,16 @@
 // texture3d, chunked, blocked; default compact), res (texels per side, default 1024), eps (error
 // bound, default 0.05), filter (none | bilinear, default none), bias (world units, default 1e-4
 // of the scene diagonal) and slope (texel sizes times the receiver's tangent to the light,
-// default 3) for surface receivers (light_faces.h, receiver_depth), and storage.KEY
-// passed to the storage strategy (e.g. storage.alloc=thesis). Maps depend on the lights and
-// the casters only: they are generated when the scene data or the backend changes, never
-// because the camera moved.
+// default 3) for surface receivers (light_faces.h, receiver_depth), storage.KEY passed to the
+// storage strategy (e.g. storage.alloc=thesis), and for clustered maps
+// (strategies/shadow/light_clusters.h) clusters (m, default 1: one map per light face),
+// cluster_d0 (distance threshold, NDC units, default 0.5), lispsm (0 | 1, default 0: cluster in
+// the light-space perspective of the camera, strategies/shadow/lispsm.h; without a camera as 0)
+// and cluster_hysteresis (fraction of d0 a distance may move before reclustering, default 0.5).
+// Maps are generated when the scene data or the backend changes and, clustered, when the
+// clustering no longer holds for the camera (DeepShadowMaps::clustering_holds).
 #include <memory>
+#include <vector>
 
 #include "dsm/deep_shadow_maps.h"
 #include "strategies/shadow/shadow_method.h"
@@ -28,7 +33,35 @@ DsmSettings dsm_settings(const StrategyParams& p) {
   s.precompressed = p.choice("volume", "midpoint", {"midpoint", "table"}) == "table";
   s.table_bins = p.integer("table_bins", s.table_bins);
   s.step_scale = p.number("step_scale", s.step_scale);
+  s.clusters.max_clusters = p.integer("clusters", s.clusters.max_clusters);
+  s.clusters.d0 = p.number("cluster_d0", s.clusters.d0);
+  s.clusters.lispsm = p.choice("lispsm", "0", {"0", "1"}) == "1";
+  s.clusters.hysteresis = p.number("cluster_hysteresis", s.clusters.hysteresis);
   return s;
+}
+
+// Per light: its clusters' objects and faces (window in the light's face, texels).
+nlohmann::json cluster_stats(const ClusteredLayout& c) {
+  nlohmann::json lights = nlohmann::json::array();
+  size_t face = 0;
+  for (size_t l = 0; l < c.clusters.size(); ++l) {
+    nlohmann::json clusters = nlohmann::json::array();
+    for (const std::vector<int>& objects : c.clusters[l])
+      clusters.push_back({{"objects", objects}, {"faces", nlohmann::json::array()}});
+    const ShadowLight& sl = c.layout.lights[l];
+    for (int i = 0; i < sl.face_count; ++i, ++face) {
+      const ShadowFace& f = c.layout.faces[face];
+      clusters[size_t(c.face_cluster[face])]["faces"].push_back(
+          {{"eye", {f.eye.x, f.eye.y, f.eye.z}},
+           {"axis", {f.axis.x, f.axis.y, f.axis.z}},
+           {"texel_size", f.texel_size},
+           {"world_to_clip",
+            nlohmann::json(std::vector<double>(&f.projection.world_to_clip[0][0],
+                                               &f.projection.world_to_clip[0][0] + 16))}});
+    }
+    lights.push_back({{"clusters", clusters}, {"maps", sl.face_count}});
+  }
+  return {{"resolution", c.resolution}, {"lights", lights}};
 }
 
 class DsmShadows final : public ShadowMethod {
@@ -47,7 +80,11 @@ class DsmShadows final : public ShadowMethod {
             {"subrays", s.subrays},
             {"volume", s.precompressed ? "table" : "midpoint"},
             {"table_bins", s.table_bins},
-            {"step_scale", s.step_scale}};
+            {"step_scale", s.step_scale},
+            {"clusters", s.clusters.max_clusters},
+            {"cluster_d0", s.clusters.d0},
+            {"lispsm", s.clusters.lispsm ? 1 : 0},
+            {"cluster_hysteresis", s.clusters.hysteresis}};
   }
   nlohmann::json stats() const override {
     nlohmann::json j = {{"maps_built", maps_.generations()}, {"prepare_calls", prepare_calls_}};
@@ -60,12 +97,26 @@ class DsmShadows final : public ShadowMethod {
     j["passes"] = passes;
     j["fragments"] = maps_.fragments();
     j["storage"] = maps_.figures();
+    j["resolution"] = maps_.resolution();
+    if (const ClusteredLayout* c = maps_.clusters()) {
+      j["clusters"] = cluster_stats(*c);
+      j["cluster_changes"] = cluster_changes_;
+      j["cluster_changed"] = cluster_changed_;
+    }
     return j;
   }
 
-  ShadowSourceVariant prepare(const SceneData& scene, Backend backend, const Camera*) override {
-    if (prepared_for_ != &scene || backend_ != backend || maps_.generations() == 0) {
-      maps_.generate(scene, backend);
+  ShadowSourceVariant prepare(const SceneData& scene, Backend backend,
+                              const Camera* view) override {
+    bool stale = prepared_for_ != &scene || backend_ != backend || maps_.generations() == 0;
+    const ClusteredLayout* current = maps_.clusters();
+    if (!stale && current) {
+      stale = !maps_.clustering_holds(scene, view);
+      cluster_changes_ += stale ? 1 : 0;
+    }
+    cluster_changed_.push_back(stale);
+    if (stale) {
+      maps_.generate(scene, backend, view);
       prepared_for_ = &scene;
       backend_ = backend;
     }
@@ -78,6 +129,8 @@ class DsmShadows final : public ShadowMethod {
   const SceneData* prepared_for_ = nullptr;
   Backend backend_ = Backend::cpu;
   int prepare_calls_ = 0;
+  int cluster_changes_ = 0;            // regenerations because the clustering changed
+  std::vector<bool> cluster_changed_;  // per prepare call: maps (re)generated
 };
 
 }  // namespace
@@ -85,7 +138,8 @@ class DsmShadows final : public ShadowMethod {
 void register_dsm_shadows(Registry<ShadowMethod>& registry) {
   registry.add("dsm",
                "deep shadow maps with an error bound (params: storage, res, eps, filter, bias, "
-               "slope, subrays, volume, table_bins, step_scale, storage.KEY)",
+               "slope, subrays, volume, table_bins, step_scale, clusters, cluster_d0, lispsm, "
+               "cluster_hysteresis, storage.KEY)",
                [](const StrategyParams& p) { return std::make_unique<DsmShadows>(p); });
 }
 

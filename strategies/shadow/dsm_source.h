@@ -8,6 +8,7 @@
 // weighted bilinearly, so attenuation is filtered, not optical depth. Texels outside the map count
 // as lit; points outside a spot cone get nothing. The per-ray cursor keeps each (light, tap)'s last
 // node index for the coherent search.
+// Clustered lights (ShadowLight::clustered) multiply the visibilities of their cluster faces.
 #pragma once
 
 #include <cmath>
@@ -50,12 +51,38 @@ struct DsmSource {
     const dvec3& p = r.point;
     const LightView& l = lights[light];
     if (outside_light_cone(l, p)) return 0.0;
+    if (light_faces[light].clustered) return clustered_transmittance(light_faces[light], r);
     const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
     FacePoint fp;
     if (!project_to_face(f, resolution, p, fp)) return 1.0;
-    const float z = float(receiver_depth(f, r, fp.depth, bias, slope_bias, bilinear ? 1.0 : 0.5));
     int scratch[4] = {-1, -1, -1, -1};
     int* hint = light < kDsmCursorLights ? cursor.hint + 4 * light : scratch;
+    return face_visibility(f, fp, r, hint);
+  }
+
+  // Knecht eq. 3.12: the product of the visibilities of the light's cluster faces whose window
+  // holds the point (each holds only its cluster's objects); a face that misses it counts 1.
+  // No coherent search across clusters (each face starts its search afresh).
+  DV_HD double clustered_transmittance(const ShadowLight& sl, const ShadowReceiver& r) const {
+    const dvec3& p = r.point;
+    double t = 1.0;
+    for (int i = 0; i < sl.face_count; ++i) {
+      const ShadowFace& f = faces[sl.first_face + i];
+      FacePoint fp;
+      if (!project_to_face(f, resolution, p, fp)) continue;
+      if (!(fp.u >= -0.5 && fp.u < resolution - 0.5 && fp.v >= -0.5 && fp.v < resolution - 0.5))
+        continue;
+      int hint[4] = {-1, -1, -1, -1};
+      t *= face_visibility(f, fp, r, hint);
+    }
+    return t;
+  }
+
+  // V' of face f at the point fp of receiver r, nearest or bilinear; hint: 4 coherent-search
+  // slots.
+  DV_HD double face_visibility(const ShadowFace& f, const FacePoint& fp, const ShadowReceiver& r,
+                               int* hint) const {
+    const float z = float(receiver_depth(f, r, fp.depth, bias, slope_bias, bilinear ? 1.0 : 0.5));
     if (!bilinear)
       return texel_visibility(f, int(floor(fp.u + 0.5)), int(floor(fp.v + 0.5)), z, hint[0]);
     const double fx = floor(fp.u), fy = floor(fp.v);

@@ -30,7 +30,10 @@ struct ShadowFace {
 
 struct ShadowLight {
   int32_t first_face;
-  int32_t face_count;  // 1 (spot, directional) or 6 (omni)
+  int32_t face_count;  // 1 (spot, directional) or 6 (omni); clustered: any number
+  // Clustered deep shadow maps (strategies/shadow/light_clusters.h): each face holds some of the
+  // objects, and every face whose frustum holds a point contributes (Knecht 2011 eq. 3.12).
+  bool clustered = false;
 };
 
 // The depth a map stores and compares (see the file comment).
