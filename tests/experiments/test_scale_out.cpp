@@ -31,8 +31,10 @@ std::string small_suite() {
   const std::string scene = test::source_dir() + "/scenes/demo.json";
   return R"({"suite": "small", "repeat": 1, "experiments": [
     {"name": "methods", "kind": "shadow", "scene": ")" +
-         scene + R"(", "strategy": ["reference", {"name": "dsm", "params": {"res": 32}}],
-     "sweep": {"eps": [0.05, 0.1]},
+         scene + R"(", "strategy": "reference",
+     "settings": {"width": 48, "height": 32, "probe_points": 40, "seed": 3, "images": 0}},
+    {"name": "dsm", "kind": "shadow", "scene": ")" +
+         scene + R"(", "strategy": "dsm", "params": {"res": 32}, "sweep": {"eps": [0.05, 0.1]},
      "settings": {"width": 48, "height": 32, "probe_points": 40, "seed": 3, "images": 0}},
     {"name": "voxels", "kind": "voxelize", "scene": ")" +
          scene + R"(", "strategy": ["exact", "sat"], "settings": {"res": "32"}}]})";
@@ -236,6 +238,8 @@ TEST_F(ScaleOut, CpuWorkerProcessesGiveTheRowsOfAPlainRun) {
   EXPECT_EQ(untimed(plain.folder), untimed(merged));
   const Json meta = parse_json_file(merged + "/meta.json");
   EXPECT_EQ(meta["merged_from"].size(), 2u);
+  EXPECT_EQ(meta["done"], 5);
+  EXPECT_EQ(meta["failed"], 0);
   EXPECT_EQ(meta["scale_out"]["summary"], "2 CPU workers on 1 host");
   // Each worker had half of the threads (DEEPVOX_THREADS) and its own status file.
   for (const Json& shard : meta["merged_from"]) {
