@@ -64,8 +64,11 @@ void show(const std::vector<Worker>& workers, bool redraw) {
   if (redraw) std::fprintf(stderr, "\033[%zuA", workers.size());
   for (size_t i = 0; i < workers.size(); ++i) {
     std::ifstream in(workers[i].status);
-    std::string line;
-    std::getline(in, line);
+    int done = 0, total = 0;
+    std::string what;
+    in >> done >> total;
+    std::getline(in >> std::ws, what);
+    std::string line = std::to_string(done) + " of " + std::to_string(total) + " done: " + what;
     if (workers[i].exit_code >= 0) line += " (exit " + std::to_string(workers[i].exit_code) + ")";
     const std::string shown = line.size() > 90 ? line.substr(0, 87) + "..." : line;
     std::fprintf(stderr, "\r\033[Kworker %zu: %s\n", i + 1, shown.c_str());

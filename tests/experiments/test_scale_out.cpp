@@ -164,6 +164,18 @@ TEST_F(ScaleOut, ShardsUseAPreviousRunsTimingsAndMergeRefusesMixedPlans) {
   EXPECT_EQ(parse_json_file(partial + "/meta.json")["missing_shards"], Json::array({2}));
   EXPECT_NE(read(fs::path(partial) / "report.md").find("missing shards: 2 of 2"),
             std::string::npos);
+  // A shard of another commit: refused naming it.
+  const fs::path other_commit = dir_ / "other-commit";
+  fs::copy(second.folder, other_commit, fs::copy_options::recursive);
+  Json meta_other = parse_json_file((other_commit / "meta.json").string());
+  meta_other["run"]["git_sha"] = "0123456789ab";
+  std::ofstream(other_commit / "meta.json") << meta_other.dump(1);
+  try {
+    merge_shards({first.folder, other_commit.string()}, "");
+    ADD_FAILURE() << "shards of two commits merged";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("different commit"), std::string::npos) << e.what();
+  }
   const std::string merged = merge_shards({second.folder, first.folder}, "");
   EXPECT_EQ(untimed(whole.folder), untimed(merged));
   const Json meta = parse_json_file(merged + "/meta.json");
