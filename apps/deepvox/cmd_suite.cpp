@@ -65,10 +65,10 @@ Runner add_suite(CLI::App& app) {
       throw InputError("--gpus", "workers choose their shards; leave out --shard");
     const SuiteOutcome r =
         gpus->empty() ? run_suite(*opt) : run_workers(*opt, worker_count(*gpus, opt->backend));
-    std::printf(
-        "deepvox suite: %s%d of %d experiments, %d failed, %d skipped; report: %s/report.md\n",
-        r.interrupted ? "interrupted after " : "ran ", r.done, r.total, r.failed, r.skipped,
-        r.folder.c_str());
+    std::printf("deepvox suite: %s%d of %d experiments, %d failed, %d skipped; %s: %s%s\n",
+                r.interrupted ? "interrupted after " : "ran ", r.done, r.total, r.failed, r.skipped,
+                opt->report ? "report" : "results", r.folder.c_str(),
+                opt->report ? "/report.md" : "");
     return r.exit_code;
   };
 }
