@@ -1,17 +1,24 @@
 // `deepvox suite NAME_OR_FILE [--backend cpu|cuda] [--out DIR] [--repeat K] [--shard I/N]
-//  [--only PATTERN]` and `deepvox suite --list`: runs an experiment suite through the harness
-// (experiments/harness/runner.h) and prints where the report is.
+//  [--only PATTERN] [--costs DIR|estimate] [--gpus N|all] [--slurm [--partition P] [--time T]
+//  [--submit] [--dry-run]]` and `deepvox suite --list`: runs an experiment suite through the
+// harness (experiments/harness/runner.h), as worker processes on this node (workers.h) or as
+// SLURM jobs (slurm.h), and prints where the report is.
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
 #include "core/error.h"
 #include "experiments/harness/runner.h"
+#include "experiments/harness/slurm.h"
+#include "experiments/harness/workers.h"
 
 namespace dv::cli {
 
 Runner add_suite(CLI::App& app) {
   auto opt = std::make_shared<SuiteOptions>();
   auto list = std::make_shared<bool>(false);
+  auto slurm = std::make_shared<SlurmOptions>();
+  auto use_slurm = std::make_shared<bool>(false);
+  auto gpus = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "suite", "run an experiment suite (built-in name or suite file, docs/suite-format.md)");
   cmd->add_option("suite", opt->suite, "built-in suite name (see --list) or suite file");
@@ -22,20 +29,46 @@ Runner add_suite(CLI::App& app) {
   cmd->add_option("--repeat", opt->repeat,
                   "timed repetitions after a warm-up (default: the suite's)")
       ->check(CLI::Range(1, 1000));
-  cmd->add_option("--shard", opt->shard, "run shard I of N (items with index % N == I-1)");
+  cmd->add_option("--shard", opt->shard,
+                  "run shard I of N (items balanced by expected cost, docs/scale-out.md)");
+  cmd->add_option("--costs", opt->costs,
+                  "shard balancing: a previous result folder's timings or 'estimate' (default: "
+                  "the newest whole run of this suite file under --out, else the estimate)");
+  cmd->add_option("--gpus", *gpus,
+                  "N or 'all': one worker process per GPU (with --backend cpu: N CPU processes), "
+                  "merged at the end; with --slurm: the job array's size");
+  cmd->add_flag("--slurm", *use_slurm, "write SLURM job scripts (array + merge) under --out");
+  cmd->add_option("--partition", slurm->partition, "SLURM partition (with --slurm)");
+  cmd->add_option("--time", slurm->time, "SLURM time limit per task, e.g. 02:00:00 (--slurm)");
+  cmd->add_flag("--submit", slurm->submit, "submit the SLURM jobs with sbatch (--slurm)");
+  cmd->add_flag("--dry-run", slurm->dry_run, "print the SLURM scripts, write nothing (--slurm)");
+  cmd->add_option("--status-file", opt->status_file, "progress for a parent process")->group("");
+  cmd->add_flag_function(
+         "--no-report", [opt](int64_t) { opt->report = false; }, "no report.md")
+      ->group("");
   cmd->add_option("--only", opt->only,
                   "only experiments whose name, kind or strategy contains this");
-  return [opt, list] {
+  return [opt, list, slurm, use_slurm, gpus] {
     if (*list) {
       std::fputs(list_suites().c_str(), stdout);
       return 0;
     }
     if (opt->suite.empty()) throw InputError("suite", "give a suite name or file (or --list)");
-    const SuiteOutcome r = run_suite(*opt);
-    std::printf(
-        "deepvox suite: %s%d of %d experiments, %d failed, %d skipped; report: %s/report.md\n",
-        r.interrupted ? "interrupted after " : "ran ", r.done, r.total, r.failed, r.skipped,
-        r.folder.c_str());
+    if (*use_slurm) {
+      if (*gpus == "all") throw InputError("--gpus all", "with --slurm give the number of tasks");
+      slurm->tasks = gpus->empty() ? 1 : worker_count(*gpus, "cpu");
+      return write_slurm_jobs(*opt, *slurm);
+    }
+    if (slurm->submit || slurm->dry_run || !slurm->partition.empty() || !slurm->time.empty())
+      throw InputError("--submit/--dry-run/--partition/--time", "only with --slurm");
+    if (!gpus->empty() && !opt->shard.empty())
+      throw InputError("--gpus", "workers choose their shards; leave out --shard");
+    const SuiteOutcome r =
+        gpus->empty() ? run_suite(*opt) : run_workers(*opt, worker_count(*gpus, opt->backend));
+    std::printf("deepvox suite: %s%d of %d experiments, %d failed, %d skipped; %s: %s%s\n",
+                r.interrupted ? "interrupted after " : "ran ", r.done, r.total, r.failed, r.skipped,
+                opt->report ? "report" : "results", r.folder.c_str(),
+                opt->report ? "/report.md" : "");
     return r.exit_code;
   };
 }

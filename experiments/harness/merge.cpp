@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -34,14 +35,44 @@ void require_same(const Json& a, const Json& b, const std::string& what, const s
                      "shard of a different " + what + " (" + a.dump() + " vs " + b.dump() + ")");
 }
 
+// "2 GPUs on 1 host", "2 CPU workers on 1 host": a GPU is a (host, device, visible devices)
+// triple of a CUDA shard.
+Json scale_out(const Json& shards) {
+  std::set<std::string> hosts, gpus;
+  bool cuda = false;
+  for (const Json& s : shards) {
+    const Json& run = s["run"];
+    const std::string host = run.value("host", "unknown");
+    hosts.insert(host);
+    if (run.value("backend", "") == "cuda") {
+      cuda = true;
+      gpus.insert(host + "|" + run.value("device", "") + "|" +
+                  run.value("cuda_visible_devices", std::to_string(s["index"].get<int>())));
+    }
+  }
+  const size_t workers = cuda ? gpus.size() : shards.size();
+  const std::string summary = std::to_string(workers) + (cuda ? " GPU" : " CPU worker") +
+                              (workers == 1 ? "" : "s") + " on " + std::to_string(hosts.size()) +
+                              " host" + (hosts.size() == 1 ? "" : "s");
+  return {{"summary", summary},
+          {"gpus", cuda ? workers : 0},
+          {"hosts", std::vector<std::string>(hosts.begin(), hosts.end())}};
+}
+
 }  // namespace
 
-std::string merge_shards(const std::vector<std::string>& folders, const std::string& out) {
+std::string merge_shards(const std::vector<std::string>& folders, const std::string& out,
+                         bool allow_missing) {
   if (folders.empty()) throw InputError("merge", "no shard folders given");
   std::map<int, std::string> by_index;
   Json first;
+  Json unfinished = Json::array();
   for (const std::string& folder : folders) {
     const fs::path meta_path = fs::path(folder) / "meta.json";
+    if (!fs::is_regular_file(meta_path) && allow_missing) {
+      unfinished.push_back(folder);
+      continue;
+    }
     if (!fs::is_regular_file(meta_path))
       throw InputError(folder, "not a suite result folder (no meta.json)");
     const Json meta = parse_json_file(meta_path.string());
@@ -50,6 +81,10 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
     require_same(meta["suite_hash"], first["suite_hash"], "suite file (hash)", folder);
     require_same(meta["run"]["git_sha"], first["run"]["git_sha"], "commit", folder);
     require_same(meta["shard"]["count"], first["shard"]["count"], "shard count", folder);
+    require_same(meta["shard"].value("cost_source", Json()),
+                 first["shard"].value("cost_source", Json()), "cost source (--costs)", folder);
+    require_same(meta["shard"].value("assignment_hash", Json()),
+                 first["shard"].value("assignment_hash", Json()), "shard assignment", folder);
     require_same(meta["only"], first["only"], "--only", folder);
     require_same(meta["repeat"], first["repeat"], "--repeat", folder);
     const int index = meta["shard"]["index"].get<int>();
@@ -58,11 +93,16 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
           folder, "shard " + std::to_string(index) + " given twice (also " + by_index[index] + ")");
     by_index[index] = folder;
   }
+  if (first.is_null()) throw InputError("merge", "no finished shard among the folders given");
   const int count = first["shard"]["count"].get<int>();
   std::string missing;
+  Json missing_list = Json::array();
   for (int i = 1; i <= count; ++i)
-    if (!by_index.count(i)) missing += (missing.empty() ? "" : ", ") + std::to_string(i);
-  if (!missing.empty())
+    if (!by_index.count(i)) {
+      missing += (missing.empty() ? "" : ", ") + std::to_string(i);
+      missing_list.push_back(i);
+    }
+  if (!missing.empty() && !allow_missing)
     throw InputError("merge", "missing shard(s) " + missing + " of " + std::to_string(count));
 
   const std::string suite = first["suite"].get<std::string>();
@@ -99,6 +139,11 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
   Json meta = first;
   meta["shard"] = {{"index", 1}, {"count", 1}};
   meta["merged_from"] = shards;
+  meta["scale_out"] = scale_out(shards);
+  if (!missing.empty()) {
+    meta["missing_shards"] = missing_list;
+    meta["unfinished_folders"] = unfinished;
+  }
   meta["done"] = done;
   meta["failed"] = failed;
   meta["skipped"] = skipped;

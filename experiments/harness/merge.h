@@ -1,6 +1,8 @@
 // Joins the folders of one sharded suite run (`deepvox suite --shard I/N` each) into one result
 // folder with one report: rows in item order, as an unsharded run writes them. Refuses shards of
-// different commits, suite files or shard counts, duplicate shards, and lists missing shards.
+// different commits, suite files, shard counts or shard assignments (shard_plan.h), duplicate
+// shards, and lists missing shards. The merged meta.json names every shard's host and GPU and
+// sums them up ("2 GPUs on 1 host") for the report.
 #pragma once
 
 #include <string>
@@ -9,7 +11,10 @@
 namespace dv {
 
 // Returns the new folder, made under OUT/<suite>/ (OUT empty: beside the first shard's folder).
-// InputError naming the folder and the problem otherwise.
-std::string merge_shards(const std::vector<std::string>& folders, const std::string& out);
+// InputError naming the folder and the problem otherwise. `allow_missing`: missing shards (and
+// folders without meta.json, i.e. shards that never finished) are listed in meta.json and the
+// report instead of refused, so a failed SLURM task still leaves a report that names it.
+std::string merge_shards(const std::vector<std::string>& folders, const std::string& out,
+                         bool allow_missing = false);
 
 }  // namespace dv

@@ -4,11 +4,26 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 namespace dv {
 
-Progress::Progress(int total, bool enabled)
-    : total_(total), enabled_(enabled), begin_(std::chrono::steady_clock::now()) {}
+Progress::Progress(int total, bool enabled, std::string status_file)
+    : total_(total),
+      enabled_(enabled),
+      status_file_(std::move(status_file)),
+      begin_(std::chrono::steady_clock::now()) {
+  write_status(0, "starting");
+}
+
+void Progress::write_status(int done, const std::string& what) const {
+  if (status_file_.empty()) return;
+  const std::string temp = status_file_ + ".tmp";  // renamed over: a reader never sees half
+  std::ofstream(temp) << done << " " << total_ << " " << what << "\n";
+  std::error_code ec;
+  std::filesystem::rename(temp, status_file_, ec);
+}
 
 bool Progress::stderr_is_terminal() {
   return isatty(STDERR_FILENO) == 1;
@@ -19,6 +34,7 @@ double Progress::elapsed_seconds() const {
 }
 
 void Progress::start(int done, const std::string& what) {
+  write_status(done, what);
   if (!enabled_) return;
   const double elapsed = elapsed_seconds();
   char eta[32] = "?";

@@ -188,6 +188,21 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
   md << "\n";
 }
 
+// "- scale-out: 2 GPUs on 1 host (node1); missing shards: 2 of 2" for a merged folder.
+std::string scale_out_line(const Json& meta) {
+  std::string hosts;
+  for (const Json& h : meta["scale_out"]["hosts"]) hosts += (hosts.empty() ? "" : ", ") + cell(h);
+  std::string line = "- scale-out: " + cell(meta["scale_out"]["summary"]) + " (" + hosts + ")";
+  if (meta.contains("missing_shards")) {
+    std::string missing;
+    for (const Json& i : meta["missing_shards"])
+      missing += (missing.empty() ? "" : ", ") + i.dump();
+    line += "; missing shards: " + missing + " of " +
+            std::to_string(meta["merged_from"].size() + meta["missing_shards"].size());
+  }
+  return line + "\n";
+}
+
 }  // namespace
 
 void build_report(const std::string& folder) {
@@ -228,6 +243,7 @@ void build_report(const std::string& folder) {
     md << ", shard " << cell(meta["shard"]["index"]) << "/" << cell(meta["shard"]["count"]);
   md << ", " << cell(meta["failed"]) << " failed, " << meta.value("skipped", 0)
      << " skipped (not for this backend)\n";
+  if (meta.contains("scale_out")) md << scale_out_line(meta);
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)
      << "\n- files: rows.csv (one row per measurement), params.json (echoed parameters), "
         "meta.json, command.txt\n\n";

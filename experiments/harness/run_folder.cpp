@@ -15,17 +15,20 @@ std::string short_git_sha(const std::string& git_sha) {
   return dash == std::string::npos ? hex : hex + git_sha.substr(dash);
 }
 
-fs::path make_run_folder(const fs::path& out, const std::string& suite, const std::string& git_sha,
-                         const std::string& tag) {
+std::string run_folder_name(const std::string& git_sha, const std::string& tag) {
   char when[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%d_%H%M%S", std::gmtime(&now));
+  return std::string(when) + "_" + short_git_sha(git_sha) + (tag.empty() ? "" : "-" + tag);
+}
+
+fs::path make_run_folder(const fs::path& out, const std::string& suite, const std::string& git_sha,
+                         const std::string& tag) {
   const fs::path parent = out / suite;
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw InputError(parent.string(), "cannot create folder: " + ec.message());
-  const std::string base =
-      std::string(when) + "_" + short_git_sha(git_sha) + (tag.empty() ? "" : "-" + tag);
+  const std::string base = run_folder_name(git_sha, tag);
   for (int n = 1; n < 10000; ++n) {
     const fs::path dir = parent / (n == 1 ? base : base + "-" + std::to_string(n));
     if (fs::create_directory(dir, ec)) return dir;  // false: it exists already

@@ -11,6 +11,9 @@ namespace dv {
 std::filesystem::path make_run_folder(const std::filesystem::path& out, const std::string& suite,
                                       const std::string& git_sha, const std::string& tag);
 
+// "<YYYY-MM-DD_HHMMSS>_<gitsha7>[-dirty][-TAG]" for now (the name before any "-2" suffix).
+std::string run_folder_name(const std::string& git_sha, const std::string& tag);
+
 // "<12 hex>[-dirty]" -> "<7 hex>[-dirty]".
 std::string short_git_sha(const std::string& git_sha);
 

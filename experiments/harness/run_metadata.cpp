@@ -1,7 +1,10 @@
 // Run metadata for stats and result files (see run_metadata.h).
 #include "experiments/harness/run_metadata.h"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 
@@ -31,6 +34,11 @@ std::string runtime_git_sha() {
 }
 
 }  // namespace
+
+std::string host_name() {
+  char name[256] = {0};
+  return gethostname(name, sizeof name - 1) == 0 && name[0] ? name : "unknown";
+}
 
 void remember_command_line(int argc, char** argv) {
   g_command_line.clear();
@@ -68,10 +76,13 @@ nlohmann::json run_metadata(Backend backend) {
                       {"compiler", __VERSION__},
                       {"cuda_built", kBuiltWithCuda},
                       {"backend", to_string(backend)},
+                      {"host", host_name()},
                       {"cpu_model", cpu_model()},
                       {"cpu_threads", cpu_thread_count()},
                       {"command_line", g_command_line},
                       {"utc_time", when}};
+  if (const char* visible = std::getenv("CUDA_VISIBLE_DEVICES"))
+    m["cuda_visible_devices"] = visible;
   if (cuda_device_available()) {
     const CudaDeviceInfo info = cuda_device_info();
     m["device"] = info.name;

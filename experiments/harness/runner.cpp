@@ -17,6 +17,7 @@
 #include "experiments/harness/run_folder.h"
 #include "experiments/harness/run_metadata.h"
 #include "experiments/harness/scene_cache.h"
+#include "experiments/harness/shard_plan.h"
 
 namespace dv {
 
@@ -51,7 +52,10 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
   require_backend(backend);
   const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
   const std::vector<RunItem> all = expand_suite(suite);
-  const std::vector<RunItem> items = shard_items(filter_items(all, o.only), shard);
+  const std::vector<RunItem> chosen = filter_items(all, o.only);
+  const ItemCosts costs = item_costs(chosen, suite, o.costs, o.out);
+  const ShardPlan plan = plan_shards(chosen, costs, shard.count);
+  const std::vector<RunItem> items = shard_items(chosen, plan, shard);
   if (o.repeat < 0) throw InputError("--repeat", "expected a positive count");
   const int repeat = o.repeat > 0 ? o.repeat : suite.repeat;
 
@@ -68,7 +72,12 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
                          {"suite_hash", suite.hash},
                          {"repeat", repeat},
                          {"only", o.only},
-                         {"shard", {{"index", shard.index}, {"count", shard.count}}},
+                         {"shard",
+                          {{"index", shard.index},
+                           {"count", shard.count},
+                           {"cost_source", costs.source},
+                           {"assignment_hash", plan.hash},
+                           {"cost", plan.load[size_t(shard.index - 1)]}}},
                          {"items_in_suite", all.size()},
                          {"items", items.size()},
                          {"run", run_metadata(backend)}};
@@ -80,7 +89,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
   SuiteOutcome outcome;
   outcome.folder = dir.string();
   outcome.total = int(items.size());
-  Progress progress(outcome.total, o.progress && Progress::stderr_is_terminal());
+  Progress progress(outcome.total, o.progress && Progress::stderr_is_terminal(), o.status_file);
   const InterruptScope ctrl_c;  // until the report is written: a Ctrl-C then still leaves it
   for (const RunItem& item : items) {
     if (interrupt_requested()) break;
@@ -109,6 +118,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
     write_rows_csv((dir / "rows.csv").string(), rows);  // a crash later loses nothing finished
   }
   progress.finish();
+  progress.write_status(outcome.done, "finished");
   outcome.interrupted = interrupt_requested() && outcome.done < outcome.total;
   meta["done"] = outcome.done;
   meta["failed"] = outcome.failed;

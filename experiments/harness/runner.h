@@ -12,11 +12,13 @@ struct SuiteOptions {
   std::string suite;    // built-in name or file
   std::string backend;  // cpu | cuda; empty: the default backend
   std::string out = "out/suites";
-  int repeat = 0;        // 0: the suite file's
-  std::string shard;     // "I/N"; empty: all
-  std::string only;      // substring of experiment name, kind or strategy; empty: all
-  bool progress = true;  // on a terminal only
-  bool report = true;    // build report.md (and plots) at the end
+  int repeat = 0;           // 0: the suite file's
+  std::string shard;        // "I/N"; empty: all
+  std::string costs;        // shard balancing (shard_plan.h): "", "estimate" or a result folder
+  std::string only;         // substring of experiment name, kind or strategy; empty: all
+  bool progress = true;     // on a terminal only
+  bool report = true;       // build report.md (and plots) at the end
+  std::string status_file;  // where the progress is written for a parent (workers.h); "": none
 };
 
 struct SuiteOutcome {

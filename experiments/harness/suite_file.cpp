@@ -230,13 +230,6 @@ Shard parse_shard(const std::string& text, const std::string& where) {
   return s;
 }
 
-std::vector<RunItem> shard_items(const std::vector<RunItem>& items, const Shard& shard) {
-  std::vector<RunItem> out;
-  for (const RunItem& item : items)
-    if (item.index % shard.count == shard.index - 1) out.push_back(item);
-  return out;
-}
-
 std::vector<RunItem> filter_items(const std::vector<RunItem>& items, const std::string& pattern) {
   if (pattern.empty()) return items;
   std::vector<RunItem> out;

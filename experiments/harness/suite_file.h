@@ -2,7 +2,8 @@
 // runs it), one or more scenes, one or more strategies of the kind's family, fixed strategy
 // parameters and a sweep (the cartesian product of parameter lists). Loading is strict: unknown
 // keys, unknown kinds and bad values are InputErrors naming the file and the JSON path.
-// expand_suite turns a suite into the deterministic, ordered list of runs that shards slice.
+// expand_suite turns a suite into the deterministic, ordered list of runs that shards slice
+// (shard_plan.h).
 #pragma once
 
 #include <map>
@@ -77,8 +78,6 @@ struct Shard {
 };
 // "I/N" with 1 <= I <= N; InputError(where) otherwise.
 Shard parse_shard(const std::string& text, const std::string& where = "--shard");
-// The items of shard I/N: index % N == I - 1, in order.
-std::vector<RunItem> shard_items(const std::vector<RunItem>& items, const Shard& shard);
 // The items whose experiment name, kind or strategy contains `pattern` (all when empty).
 std::vector<RunItem> filter_items(const std::vector<RunItem>& items, const std::string& pattern);
 

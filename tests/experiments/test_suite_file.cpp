@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/run_folder.h"
+#include "experiments/harness/shard_plan.h"
 #include "experiments/harness/suite_file.h"
 #include "experiments/harness/timing.h"
 #include "tests/support/paths.h"
@@ -120,13 +121,19 @@ TEST(SuiteFile, BuiltInSuitesLoadAndQuickIsAmongThem) {
 
 TEST(SuiteFile, ShardsPartitionTheItemsInOrder) {
   const std::vector<RunItem> items = expand_suite(parse_suite(kGood, "good.json"));
+  ItemCosts costs{"estimate", {}};
+  for (const RunItem& item : items) costs.by_index[item.index] = estimated_cost(item);
   for (int count : {1, 2, 3, 7, 40}) {
+    const ShardPlan plan = plan_shards(items, costs, count);
     std::vector<int> seen;
-    for (int i = 1; i <= count; ++i)
-      for (const RunItem& item : shard_items(items, {i, count})) {
-        EXPECT_EQ(item.index % count, i - 1);
+    for (int i = 1; i <= count; ++i) {
+      int previous = -1;
+      for (const RunItem& item : shard_items(items, plan, {i, count})) {
+        EXPECT_GT(item.index, previous);  // in order within a shard
+        previous = item.index;
         seen.push_back(item.index);
       }
+    }
     std::sort(seen.begin(), seen.end());
     ASSERT_EQ(seen.size(), items.size()) << count;
     for (size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], int(k));

@@ -1,0 +1,116 @@
+// SLURM job scripts for a sharded suite run (slurm.h).
+#include "experiments/harness/slurm.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "experiments/harness/run_folder.h"
+#include "experiments/harness/run_metadata.h"
+#include "experiments/harness/suite_file.h"
+#include "experiments/harness/workers.h"
+
+namespace dv {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Single-quoted for bash.
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string header(const std::string& name, const SlurmOptions& s, const std::string& log) {
+  std::string h = "#!/bin/bash\n#SBATCH --job-name=" + name + "\n#SBATCH --ntasks=1\n";
+  if (!s.partition.empty()) h += "#SBATCH --partition=" + s.partition + "\n";
+  if (!s.time.empty()) h += "#SBATCH --time=" + s.time + "\n";
+  return h + "#SBATCH --output=" + log + "\n";
+}
+
+// Runs `command`, returns its first output line; Error naming it when it fails.
+std::string run_command(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) throw Error("cannot run " + command);
+  std::string output;
+  char buf[512];
+  while (fgets(buf, sizeof buf, pipe)) output += buf;
+  if (pclose(pipe) != 0) throw Error(command + " failed: " + output);
+  return output.substr(0, output.find('\n'));
+}
+
+}  // namespace
+
+SlurmScripts slurm_scripts(const SuiteOptions& o, const SlurmOptions& s, const std::string& folder,
+                           const std::string& exe) {
+  const std::string suite_path = fs::absolute(resolve_suite_path(o.suite)).string();
+  const Suite suite = load_suite(suite_path);
+  const std::string n = std::to_string(s.tasks);
+  const fs::path dir = fs::absolute(folder);
+  const std::string shards = (dir / "shards").string();
+  std::string costs = fixed_cost_source(o);
+  if (costs != "estimate") costs = fs::absolute(costs).string();
+  std::string shard_command = quoted(exe);
+  for (const std::string& a : shard_arguments(o, suite_path, 0, s.tasks, shards, costs))
+    shard_command += " " + (a == "0/" + n ? "\"$task/" + n + "\"" : quoted(a));
+  SlurmScripts out{dir.string(), "", ""};
+  out.array = header("deepvox-" + suite.name, s, (dir / "slurm" / "shard-%a.log").string()) +
+              "#SBATCH --array=1-" + n + "\n" +
+              (o.backend == "cpu" ? "#SBATCH --cpus-per-task=1\n" : "#SBATCH --gres=gpu:1\n") +
+              "# Shard i of " + n + " of suite " + suite.name +
+              ". By hand: SLURM_ARRAY_TASK_ID=i bash " + (dir / "slurm" / "array.sbatch").string() +
+              "\nset -eu\ntask=\"${SLURM_ARRAY_TASK_ID:?set SLURM_ARRAY_TASK_ID to 1.." + n +
+              "}\"\ncd " + quoted(fs::current_path().string()) + "\nexec " + shard_command + "\n";
+  out.merge =
+      header("deepvox-" + suite.name + "-merge", s, (dir / "slurm" / "merge.log").string()) +
+      "# After every shard ended (afterany): merge what finished; the report names missing "
+      "shards.\nset -eu\ncd " +
+      quoted(fs::current_path().string()) + "\nexec " + quoted(exe) +
+      " merge --allow-missing --out " + quoted(fs::absolute(o.out).string()) + " " +
+      quoted(shards + "/" + suite.name) + "/*\n";
+  return out;
+}
+
+int write_slurm_jobs(const SuiteOptions& o, const SlurmOptions& s) {
+  const Suite suite = load_suite(resolve_suite_path(o.suite));
+  const std::string exe = fs::read_symlink("/proc/self/exe").string();
+  const std::string sha = build_git_sha();
+  if (s.dry_run) {
+    const SlurmScripts scripts = slurm_scripts(
+        o, s, (fs::path(o.out) / suite.name / run_folder_name(sha, "slurm")).string(), exe);
+    std::printf("# %s/slurm/array.sbatch\n%s\n# %s/slurm/merge.sbatch\n%s", scripts.folder.c_str(),
+                scripts.array.c_str(), scripts.folder.c_str(), scripts.merge.c_str());
+    return 0;
+  }
+  const fs::path folder = make_run_folder(o.out, suite.name, sha, "slurm");
+  const SlurmScripts scripts = slurm_scripts(o, s, folder.string(), exe);
+  const fs::path dir = fs::path(scripts.folder) / "slurm";
+  fs::create_directories(dir);
+  const fs::path array = dir / "array.sbatch", merge = dir / "merge.sbatch";
+  std::ofstream(array) << scripts.array;
+  std::ofstream(merge) << scripts.merge;
+  fs::permissions(array, fs::perms::owner_exec, fs::perm_options::add);
+  fs::permissions(merge, fs::perms::owner_exec, fs::perm_options::add);
+  if (!s.submit) {
+    std::printf(
+        "deepvox suite: wrote %s and %s\nsubmit: jid=$(sbatch --parsable %s) && sbatch "
+        "--dependency=afterany:$jid %s\n",
+        array.c_str(), merge.c_str(), array.c_str(), merge.c_str());
+    return 0;
+  }
+  std::string job = run_command("sbatch --parsable " + quoted(array.string()));
+  job = job.substr(0, job.find(';'));  // "id;cluster" on federations
+  const std::string merge_job =
+      run_command("sbatch --parsable --dependency=afterany:" + job + " " + quoted(merge.string()));
+  std::printf(
+      "deepvox suite: submitted array job %s (%d tasks) and merge job %s; merged report "
+      "under %s/%s/ when done\n",
+      job.c_str(), s.tasks, merge_job.substr(0, merge_job.find(';')).c_str(),
+      fs::absolute(o.out).c_str(), suite.name.c_str());
+  return 0;
+}
+
+}  // namespace dv

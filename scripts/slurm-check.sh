@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# The SLURM scale-out for real on this machine: installs Debian's slurm-wlm and munge when
+# missing, starts a one-node cluster on localhost (munged, slurmctld, slurmd as root; 2 CPUs,
+# CPU backend, no cgroups), submits `deepvox suite quick --slurm --gpus 2 --backend cpu
+# --submit` (a 2-task job array plus the merge job, afterany), waits with a bounded timeout,
+# and checks that the merged rows equal an unsharded run's rows (timings aside) and that the
+# report names the 2 workers. Stops the daemons at the end (trap). Needs root.
+# Usage: scripts/slurm-check.sh [--install-only]; DEEPVOX=path/to/deepvox (default: build/bin,
+# else build-cpu/bin), SUITE=quick, SLURM_CHECK_TIMEOUT=900 seconds.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repo=$PWD
+
+if ! command -v slurmctld > /dev/null || ! command -v munged > /dev/null; then
+  echo "slurm-check: installing slurm-wlm and munge"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends slurm-wlm munge
+fi
+[ "${1:-}" = "--install-only" ] && exit 0
+
+deepvox=${DEEPVOX:-}
+for candidate in build/bin/deepvox build-cpu/bin/deepvox; do
+  [ -z "$deepvox" ] && [ -x "$candidate" ] && deepvox=$repo/$candidate
+done
+[ -x "$deepvox" ] || { echo "slurm-check: no deepvox binary (build first or set DEEPVOX)"; exit 2; }
+suite=${SUITE:-quick}
+timeout_s=${SLURM_CHECK_TIMEOUT:-900}
+work=$(mktemp -d /tmp/deepvox-slurm.XXXXXX)
+host=$(hostname -s)
+pids=()
+stop() {
+  for pid_file in "$work"/slurmd.pid "$work"/slurmctld.pid "$work"/munged.pid; do
+    [ -s "$pid_file" ] && kill "$(cat "$pid_file")" 2> /dev/null || true
+  done
+  for pid in "${pids[@]}"; do kill "$pid" 2> /dev/null || true; done
+}
+trap stop EXIT
+
+mkdir -p "$work"/{state,spool,munge,out}
+dd if=/dev/urandom of="$work/munge/munge.key" bs=1024 count=1 status=none
+chmod 700 "$work/munge" && chmod 400 "$work/munge/munge.key"
+munged --force --key-file="$work/munge/munge.key" --socket="$work/munge/munge.socket" \
+  --pid-file="$work/munged.pid" --log-file="$work/munged.log" --seed-file="$work/munge/seed"
+cat > "$work/slurm.conf" << CONF
+ClusterName=deepvox-check
+SlurmctldHost=$host(127.0.0.1)
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+AuthInfo=socket=$work/munge/munge.socket
+CredType=cred/munge
+SlurmctldPort=16817
+SlurmdPort=16818
+StateSaveLocation=$work/state
+SlurmdSpoolDir=$work/spool
+SlurmctldPidFile=$work/slurmctld.pid
+SlurmdPidFile=$work/slurmd.pid
+SlurmctldLogFile=$work/slurmctld.log
+SlurmdLogFile=$work/slurmd.log
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+MpiDefault=none
+ReturnToService=2
+NodeName=$host NodeAddr=127.0.0.1 CPUs=2 State=UNKNOWN
+PartitionName=debug Nodes=ALL Default=YES MaxTime=INFINITE State=UP
+CONF
+export SLURM_CONF=$work/slurm.conf
+slurmctld
+slurmd
+for _ in $(seq 60); do
+  sinfo -h -o %T 2> /dev/null | grep -q idle && break
+  sleep 1
+done
+sinfo -h -o "%P %D %T %c" || true
+sinfo -h -o %T | grep -q idle || { echo "slurm-check: node not idle"; tail "$work"/*.log; exit 1; }
+
+start=$(date +%s)
+# The unsharded reference runs beside the cluster's jobs (timings are not compared).
+"$deepvox" suite "$suite" --backend cpu --costs estimate --out "$work/plain" > "$work/plain.log" 2>&1 &
+pids+=($!)
+plain_pid=$!
+"$deepvox" suite "$suite" --backend cpu --slurm --gpus 2 --submit --costs estimate \
+  --out "$work/out" | tee "$work/submit.log"
+jobs=$(grep -oE 'job [0-9]+' "$work/submit.log" | awk '{print $2}' | paste -sd,)
+while squeue -h -j "$jobs" 2> /dev/null | grep -q .; do
+  if [ $(($(date +%s) - start)) -gt "$timeout_s" ]; then
+    echo "slurm-check: jobs $jobs still queued after ${timeout_s}s"
+    squeue
+    exit 1
+  fi
+  sleep 5
+done
+wait "$plain_pid"
+echo "slurm-check: jobs $jobs done after $(($(date +%s) - start))s"
+cat "$work"/out/"$suite"/*-slurm/slurm/merge.log
+merged=$(ls -d "$work"/out/"$suite"/*-merged | head -1)
+plain=$(ls -d "$work"/plain/"$suite"/*/ | head -1)
+python3 - "$plain/rows.csv" "$merged/rows.csv" << 'PY'
+import csv, sys
+def untimed(path):
+    return [r for r in csv.DictReader(open(path, newline="")) if r["unit"] != "ms"]
+a, b = untimed(sys.argv[1]), untimed(sys.argv[2])
+if a != b or len(a) < 10:
+    print(f"slurm-check: FAIL rows differ ({len(a)} unsharded vs {len(b)} merged)")
+    sys.exit(1)
+print(f"slurm-check: {len(a)} untimed rows of the merged SLURM run equal the unsharded run's")
+PY
+grep -- "- scale-out: 2 CPU workers on 1 host" "$merged/report.md"
+grep -c '"host"' "$merged/meta.json" > /dev/null
+echo "slurm-check: OK in $(($(date +%s) - start))s (merged: $merged)"
