@@ -1,5 +1,6 @@
 // `deepvox suite NAME_OR_FILE [--backend cpu|cuda] [--out DIR] [--repeat K] [--shard I/N]
-//  [--only PATTERN]` and `deepvox suite --list`: runs an experiment suite through the harness
+//  [--only PATTERN] [--smoke]` and `deepvox suite --list`: runs an experiment suite through the
+//  harness
 // (experiments/harness/runner.h) and prints where the report is.
 #include <cstdio>
 
@@ -25,6 +26,9 @@ Runner add_suite(CLI::App& app) {
   cmd->add_option("--shard", opt->shard, "run shard I of N (items with index % N == I-1)");
   cmd->add_option("--only", opt->only,
                   "only experiments whose name, kind or strategy contains this");
+  cmd->add_flag("--smoke", opt->smoke,
+                "run each experiment's `smoke` form: tiny scenes and sweeps, a CPU correctness "
+                "check in seconds, not a measurement");
   return [opt, list] {
     if (*list) {
       std::fputs(list_suites().c_str(), stdout);

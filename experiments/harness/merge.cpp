@@ -51,6 +51,7 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
     require_same(meta["run"]["git_sha"], first["run"]["git_sha"], "commit", folder);
     require_same(meta["shard"]["count"], first["shard"]["count"], "shard count", folder);
     require_same(meta["only"], first["only"], "--only", folder);
+    require_same(meta.value("smoke", false), first.value("smoke", false), "--smoke", folder);
     require_same(meta["repeat"], first["repeat"], "--repeat", folder);
     const int index = meta["shard"]["index"].get<int>();
     if (by_index.count(index))

@@ -15,6 +15,7 @@ struct SuiteOptions {
   int repeat = 0;        // 0: the suite file's
   std::string shard;     // "I/N"; empty: all
   std::string only;      // substring of experiment name, kind or strategy; empty: all
+  bool smoke = false;    // run each experiment's `smoke` form (a CPU-sized correctness run)
   bool progress = true;  // on a terminal only
   bool report = true;    // build report.md (and plots) at the end
 };
