@@ -280,7 +280,11 @@ void build_report(const std::string& folder) {
   std::stringstream suite_text;
   suite_text << suite_in.rdbuf();
   const Suite parsed = parse_suite(suite_text.str(), (dir / "suite.json").string());
-  const Suite suite = meta.value("smoke", false) ? smoke_suite(parsed) : parsed;
+  Suite suite = meta.value("smoke", false) ? smoke_suite(parsed) : parsed;
+  // Paper tables named beside the suite file as run (not in the result folder): look there too.
+  for (ExperimentSpec& e : suite.experiments)
+    for (std::string& paper : e.paper_files)
+      if (!fs::exists(paper)) paper = resolve_data_file(paper, meta.value("suite_file", ""));
   const std::vector<Row> rows = read_rows_csv((dir / "rows.csv").string());
   std::vector<std::map<int, std::vector<const Row*>>> by_experiment(suite.experiments.size());
   for (const Row& r : rows)
