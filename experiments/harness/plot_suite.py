@@ -5,7 +5,7 @@ with "plots", each plot {"x": "metric[:stat]", "y": "metric[:stat]", "type": "sc
 plots/<experiment>_<n>.png. "pareto" adds the front of the scatter's points that no other point
 beats in both x and y (smaller is better). A bar plot takes only "y" (one bar per item). An
 experiment with "pareto": {"error": [...], "cost": [...]} also gets, per scene and (error, cost)
-pair, every point in grey and the front labelled, log-log, in plots/<experiment>_pareto_<n>.png
+pair, every point in grey and the front labelled, log x (log y when every error is positive), in plots/<experiment>_pareto_<n>.png
 (the report prints the same fronts as tables). Exit 3 when matplotlib is missing."""
 import csv
 import json
@@ -132,7 +132,8 @@ def pareto_plots(folder, exp, runs):
                     ax.annotate(name, (x, y), fontsize=5, xytext=(3, 3),
                                 textcoords="offset points")
                 ax.set_xscale("log")
-                ax.set_yscale("symlog", linthresh=1e-4)
+                if all(p[1] > 0 for p in pts):
+                    ax.set_yscale("log")
                 ax.set_xlabel(cost)
                 ax.set_ylabel(err)
                 ax.set_title("%s: %s vs %s" % (os.path.basename(scene), err, cost), fontsize=9)

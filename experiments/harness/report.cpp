@@ -139,7 +139,10 @@ void write_findings(std::ostream& md, const ExperimentSpec& e,
     body.push_back({f.claim, f.lower_text, f.lower_items ? format_value(f.lower) : "-", f.than_text,
                     f.than_items ? format_value(f.than) : "-", f.verdict,
                     f.why.empty() ? "-" : f.why});
-  write_table(md, {"claim", "ours (lower?)", "value", "than", "value", "verdict", "why"}, body);
+  write_table(
+      md,
+      {"claim", "ours (lower?)", "value", "than", "value", "verdict", "why (the suite's reading)"},
+      body);
 }
 
 std::vector<std::string> column_list(const Json& v) {
@@ -292,7 +295,8 @@ void build_report(const std::string& folder) {
       if (suite.experiments[e].name == r.experiment) by_experiment[e][r.item].push_back(&r);
 
   bool plots_asked = false;
-  for (const ExperimentSpec& e : suite.experiments) plots_asked |= !e.plots.empty();
+  for (const ExperimentSpec& e : suite.experiments)
+    plots_asked |= !e.plots.empty() || !e.pareto.is_null();
   const std::string plot_problem = plots_asked ? draw_plots(dir) : "none asked for";
   std::ostringstream md;
   const Json& run = meta["run"];
