@@ -42,6 +42,14 @@ std::string cell(const nlohmann::json& v) {
   return v.dump();
 }
 
+// A paper's cell with its number as transcribed (10.166 stays 10.166; JSON's shortest form).
+std::string paper_cell(const nlohmann::json& v) {
+  if (v.is_number()) return v.dump();
+  if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number())
+    return v[0].dump() + "–" + v[1].dump();
+  return cell(v);
+}
+
 std::string item_label(const Row& r) {
   return r.strategy + (r.params.empty() ? "" : " " + r.params);
 }
@@ -120,7 +128,7 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
   std::vector<std::vector<std::string>> body;
   for (const auto& r : t.value("rows", Json::array())) {
     std::vector<std::string> line;
-    for (const auto& v : r) line.push_back(cell(v));
+    for (const auto& v : r) line.push_back(paper_cell(v));
     body.push_back(std::move(line));
   }
   if (!header.empty()) write_table(md, header, body);
@@ -234,7 +242,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     std::vector<std::vector<std::string>> paper_body;
     for (const auto& r : e.paper["rows"]) {
       std::vector<std::string> line;
-      for (const auto& v : r) line.push_back(cell(v));
+      for (const auto& v : r) line.push_back(paper_cell(v));
       paper_body.push_back(std::move(line));
     }
     write_table(md, paper_header, paper_body);

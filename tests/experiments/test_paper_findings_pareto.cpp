@@ -118,7 +118,8 @@ class PaperFindings : public ::testing::Test {
 TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerdicts) {
   write("tiny-table.json", R"({"source": "Tiny 2024, Table 9", "caption": "tiny caption",
     "machine": "a 1990 abacus", "units": {"*": "ms"}, "columns": ["", "64"],
-    "rows": [["DSM generation", 11], ["range", [2, 3]], ["none", null]], "notes": "n"})");
+    "rows": [["DSM generation", 11], ["range", [2, 3]], ["none", null], ["digits", 160.533]],
+    "notes": "n"})");
   const std::string scene = test::source_dir() + "/scenes/demo.json";
   const std::string suite = write("tiny.json", R"({"suite": "tiny-paper", "repeat": 1,
     "experiments": [{"name": "dsm", "kind": "shadow", "scene": ")" +
@@ -141,6 +142,7 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
   EXPECT_NE(md.find("| DSM generation | 11 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| range | 2–3 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| none | – |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| digits | 160.533 |"), std::string::npos) << md;  // not rounded
   EXPECT_NE(md.find("| no shadows are cheaper than a DSM |"), std::string::npos) << md;
   EXPECT_NE(md.find("| confirmed |"), std::string::npos) << md;      // 0 bytes < the DSM's
   EXPECT_NE(md.find("| not confirmed |"), std::string::npos) << md;  // none errs more
