@@ -3,9 +3,11 @@
 # CUDA smoke test, CPU/CUDA parity, the oracle, raster, render, voxel and DSM tests, renders of the
 # committed scenes on both backends, and the benchmarks. Logs and outputs are packed into
 # $OUT/gpu-check.tar.gz (the device tool returns few files); the summary goes to stdout.
-# Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]; SECTIONS="tests renders benches experiments
-# suites" (the default) picks what runs. `suites` runs the quick suite on CUDA (rows and PNGs;
-# rebuild the report with plots on the host: deepvox report <folder from the tarball>).
+# Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]; SECTIONS="tests renders benches suites" (the
+# default) picks what runs. `suites` runs the quick, seeds and accuracy suites on CUDA (rows and
+# PNGs, SUITE_TIMEOUT seconds each, default 420; rebuild the reports with plots on the host:
+# deepvox report <folder from the tarball>). The paper tables and DSM accuracy that the retired
+# dsm_accuracy and voxel_tables programs measured are the seeds and accuracy suites now.
 set -uo pipefail
 build=${1:?build dir}
 out=${OUT:-gpu-out}
@@ -15,7 +17,7 @@ export DEEPVOX_SOURCE_DIR="$PWD" DEEPVOX_ASSETS="$PWD/assets"
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem --format=csv > "$work/gpu.txt" 2>&1
 cat "$work/gpu.txt"
 status=0
-sections=${SECTIONS:-tests renders benches experiments suites}
+sections=${SECTIONS:-tests renders benches suites}
 has() { [[ " $sections " == *" $1 "* ]]; }
 # Packs what exists so far: a run cut short by the device's time limit still returns its logs.
 pack() { mkdir -p "$out" && tar -czf "$out/gpu-check.tar.gz" -C "$work" .; }
@@ -46,21 +48,13 @@ has benches && for bench in bench_oracle bench_renderer bench_voxelizer bench_ds
   grep -E "median|stddev" "$work/$bench.log"
   pack
 done
-if has experiments && [ -x "$build/bin/dsm_accuracy" ]; then
-  timeout "$limit" "$build/bin/dsm_accuracy" --backend cuda --points 50000 --res 512 > "$work/dsm_accuracy.json" \
-    2> "$work/dsm_accuracy.log" || status=1
-  tail -n 20 "$work/dsm_accuracy.log"
-  pack
-fi
-if has experiments && [ -x "$build/bin/voxel_tables" ]; then
-  timeout "$limit" "$build/bin/voxel_tables" --backend cuda --exact-max-voxels 8388608 \
-    > "$work/voxel_tables.json" 2> "$work/voxel_tables.log" || status=1
-  tail -n 5 "$work/voxel_tables.log"
-fi
 if has suites; then
-  timeout "$limit" "$bin" suite quick --backend cuda --out "$work/suites" > "$work/suite.log" 2>&1 ||
-    status=1
-  tail -n 3 "$work/suite.log"
+  for suite in quick seeds accuracy; do
+    timeout "${SUITE_TIMEOUT:-420}" "$bin" suite "$suite" --backend cuda --out "$work/suites" > "$work/suite-$suite.log" 2>&1 ||
+      status=1
+    tail -n 3 "$work/suite-$suite.log"
+    pack
+  done
 fi
 pack
 echo "gpu-check status $status"

@@ -1,5 +1,5 @@
 // `deepvox suite NAME_OR_FILE [--backend cpu|cuda] [--out DIR] [--repeat K] [--shard I/N]
-//  [--only PATTERN] [--costs DIR|estimate] [--gpus N|all] [--slurm [--partition P] [--time T]
+//  [--only PATTERN] [--smoke] [--costs DIR|estimate] [--gpus N|all] [--slurm [--partition P] [--time T]
 //  [--submit] [--dry-run]]` and `deepvox suite --list`: runs an experiment suite through the
 // harness (experiments/harness/runner.h), as worker processes on this node (workers.h) or as
 // SLURM jobs (slurm.h), and prints where the report is.
@@ -48,6 +48,9 @@ Runner add_suite(CLI::App& app) {
       ->group("");
   cmd->add_option("--only", opt->only,
                   "only experiments whose name, kind or strategy contains this");
+  cmd->add_flag("--smoke", opt->smoke,
+                "run each experiment's `smoke` form: tiny scenes and sweeps, a CPU correctness "
+                "check in seconds, not a measurement");
   return [opt, list, slurm, use_slurm, gpus] {
     if (*list) {
       std::fputs(list_suites().c_str(), stdout);

@@ -1,6 +1,6 @@
 // The summary of absolute errors every accuracy measurement reports: count, max, mean and the
 // 99th percentile (nearest rank: the smallest error with at least 99 % of the errors at or
-// below it). Shared by the suite's shadow driver and experiments/dsm_accuracy.
+// below it). Used by the suite's shadow driver.
 #pragma once
 
 #include <cstddef>

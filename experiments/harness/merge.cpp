@@ -86,6 +86,7 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
     require_same(meta["shard"].value("assignment_hash", Json()),
                  first["shard"].value("assignment_hash", Json()), "shard assignment", folder);
     require_same(meta["only"], first["only"], "--only", folder);
+    require_same(meta.value("smoke", false), first.value("smoke", false), "--smoke", folder);
     require_same(meta["repeat"], first["repeat"], "--repeat", folder);
     const int index = meta["shard"]["index"].get<int>();
     if (by_index.count(index))

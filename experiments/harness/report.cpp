@@ -1,6 +1,7 @@
 // Markdown reports of result folders (report.h).
 #include "experiments/harness/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,8 @@
 
 #include "core/error.h"
 #include "experiments/harness/driver.h"
+#include "experiments/harness/findings.h"
+#include "experiments/harness/pareto.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/suite_file.h"
 #include "io/json_reader.h"
@@ -33,25 +36,22 @@ std::string format_value(double v) {
 std::string cell(const nlohmann::json& v) {
   if (v.is_string()) return v.get<std::string>();
   if (v.is_number()) return format_value(v.get<double>());
+  if (v.is_null()) return "–";
+  if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number())
+    return cell(v[0]) + "–" + cell(v[1]);  // a range the paper prints ("2–3" fps)
   return v.dump();
 }
 
-struct Column {
-  std::string metric, stat;  // stat empty: "value", else "median"
-};
-
-Column parse_column(const std::string& text) {
-  const size_t colon = text.find(':');
-  if (colon == std::string::npos) return {text, ""};
-  return {text.substr(0, colon), text.substr(colon + 1)};
+// A paper's cell with its number as transcribed (10.166 stays 10.166; JSON's shortest form).
+std::string paper_cell(const nlohmann::json& v) {
+  if (v.is_number()) return v.dump();
+  if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number())
+    return v[0].dump() + "–" + v[1].dump();
+  return cell(v);
 }
 
-const Row* find_row(const std::vector<const Row*>& rows, const Column& c) {
-  for (const std::string& stat :
-       c.stat.empty() ? std::vector<std::string>{"value", "median"} : std::vector{c.stat})
-    for (const Row* r : rows)
-      if (r->metric == c.metric && r->stat == stat) return r;
-  return nullptr;
+std::string item_label(const Row& r) {
+  return r.strategy + (r.params.empty() ? "" : " " + r.params);
 }
 
 // Runs the plot script; returns an empty string when plots were made, else why not.
@@ -103,8 +103,96 @@ void write_table(std::ostream& md, const std::vector<std::string>& header,
   md << "\n";
 }
 
+// A paper table file (docs/paper-tables.md) as printed, with both machines named.
+void write_paper_table(std::ostream& md, const std::string& file, const std::string& our_machine) {
+  Json t;
+  try {
+    t = parse_json_file(file);
+  } catch (const std::exception& ex) {
+    md << "\nPaper table " << file << " could not be read: " << ex.what() << "\n\n";
+    return;
+  }
+  md << "\nPaper: **" << cell(t.value("source", Json(file))) << "**"
+     << (t.contains("caption") ? " — " + cell(t["caption"]) : "") << "\n\n";
+  md << "- paper machine: " << cell(t.value("machine", Json("not stated"))) << "\n";
+  md << "- our machine: " << our_machine << "\n";
+  if (t.contains("units") && t["units"].is_object()) {
+    md << "- units:";
+    for (const auto& [key, unit] : t["units"].items())
+      md << " " << (key == "*" ? "every value" : key) << " = " << cell(unit) << ";";
+    md << "\n";
+  }
+  md << "\n";
+  std::vector<std::string> header;
+  for (const auto& h : t.value("columns", Json::array())) header.push_back(cell(h));
+  std::vector<std::vector<std::string>> body;
+  for (const auto& r : t.value("rows", Json::array())) {
+    std::vector<std::string> line;
+    for (const auto& v : r) line.push_back(paper_cell(v));
+    body.push_back(std::move(line));
+  }
+  if (!header.empty()) write_table(md, header, body);
+  if (t.contains("notes"))
+    md << "<details><summary>paper table notes (setup mapping, formulas, ambiguities)</summary>\n\n"
+       << cell(t["notes"]) << "\n\n</details>\n\n";
+}
+
+void write_findings(std::ostream& md, const ExperimentSpec& e,
+                    const std::map<int, std::vector<const Row*>>& items) {
+  const std::vector<FindingResult> results = evaluate_findings(e.findings, items);
+  if (results.empty()) return;
+  md << "\nFindings (mean of the first side's items below the second's = confirmed):\n\n";
+  std::vector<std::vector<std::string>> body;
+  for (const FindingResult& f : results)
+    body.push_back({f.claim, f.lower_text, f.lower_items ? format_value(f.lower) : "-", f.than_text,
+                    f.than_items ? format_value(f.than) : "-", f.verdict,
+                    f.why.empty() ? "-" : f.why});
+  write_table(
+      md,
+      {"claim", "ours (lower?)", "value", "than", "value", "verdict", "why (the suite's reading)"},
+      body);
+}
+
+std::vector<std::string> column_list(const Json& v) {
+  if (v.is_string()) return {v.get<std::string>()};
+  std::vector<std::string> out;
+  for (const auto& c : v) out.push_back(c.get<std::string>());
+  return out;
+}
+
+// Per scene and (error, cost) pair: the Pareto front as a table and the regime sentence.
+void write_pareto(std::ostream& md, const ExperimentSpec& e,
+                  const std::map<int, std::vector<const Row*>>& items) {
+  if (e.pareto.is_null()) return;
+  std::vector<std::string> scenes;
+  for (const auto& [index, rows] : items)
+    if (std::find(scenes.begin(), scenes.end(), rows.front()->scene) == scenes.end())
+      scenes.push_back(rows.front()->scene);
+  for (const std::string& scene : scenes)
+    for (const std::string& error : column_list(e.pareto["error"]))
+      for (const std::string& cost : column_list(e.pareto["cost"])) {
+        std::vector<ParetoPoint> points;
+        for (const auto& [index, rows] : items) {
+          if (rows.front()->scene != scene) continue;
+          const Row* x = find_row(rows, parse_column(cost));
+          const Row* y = find_row(rows, parse_column(error));
+          if (x && y) points.push_back({x->value, y->value, item_label(*rows.front())});
+        }
+        const std::vector<size_t> front = pareto_front(points);
+        md << "\nPareto front on `" << scene << "`, " << error << " vs " << cost << " ("
+           << front.size() << " of " << points.size() << " points):\n\n";
+        std::vector<std::vector<std::string>> body;
+        for (size_t i : front)
+          body.push_back(
+              {points[i].label, format_value(points[i].cost), format_value(points[i].error)});
+        write_table(md, {"strategy and params", cost, error}, body);
+        md << pareto_regimes(points, front, cost, error) << "\n\n";
+      }
+}
+
 void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpec& e,
-                      const std::map<int, std::vector<const Row*>>& items) {
+                      const std::map<int, std::vector<const Row*>>& items,
+                      const std::string& our_machine) {
   md << "## " << e.name << " (" << e.kind << ")\n\n";
   if (!e.description.empty()) md << e.description << "\n\n";
   if (items.empty()) {
@@ -154,11 +242,14 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     std::vector<std::vector<std::string>> paper_body;
     for (const auto& r : e.paper["rows"]) {
       std::vector<std::string> line;
-      for (const auto& v : r) line.push_back(cell(v));
+      for (const auto& v : r) line.push_back(paper_cell(v));
       paper_body.push_back(std::move(line));
     }
     write_table(md, paper_header, paper_body);
   }
+  for (const std::string& file : e.paper_files) write_paper_table(md, file, our_machine);
+  write_findings(md, e, items);
+  write_pareto(md, e, items);
   // Image strip: the reference, then each render with its difference below.
   std::string reference;
   std::vector<std::string> labels, renders, diffs;
@@ -168,7 +259,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     const Row* diff = find_row(rows, {"image", "difference"});
     if (!render) continue;
     if (ref && reference.empty()) reference = ref->note;
-    labels.push_back(render->strategy + (render->params.empty() ? "" : " " + render->params));
+    labels.push_back(item_label(*render));
     renders.push_back("![](" + render->note + ")");
     diffs.push_back(diff ? "![](" + diff->note + ")" : "");
   }
@@ -214,7 +305,12 @@ void build_report(const std::string& folder) {
   std::ifstream suite_in(dir / "suite.json", std::ios::binary);
   std::stringstream suite_text;
   suite_text << suite_in.rdbuf();
-  const Suite suite = parse_suite(suite_text.str(), (dir / "suite.json").string());
+  const Suite parsed = parse_suite(suite_text.str(), (dir / "suite.json").string());
+  Suite suite = meta.value("smoke", false) ? smoke_suite(parsed) : parsed;
+  // Paper tables named beside the suite file as run (not in the result folder): look there too.
+  for (ExperimentSpec& e : suite.experiments)
+    for (std::string& paper : e.paper_files)
+      if (!fs::exists(paper)) paper = resolve_data_file(paper, meta.value("suite_file", ""));
   const std::vector<Row> rows = read_rows_csv((dir / "rows.csv").string());
   std::vector<std::map<int, std::vector<const Row*>>> by_experiment(suite.experiments.size());
   for (const Row& r : rows)
@@ -222,10 +318,14 @@ void build_report(const std::string& folder) {
       if (suite.experiments[e].name == r.experiment) by_experiment[e][r.item].push_back(&r);
 
   bool plots_asked = false;
-  for (const ExperimentSpec& e : suite.experiments) plots_asked |= !e.plots.empty();
+  for (const ExperimentSpec& e : suite.experiments)
+    plots_asked |= !e.plots.empty() || !e.pareto.is_null();
   const std::string plot_problem = plots_asked ? draw_plots(dir) : "none asked for";
   std::ostringstream md;
   const Json& run = meta["run"];
+  const std::string our_machine = (run.contains("device") ? cell(run["device"]) + " (GPU), " : "") +
+                                  cell(run["cpu_model"]) + " (CPU), backend " +
+                                  cell(run["backend"]);
   md << "# Suite `" << suite.name << "`\n\n";
   if (!suite.description.empty()) md << suite.description << "\n\n";
   md << "- when: " << cell(run["utc_time"]) << ", git " << cell(run["git_sha"]) << ", "
@@ -233,6 +333,9 @@ void build_report(const std::string& folder) {
   md << "- backend: " << cell(run["backend"]) << " on "
      << (run.contains("device") ? cell(run["device"]) + ", " : "") << cell(run["cpu_model"]) << ", "
      << cell(run["cpu_threads"]) << " threads\n";
+  if (meta.value("smoke", false))
+    md << "- size: SMOKE (each experiment's `smoke` overrides: a correctness run, not a "
+          "measurement)\n";
   md << "- timings: one warm-up, then " << cell(meta["repeat"])
      << " repetitions, median (min, max in rows.csv)\n";
   const int done = meta["done"].get<int>(), items = meta["items"].get<int>();
@@ -253,7 +356,7 @@ void build_report(const std::string& folder) {
   md << "Command (command.txt; a merged folder lists its shards' too):\n\n```\n"
      << command.str() << "```\n\n";
   for (size_t e = 0; e < suite.experiments.size(); ++e)
-    write_experiment(md, dir, suite.experiments[e], by_experiment[e]);
+    write_experiment(md, dir, suite.experiments[e], by_experiment[e], our_machine);
   std::ofstream out(dir / "report.md");
   if (!out) throw InputError((dir / "report.md").string(), "cannot write report");
   out << md.str();

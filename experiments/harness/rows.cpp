@@ -120,4 +120,18 @@ void sort_rows_by_item(std::vector<Row>& rows) {
                    [](const Row& a, const Row& b) { return a.item < b.item; });
 }
 
+Column parse_column(const std::string& text) {
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) return {text, ""};
+  return {text.substr(0, colon), text.substr(colon + 1)};
+}
+
+const Row* find_row(const std::vector<const Row*>& rows, const Column& c) {
+  for (const std::string& stat :
+       c.stat.empty() ? std::vector<std::string>{"value", "median"} : std::vector{c.stat})
+    for (const Row* r : rows)
+      if (r->metric == c.metric && r->stat == stat) return r;
+  return nullptr;
+}
+
 }  // namespace dv

@@ -22,6 +22,14 @@ void write_rows_csv(const std::string& path, const std::vector<Row>& rows);
 // InputError naming the file and line on a malformed file.
 std::vector<Row> read_rows_csv(const std::string& path);
 
+// A report column "metric" or "metric:stat" (stat empty: "value", else "median").
+struct Column {
+  std::string metric, stat;
+};
+Column parse_column(const std::string& text);
+// The row of one item for a column, or nullptr.
+const Row* find_row(const std::vector<const Row*>& rows, const Column& c);
+
 // Rows in item order (stable within an item): the order of an unsharded run.
 void sort_rows_by_item(std::vector<Row>& rows);
 

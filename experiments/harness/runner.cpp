@@ -47,7 +47,8 @@ std::string describe(const RunItem& item) {
 
 SuiteOutcome run_suite(const SuiteOptions& o) {
   const std::string path = resolve_suite_path(o.suite);
-  const Suite suite = load_suite(path);
+  const Suite loaded = load_suite(path);
+  const Suite suite = o.smoke ? smoke_suite(loaded) : loaded;
   const Backend backend = o.backend.empty() ? default_backend() : parse_backend(o.backend);
   require_backend(backend);
   const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
@@ -72,6 +73,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
                          {"suite_hash", suite.hash},
                          {"repeat", repeat},
                          {"only", o.only},
+                         {"smoke", o.smoke},
                          {"shard",
                           {{"index", shard.index},
                            {"count", shard.count},

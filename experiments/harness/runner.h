@@ -16,6 +16,7 @@ struct SuiteOptions {
   std::string shard;        // "I/N"; empty: all
   std::string costs;        // shard balancing (shard_plan.h): "", "estimate" or a result folder
   std::string only;         // substring of experiment name, kind or strategy; empty: all
+  bool smoke = false;       // run each experiment's `smoke` form (a CPU-sized correctness run)
   bool progress = true;     // on a terminal only
   bool report = true;       // build report.md (and plots) at the end
   std::string status_file;  // where the progress is written for a parent (workers.h); "": none

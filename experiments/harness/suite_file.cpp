@@ -69,17 +69,71 @@ std::vector<StrategySpec> strategy_list(JsonReader& r) {
   return out;
 }
 
-std::string resolve_scene(const std::string& scene, const std::string& suite_file) {
-  const fs::path p(scene);
-  if (p.is_absolute()) return scene;
-  std::vector<fs::path> candidates{fs::path(suite_file).parent_path() / p, p};
-  for (const std::string& root : data_roots()) candidates.push_back(fs::path(root) / p);
-  for (const fs::path& c : candidates)
-    if (fs::exists(c)) return c.string();
-  return scene;  // the scene loader names the missing file
+// [selector, column] with both strings (a finding's side, findings.h).
+void check_finding_side(JsonReader& r, const Json& side, const std::string& key) {
+  if (!side.is_array() || side.size() != 2 || !side[0].is_string() || !side[1].is_string())
+    r.fail(key, "expected [\"selector\", \"metric:stat\"]");
 }
 
-ExperimentSpec parse_experiment(JsonReader& r, const std::string& file) {
+void check_findings(JsonReader& r, const Json& findings) {
+  if (!findings.is_array()) r.fail("findings", "expected an array of claims");
+  for (size_t i = 0; i < findings.size(); ++i) {
+    const std::string at = "findings/" + std::to_string(i);
+    const Json& f = findings[i];
+    if (!f.is_object() || !f.contains("claim") || !f["claim"].is_string() || !f.contains("lower") ||
+        !f.contains("than"))
+      r.fail(at, "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]}");
+    for (const auto& [key, v] : f.items())
+      if (key != "claim" && key != "lower" && key != "than" && key != "why")
+        r.fail(at + "/" + key, "unknown key (known: claim, lower, than, why)");
+    check_finding_side(r, f["lower"], at + "/lower");
+    check_finding_side(r, f["than"], at + "/than");
+  }
+}
+
+void check_pareto(JsonReader& r, const Json& pareto) {
+  if (!pareto.is_object() || !pareto.contains("error") || !pareto.contains("cost"))
+    r.fail("pareto", "expected {\"error\": [columns], \"cost\": [columns]}");
+  for (const auto& [key, v] : pareto.items()) {
+    if (key != "error" && key != "cost")
+      r.fail("pareto/" + key, "unknown key (known: error, cost)");
+    bool ok = v.is_string() || (v.is_array() && !v.empty());
+    for (const Json& c : v.is_array() ? v : Json::array()) ok &= c.is_string();
+    if (!ok) r.fail("pareto/" + key, "expected a column or a non-empty array of columns");
+  }
+}
+
+ExperimentSpec parse_experiment(JsonReader& r, const Json& object, const std::string& file);
+
+// The experiment's JSON with its `smoke` overrides merged: scene, strategy, sweep and columns
+// replaced, params and settings merged key by key.
+Json merged_smoke(JsonReader& r, const Json& object) {
+  const Json& smoke = r.raw("smoke");
+  if (!smoke.is_object()) r.fail("smoke", "expected an object of overrides");
+  Json merged = object;
+  merged.erase("smoke");
+  for (const auto& [key, v] : smoke.items()) {
+    if (key == "params" || key == "settings") {
+      if (!v.is_object()) r.fail("smoke/" + key, "expected an object of key: value");
+      if (!merged.contains(key)) merged[key] = Json::object();
+      for (const auto& [k, item] : v.items()) merged[key][k] = item;
+    } else if (key == "scene" || key == "strategy" || key == "sweep" || key == "columns") {
+      merged[key] = v;
+    } else {
+      r.fail("smoke/" + key,
+             "unknown override (known: scene, strategy, sweep, columns, params, settings)");
+    }
+  }
+  // A swept key now fixed by the smoke params (or the other way round) leaves the sweep.
+  if (merged.contains("sweep") && merged.contains("params"))
+    for (const auto& [k, v] : merged["params"].items()) merged["sweep"].erase(k);
+  if (merged.contains("sweep") && merged["sweep"].empty()) merged.erase("sweep");
+  JsonReader check(merged, r.file(), r.path() + "/smoke");
+  parse_experiment(check, merged, r.file());  // the smoke form must load as strictly
+  return merged;
+}
+
+ExperimentSpec parse_experiment(JsonReader& r, const Json& object, const std::string& file) {
   ExperimentSpec e;
   e.name = r.string("name");
   e.kind = r.string("kind");
@@ -91,7 +145,7 @@ ExperimentSpec parse_experiment(JsonReader& r, const std::string& file) {
   }
   e.description = r.string("description", "");
   e.scenes = one_or_many(r, "scene");
-  for (const std::string& s : e.scenes) e.scene_paths.push_back(resolve_scene(s, file));
+  for (const std::string& s : e.scenes) e.scene_paths.push_back(resolve_data_file(s, file));
   e.strategies = strategy_list(r);
   e.params = value_map(r, "params");
   e.settings = value_map(r, "settings");
@@ -113,11 +167,27 @@ ExperimentSpec parse_experiment(JsonReader& r, const std::string& file) {
   }
   if (r.has("columns")) e.columns = one_or_many(r, "columns");
   if (r.has("paper")) {
-    e.paper = r.raw("paper");
-    if (!e.paper.is_object() || !e.paper.contains("columns") || !e.paper.contains("rows") ||
-        !e.paper["columns"].is_array() || !e.paper["rows"].is_array())
-      r.fail("paper", "expected {\"columns\": [...], \"rows\": [[...], ...]}");
+    const Json& paper = r.raw("paper");
+    if (paper.is_string() || paper.is_array()) {
+      for (const std::string& f : one_or_many(r, "paper"))
+        e.paper_files.push_back(resolve_data_file(f, file));
+    } else {
+      e.paper = paper;
+      if (!e.paper.is_object() || !e.paper.contains("columns") || !e.paper.contains("rows") ||
+          !e.paper["columns"].is_array() || !e.paper["rows"].is_array())
+        r.fail("paper",
+               "expected paper table files or {\"columns\": [...], \"rows\": [[...], ...]}");
+    }
   }
+  if (r.has("findings")) {
+    e.findings = r.raw("findings");
+    check_findings(r, e.findings);
+  }
+  if (r.has("pareto")) {
+    e.pareto = r.raw("pareto");
+    check_pareto(r, e.pareto);
+  }
+  if (r.has("smoke")) e.smoke = merged_smoke(r, object);
   if (r.has("plots")) {
     e.plots = r.raw("plots");
     if (!e.plots.is_array()) r.fail("plots", "expected an array of plot objects");
@@ -173,8 +243,9 @@ Suite parse_suite(const std::string& text, const std::string& path) {
   s.description = r.string("description", "");
   s.repeat = r.integer("repeat", 3);
   if (s.repeat < 1 || s.repeat > 1000) r.fail("repeat", "expected 1..1000");
-  for (JsonReader& e : r.children("experiments"))
-    s.experiments.push_back(parse_experiment(e, path));
+  std::vector<JsonReader> experiments = r.children("experiments");
+  for (size_t i = 0; i < experiments.size(); ++i)
+    s.experiments.push_back(parse_experiment(experiments[i], doc["experiments"][i], path));
   if (s.experiments.empty()) r.fail("experiments", "a suite needs at least one experiment");
   r.finish();
   check_unique_names(s);
@@ -187,6 +258,17 @@ Suite load_suite(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   return parse_suite(text.str(), path);
+}
+
+Suite smoke_suite(const Suite& suite) {
+  Suite out = suite;
+  for (size_t i = 0; i < out.experiments.size(); ++i) {
+    if (out.experiments[i].smoke.is_null()) continue;
+    const Json merged = out.experiments[i].smoke;
+    JsonReader r(merged, suite.file, "/experiments/" + std::to_string(i) + "/smoke");
+    out.experiments[i] = parse_experiment(r, merged, suite.file);
+  }
+  return out;
 }
 
 std::vector<RunItem> expand_suite(const Suite& suite) {
@@ -240,6 +322,16 @@ std::vector<RunItem> filter_items(const std::vector<RunItem>& items, const std::
         break;
       }
   return out;
+}
+
+std::string resolve_data_file(const std::string& path, const std::string& anchor_file) {
+  const fs::path p(path);
+  if (p.is_absolute()) return path;
+  std::vector<fs::path> candidates{fs::path(anchor_file).parent_path() / p, p};
+  for (const std::string& root : data_roots()) candidates.push_back(fs::path(root) / p);
+  for (const fs::path& c : candidates)
+    if (fs::exists(c)) return c.string();
+  return path;
 }
 
 std::vector<std::string> data_roots() {

@@ -34,8 +34,14 @@ struct ExperimentSpec {
   std::vector<std::pair<std::string, std::vector<std::string>>> sweep;
   std::map<std::string, std::string> settings;  // the driver's own knobs (image size, ...)
   std::vector<std::string> columns;             // report table columns; empty: driver default
-  nlohmann::json paper;  // optional reference values printed beside the measured ones
-  nlohmann::json plots;  // optional plot specs for the plot script (array)
+  nlohmann::json paper;  // optional inline reference values printed beside the measured ones
+  // Paper table files (docs/paper-tables.md) printed under the measured table, resolved like
+  // scenes; the report names the paper's machine and ours.
+  std::vector<std::string> paper_files;
+  nlohmann::json findings;  // optional claims decided by a declared comparison (findings.h)
+  nlohmann::json pareto;    // optional {"error": [...], "cost": [...]}: fronts per scene
+  nlohmann::json smoke;     // the experiment as `--smoke` runs it (overrides merged), or null
+  nlohmann::json plots;     // optional plot specs for the plot script (array)
 };
 
 struct Suite {
@@ -65,6 +71,9 @@ struct RunItem {
 };
 
 Suite load_suite(const std::string& path);
+// The suite as `deepvox suite --smoke` runs it: every experiment with a `smoke` object replaced
+// by its merged form (scene, strategy, sweep replaced; params and settings merged over).
+Suite smoke_suite(const Suite& suite);
 // `text` is the file's content; `path` names it in errors and anchors relative scene paths.
 Suite parse_suite(const std::string& text, const std::string& path);
 
@@ -88,6 +97,9 @@ std::string resolve_suite_path(const std::string& name_or_file);
 // Where repository files are found: $DEEPVOX_SOURCE_DIR, the source tree the binary was built
 // from, and <executable>/../share/deepvox (installed bundles).
 std::vector<std::string> data_roots();
+// A repository-relative file (scene, paper table) beside `anchor_file`, in the working folder
+// or under the data roots; the path as given when none exists (its reader names it).
+std::string resolve_data_file(const std::string& path, const std::string& anchor_file);
 
 std::string fnv1a_hex(const std::string& bytes);
 

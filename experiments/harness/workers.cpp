@@ -138,6 +138,7 @@ std::vector<std::string> shard_arguments(const SuiteOptions& o, const std::strin
   if (!o.backend.empty()) a.insert(a.end(), {"--backend", o.backend});
   if (o.repeat > 0) a.insert(a.end(), {"--repeat", std::to_string(o.repeat)});
   if (!o.only.empty()) a.insert(a.end(), {"--only", o.only});
+  if (o.smoke) a.push_back("--smoke");
   return a;
 }
 

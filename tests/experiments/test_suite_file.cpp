@@ -109,12 +109,32 @@ TEST(SuiteFile, BadFilesNameTheFileAndTheProblem) {
 
 TEST(SuiteFile, BuiltInSuitesLoadAndQuickIsAmongThem) {
   const std::vector<std::string> names = builtin_suite_names();
-  EXPECT_NE(std::find(names.begin(), names.end(), "quick"), names.end());
+  for (const char* wanted : {"quick", "seeds", "accuracy"})
+    EXPECT_NE(std::find(names.begin(), names.end(), wanted), names.end()) << wanted;
   for (const std::string& name : names) {
     const Suite s = load_suite(resolve_suite_path(name));
     EXPECT_EQ(s.name, name);
-    for (const ExperimentSpec& e : s.experiments)
-      for (const std::string& scene : e.scene_paths) EXPECT_TRUE(fs::exists(scene)) << scene;
+    for (const Suite& form : {s, smoke_suite(s)})
+      for (const ExperimentSpec& e : form.experiments) {
+        for (const std::string& scene : e.scene_paths) EXPECT_TRUE(fs::exists(scene)) << scene;
+        for (const std::string& paper : e.paper_files) EXPECT_TRUE(fs::exists(paper)) << paper;
+      }
+  }
+  // seeds names every paper table file but the clustered-only ones (pending: clustering is not
+  // in deepvox yet, experiments/suites/seeds-plan.md); accuracy has its Pareto fronts.
+  const std::set<std::string> pending{"knecht-2011-table-5.2.json", "knecht-2011-table-5.4.json"};
+  std::set<std::string> papers;
+  for (const ExperimentSpec& e : load_suite(resolve_suite_path("seeds")).experiments)
+    for (const std::string& paper : e.paper_files)
+      papers.insert(fs::path(paper).filename().string());
+  for (const auto& entry : fs::directory_iterator(test::source_dir() + "/experiments/papers"))
+    EXPECT_NE(papers.count(entry.path().filename().string()),
+              pending.count(entry.path().filename().string()))
+        << entry.path();
+  for (const ExperimentSpec& e : load_suite(resolve_suite_path("accuracy")).experiments) {
+    if (e.name == "methods") {
+      EXPECT_TRUE(e.pareto.is_object());
+    }
   }
   EXPECT_THROW(resolve_suite_path("no-such-suite"), InputError);
 }
