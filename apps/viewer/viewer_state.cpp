@@ -76,7 +76,7 @@ bool ViewerState::try_shadows(const cli::ShadowOptions& options) {
   try {
     method_ = cli::make_shadow_method(options);
     shadows_ = options;
-    dirty_ = true;
+    dirty_ = heat_stale_ = true;
     return true;
   } catch (const InputError& e) {
     message_ = e.what();
@@ -94,7 +94,7 @@ void ViewerState::set_backend(Backend backend) {
   data_ = std::make_unique<SceneData>(scene_, memory_of(backend));
   backend_ = backend;
   method_ = cli::make_shadow_method(shadows_);  // fresh maps for the new backend's memory
-  dirty_ = true;
+  dirty_ = heat_stale_ = true;
 }
 
 KeyAction ViewerState::key(const std::string& name) {
@@ -155,7 +155,6 @@ KeyAction ViewerState::key(const std::string& name) {
     set_backend(backend_ == Backend::cpu ? Backend::cuda : Backend::cpu);
   } else if (name == "H") {
     heatmap_on_ = !heatmap_on_;
-    if (heatmap_on_) build_heatmap();
   } else if (name == "E") {
     error_view_ = !error_view_;
     dirty_ = true;
@@ -171,7 +170,6 @@ KeyAction ViewerState::key(const std::string& name) {
   } else if (name == "Q") {
     return KeyAction::quit;
   }
-  if (heatmap_on_ && dirty_) build_heatmap();
   return KeyAction::none;
 }
 
@@ -195,6 +193,10 @@ void ViewerState::scroll(double steps) {
 }
 
 bool ViewerState::update() {
+  if (heatmap_on_ && heat_stale_) {
+    heat_stale_ = false;
+    build_heatmap();
+  }
   if (!dirty_) return false;
   dirty_ = false;
   const Camera cam = moved_camera(camera_, move_);

@@ -48,7 +48,8 @@ class ViewerState {
   void drag(double dx, double dy, MouseButton button);
   void scroll(double steps);  // dolly by 0.9 a step towards the target
 
-  // Renders when something changed since the last call; returns whether it did.
+  // Renders when something changed since the last call (and rebuilds a shown heat map whose
+  // method changed); returns whether the image changed.
   bool update();
   const Image& image() const { return image_; }      // linear, as the renderer produced it
   const Image& display() const { return display_; }  // what the window shows (see below)
@@ -85,7 +86,8 @@ class ViewerState {
   std::unique_ptr<SceneData> data_;
   cli::ShadowOptions shadows_;
   std::unique_ptr<ShadowMethod> method_;
-  bool dirty_ = true, heatmap_on_ = false, error_view_ = false, help_ = false, panel_ = true;
+  bool dirty_ = true, heat_stale_ = true, heatmap_on_ = false, error_view_ = false, help_ = false,
+       panel_ = true;
   Image image_, display_, heatmap_;
   std::vector<unsigned char> bytes_;
   nlohmann::json stats_;

@@ -3,6 +3,8 @@
 // `render --view` replays, and the image is render_raster's for that camera.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "apps/viewer/viewer_state.h"
 #include "core/buffer.h"
 #include "io/scene_loader.h"
@@ -97,8 +99,13 @@ TEST(ViewerState, HeatMapIsTheDsmLayers) {
   ViewerState state(small_dsm_setup());
   EXPECT_EQ(state.heatmap(), nullptr);
   state.key("H");
+  state.update();
   ASSERT_NE(state.heatmap(), nullptr);
   EXPECT_GE(state.heatmap()->width, 64);
+  state.key("M");  // the next method has no layers: no heat map, a message
+  state.update();
+  EXPECT_EQ(state.heatmap(), nullptr);
+  EXPECT_TRUE(contains(state.message(), "only the dsm method")) << state.message();
   state.key("H");
   EXPECT_EQ(state.heatmap(), nullptr);
 }
