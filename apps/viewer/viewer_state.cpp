@@ -87,7 +87,7 @@ bool ViewerState::try_shadows(const cli::ShadowOptions& options) {
 void ViewerState::set_backend(Backend backend) {
   try {
     require_backend(backend);
-  } catch (const InputError& e) {
+  } catch (const Error& e) {  // not built, or no device: the previous backend stays
     message_ = e.what();
     return;
   }
@@ -209,6 +209,7 @@ bool ViewerState::update() {
   display_ = apply_display_transform(image_, transform_);
   if (error_view_) render_error_view();
   bytes_ = srgb_bytes(display_);
+  ++renders_;
   return true;
 }
 

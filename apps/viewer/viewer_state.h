@@ -51,6 +51,7 @@ class ViewerState {
   // Renders when something changed since the last call (and rebuilds a shown heat map whose
   // method changed); returns whether the image changed.
   bool update();
+  int renders() const { return renders_; }           // how many images update() has made: a version
   const Image& image() const { return image_; }      // linear, as the renderer produced it
   const Image& display() const { return display_; }  // what the window shows (see below)
   // Display-transformed sRGB bytes of `display()`, 3 per pixel, rows from the top: the bytes a
@@ -92,6 +93,7 @@ class ViewerState {
   std::vector<unsigned char> bytes_;
   nlohmann::json stats_;
   std::string message_;
+  int renders_ = 0;
 };
 
 }  // namespace dv::viewer

@@ -280,7 +280,7 @@ int run_viewer(const ViewerRun& run) {
   if (frames == 0 && !script.empty()) frames = script.back().frame + 1;
   Window window(state.width(), state.height());
   size_t next = 0;
-  int saves = 0;
+  int saves = 0, shown = 0;
   bool quit = false;
   std::vector<std::string> shots;
   for (int frame = 0; !quit && (frames == 0 || frame < frames); ++frame) {
@@ -311,7 +311,9 @@ int run_viewer(const ViewerRun& run) {
       }
       if (!state.message().empty()) log_info("view: " + state.message());
     }
-    if (state.update()) {
+    state.update();
+    if (state.renders() != shown) {  // also when a save rendered it earlier this frame
+      shown = state.renders();
       window.upload(0, state.width(), state.height(), state.display_bytes().data());
       glfwSetWindowTitle(window.handle(),
                          ("deepvox view: " + state.render_command("x.png")).c_str());

@@ -40,6 +40,7 @@ void expect_error(const std::string& text, const std::string& fragment) {
   try {
     parse_script_text(text, "keys.txt");
     ADD_FAILURE() << "no error for: " << text;
+    return;
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
   }
@@ -53,7 +54,8 @@ TEST(ViewerScript, MistakesNameFileAndLine) {
   expect_error("0 drag 1\n", "keys.txt:1: expected `key NAME`");
   expect_error("0 drag 1 2 thumb\n", "keys.txt:1: unknown mouse button 'thumb'");
   expect_error("0 scroll up\n", "keys.txt:1: scroll dy 'up' is not a number");
-  expect_error("0 jump\n", "keys.txt:1: expected `FRAME EVENT");
+  expect_error("0 jump\n", "keys.txt:1: expected `key NAME`");
+  expect_error("# header\n7\n", "keys.txt:2: expected `FRAME EVENT");
 }
 
 TEST(ViewerScript, MissingFileIsAnInputError) {
