@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <utility>
 
 #include "core/buffer.h"
 #include "core/error.h"
@@ -40,6 +41,15 @@ std::string number_text(double value) {
 dvec3 heat(double t) {
   t = std::clamp(t, 0.0, 1.0) * 3.0;
   return {std::min(t, 1.0), std::clamp(t - 1.0, 0.0, 1.0), std::clamp(t - 2.0, 0.0, 1.0)};
+}
+
+// A JSON value for the panel: numbers with 4 significant digits, strings unquoted.
+std::string short_text(const nlohmann::json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (!value.is_number_float()) return value.dump();
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value.get<double>());
+  return text;
 }
 
 double luminance(const dvec3& c) {
@@ -263,17 +273,28 @@ std::string ViewerState::panel_text() const {
                      std::to_string(camera_.width) + "x" + std::to_string(camera_.height);
   const nlohmann::json params = method_->params();
   for (const char* key : {"storage", "res", "eps", "filter", "voxelizer", "clusters"})
-    if (params.contains(key)) text += std::string("  ") + key + "=" + params[key].dump();
-  text += "\n";
+    if (params.contains(key)) text += std::string("  ") + key + "=" + short_text(params[key]);
   if (stats_.is_object()) {
+    text += "\n";
     for (const char* key : {"milliseconds", "raster_ms", "fragment_ms"})
-      if (stats_.contains(key)) text += std::string(key) + " " + stats_[key].dump() + "  ";
+      if (stats_.contains(key)) text += std::string(key) + " " + short_text(stats_[key]) + "  ";
+    // The method's figures and those of its parts one level down (storage bytes, layers).
     const nlohmann::json& s = stats_["shadows"]["stats"];
-    for (auto it = s.begin(); it != s.end(); ++it)
-      if (it.value().is_number()) text += "\n" + it.key() + " " + it.value().dump();
+    std::string line;
+    const auto add = [&](const std::string& item) {
+      if (!line.empty() && line.size() + item.size() > 64) text += "\n" + std::exchange(line, "");
+      line += item + "  ";
+    };
+    for (auto it = s.begin(); it != s.end(); ++it) {
+      if (it.value().is_number()) add(it.key() + " " + short_text(it.value()));
+      if (it.value().is_object())
+        for (auto in = it.value().begin(); in != it.value().end(); ++in)
+          if (in.value().is_number()) add(it.key() + "." + in.key() + " " + short_text(in.value()));
+    }
+    if (!line.empty()) text += "\n" + line;
     if (stats_.contains("error_view"))
-      text += "\nerror view: |lum - lum(reference)| max " + stats_["error_view"]["max"].dump() +
-              " (black 0 .. white max)";
+      text += "\nerror view: |lum - lum(reference)|, black 0 .. white " +
+              short_text(stats_["error_view"]["max"]);
   }
   if (!message_.empty()) text += "\n" + message_;
   return text;

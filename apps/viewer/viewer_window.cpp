@@ -251,7 +251,7 @@ class Window {
 };
 
 // Draws the frame into the back buffer: image, heat map (bottom-left, at most a third of the
-// window), panel text, help.
+// window), then the help or else the panel text.
 void draw(Window& window, const ViewerState& state) {
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
@@ -262,8 +262,10 @@ void draw(Window& window, const ViewerState& state) {
     const int w = std::max(1, int(heat->width * scale)), h = std::max(1, int(heat->height * scale));
     window.draw_texture(1, 0, state.height() - h, w, h);
   }
-  if (state.panel_shown()) window.draw_text(state.panel_text(), 4, 4);
-  if (state.help_shown()) window.draw_text(keys_help(), 4, state.height() / 2);
+  if (state.help_shown())  // in the panel's place
+    window.draw_text(keys_help(), 4, 4);
+  else if (state.panel_shown())
+    window.draw_text(state.panel_text(), 4, 4);
   gl::check_gl("view: draw");
 }
 
