@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "apps/viewer/viewer_state.h"
 #include "core/buffer.h"
@@ -28,6 +29,26 @@ ViewerSetup small_dsm_setup() {
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
+}
+
+TEST(MovedCamera, YawIsOrbitPitchStopsShortOfThePoleDollyAndPanScale) {
+  Camera c;
+  c.position = {0.0, 1.0, 5.0};
+  c.target = {0.0, 1.0, 0.0};
+  EXPECT_EQ(moved_camera(c, {}).position, c.position);
+  const Camera yawed = moved_camera(c, {90.0, 0.0, 1.0, 0.0, 0.0});
+  const Camera orbited = orbit_camera(c, 360.0, 1, 4);
+  EXPECT_NEAR(glm::length(yawed.position - orbited.position), 0.0, 1e-12);
+  const Camera up = moved_camera(c, {0.0, 30.0, 1.0, 0.0, 0.0});
+  EXPECT_NEAR(up.position.y - 1.0, 5.0 * std::sin(30.0 * M_PI / 180.0), 1e-12);
+  const Camera top = moved_camera(c, {0.0, 120.0, 1.0, 0.0, 0.0});  // clamped at 89 degrees
+  EXPECT_NEAR(top.position.y - 1.0, 5.0 * std::sin(89.0 * M_PI / 180.0), 1e-12);
+  const Camera near = moved_camera(c, {0.0, 0.0, 0.5, 0.0, 0.0});
+  EXPECT_NEAR(glm::length(near.position - near.target), 2.5, 1e-12);
+  const Camera panned = moved_camera(c, {0.0, 0.0, 1.0, 0.1, -0.2});
+  EXPECT_NEAR(panned.target.x, 0.5, 1e-12);  // right of a camera looking down -z is +x
+  EXPECT_NEAR(panned.target.y, 0.0, 1e-12);
+  EXPECT_NEAR(glm::length(panned.position - panned.target - (c.position - c.target)), 0.0, 1e-12);
 }
 
 TEST(ViewerState, ImageIsRenderRasterOfTheMovedCamera) {
