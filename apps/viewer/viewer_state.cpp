@@ -202,22 +202,40 @@ void ViewerState::scroll(double steps) {
   dirty_ = true;
 }
 
-bool ViewerState::update() {
+bool ViewerState::update(bool coarse) {
   if (heatmap_on_ && heat_stale_) {
     heat_stale_ = false;
     build_heatmap();
   }
-  if (!dirty_) return false;
+  if (!dirty_ && !(coarse_shown_ && !coarse)) return false;
   dirty_ = false;
-  const Camera cam = moved_camera(camera_, move_);
+  coarse_shown_ = coarse;
+  Camera cam = moved_camera(camera_, move_);
+  const int step = coarse ? 4 : 1;
+  cam.width = std::max(1, camera_.width / step);
+  cam.height = std::max(1, camera_.height / step);
   RasterRenderResult rr = render_raster(backend_, *data_, cam, *method_, scene_.background);
   stats_ = rr.stats();
   stats_["shadows"] = {
       {"name", method_->name()}, {"params", method_->params()}, {"stats", method_->stats()}};
   stats_["backend"] = to_string(backend_);
-  image_ = std::move(rr.render.image);
+  if (coarse) {
+    stats_["coarse"] = step;
+    image_ = Image(camera_.width, camera_.height);  // nearest-neighbour scale-up
+    for (int y = 0; y < camera_.height; ++y)
+      for (int x = 0; x < camera_.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          image_.rgb[(size_t(y) * camera_.width + x) * 3 + c] =
+              rr.render.image.rgb[(size_t(std::min(y / step, cam.height - 1)) * cam.width +
+                                   std::min(x / step, cam.width - 1)) *
+                                      3 +
+                                  c];
+  } else {
+    slow_ = rr.render.milliseconds > 100.0;
+    image_ = std::move(rr.render.image);
+  }
   display_ = apply_display_transform(image_, transform_);
-  if (error_view_) render_error_view();
+  if (error_view_ && !coarse) render_error_view();
   bytes_ = srgb_bytes(display_);
   ++renders_;
   return true;

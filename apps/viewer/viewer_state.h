@@ -49,8 +49,12 @@ class ViewerState {
   void scroll(double steps);  // dolly by 0.9 a step towards the target
 
   // Renders when something changed since the last call (and rebuilds a shown heat map whose
-  // method changed); returns whether the image changed.
-  bool update();
+  // method changed); returns whether the image changed. `coarse` (progressive refinement while
+  // the camera moves): a quarter-size image scaled up, no error view; the next update without
+  // it renders the full image even when nothing else changed.
+  bool update(bool coarse = false);
+  // Whether the last full image took long enough (> 100 ms) to render coarse while moving.
+  bool slow() const { return slow_; }
   int renders() const { return renders_; }           // how many images update() has made: a version
   const Image& image() const { return image_; }      // linear, as the renderer produced it
   const Image& display() const { return display_; }  // what the window shows (see below)
@@ -87,8 +91,8 @@ class ViewerState {
   std::unique_ptr<SceneData> data_;
   cli::ShadowOptions shadows_;
   std::unique_ptr<ShadowMethod> method_;
-  bool dirty_ = true, heat_stale_ = true, heatmap_on_ = false, error_view_ = false, help_ = false,
-       panel_ = true;
+  bool dirty_ = true, coarse_shown_ = false, slow_ = false, heat_stale_ = true, heatmap_on_ = false,
+       error_view_ = false, help_ = false, panel_ = true;
   Image image_, display_, heatmap_;
   std::vector<unsigned char> bytes_;
   nlohmann::json stats_;

@@ -283,6 +283,8 @@ int run_viewer(const ViewerRun& run) {
   Window window(state.width(), state.height());
   size_t next = 0;
   int saves = 0, shown = 0;
+  const bool interactive = frames == 0 && script.empty();
+  double last_input = -1.0;
   bool quit = false;
   std::vector<std::string> shots;
   for (int frame = 0; !quit && (frames == 0 || frame < frames); ++frame) {
@@ -313,7 +315,10 @@ int run_viewer(const ViewerRun& run) {
       }
       if (!state.message().empty()) log_info("view: " + state.message());
     }
-    state.update();
+    // Progressive refinement, interactive runs only: coarse while input keeps coming to a slow
+    // method, the full image once the camera has rested 0.3 s.
+    if (!events.empty()) last_input = glfwGetTime();
+    state.update(interactive && state.slow() && glfwGetTime() - last_input < 0.3);
     if (state.renders() != shown) {  // also when a save rendered it earlier this frame
       shown = state.renders();
       window.upload(0, state.width(), state.height(), state.display_bytes().data());

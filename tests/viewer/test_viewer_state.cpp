@@ -75,6 +75,23 @@ TEST(ViewerState, ImageIsRenderRasterOfTheMovedCamera) {
   EXPECT_FALSE(contains(state.render_command("o.png"), "--view"));
 }
 
+TEST(ViewerState, CoarseImageIsRefinedByTheNextFullUpdate) {
+  ViewerState state(small_dsm_setup());
+  ASSERT_TRUE(state.update());
+  const std::vector<float> full = state.image().rgb;
+  state.drag(4.0, 0.0, MouseButton::left);
+  state.drag(-4.0, 0.0, MouseButton::left);  // back where it was
+  ASSERT_TRUE(state.update(true));
+  EXPECT_EQ(state.image().width, 48);
+  EXPECT_EQ(state.image().height, 32);
+  EXPECT_EQ(state.stats()["coarse"], 4);
+  EXPECT_EQ(state.image().rgb[3 * 1], state.image().rgb[0]);  // pixels (0,0) and (1,0) are one
+  EXPECT_NE(state.image().rgb, full);
+  EXPECT_TRUE(state.update());  // resting: the full image again, though nothing changed
+  EXPECT_EQ(state.image().rgb, full);
+  EXPECT_FALSE(state.update());
+}
+
 TEST(ViewerState, SwitchesGoThroughTheRegistries) {
   ViewerState state(small_dsm_setup());
   state.key("[");
