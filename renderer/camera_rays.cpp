@@ -1,18 +1,49 @@
-// Orbiting cameras for multi-frame renders (see camera_rays.h).
+// Orbiting cameras for multi-frame renders and the viewer's camera moves (see camera_rays.h).
 #include "renderer/camera_rays.h"
+
+#include <algorithm>
 
 namespace dv {
 
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Rodrigues rotation of v about the unit axis by `radians`.
+dvec3 rotate(const dvec3& v, const dvec3& axis, double radians) {
+  return v * std::cos(radians) + glm::cross(axis, v) * std::sin(radians) +
+         axis * glm::dot(axis, v) * (1.0 - std::cos(radians));
+}
+
+}  // namespace
+
 Camera orbit_camera(const Camera& base, double degrees, int frame, int frames) {
   if (frames <= 1 || degrees == 0.0) return base;
-  const double angle = degrees * 3.14159265358979323846 / 180.0 * double(frame) / double(frames);
-  const dvec3 axis = glm::normalize(base.up);
-  const dvec3 offset = base.position - base.target;
-  // Rodrigues rotation of the offset about the up axis through the target.
-  const dvec3 rotated = offset * std::cos(angle) + glm::cross(axis, offset) * std::sin(angle) +
-                        axis * glm::dot(axis, offset) * (1.0 - std::cos(angle));
+  const double angle = degrees * kPi / 180.0 * double(frame) / double(frames);
   Camera c = base;
-  c.position = base.target + rotated;
+  c.position = base.target + rotate(base.position - base.target, glm::normalize(base.up), angle);
+  return c;
+}
+
+Camera moved_camera(const Camera& base, const CameraMove& move) {
+  const dvec3 up = glm::normalize(base.up);
+  const dvec3 base_offset = base.position - base.target;
+  const double distance = glm::length(base_offset);
+  dvec3 offset = rotate(base_offset, up, move.yaw_deg * kPi / 180.0);
+  const CameraView yawed =
+      make_camera_view(Camera{base.target + offset, base.target, base.up, base.fov_deg, base.width,
+                              base.height, base.near_plane});
+  const dvec3 right = glm::normalize(yawed.right);
+  const dvec3 view_up = glm::normalize(yawed.up);
+  // Elevation of the offset above the plane normal to up, kept within 89 degrees of it.
+  const double elevation = std::asin(std::clamp(glm::dot(glm::normalize(offset), up), -1.0, 1.0));
+  const double limit = 89.0 * kPi / 180.0;
+  const double pitch =
+      std::clamp(elevation + move.pitch_deg * kPi / 180.0, -limit, limit) - elevation;
+  offset = rotate(offset, right, -pitch) * move.dolly;
+  Camera c = base;
+  c.target = base.target + (right * move.pan_x + view_up * move.pan_y) * distance;
+  c.position = c.target + offset;
   return c;
 }
 

@@ -45,4 +45,17 @@ DV_HD inline dvec3 camera_ray_direction(const CameraView& c, int x, int y) {
 // Camera on a circle of `degrees` total arc about the target's vertical axis: frame i of n.
 Camera orbit_camera(const Camera& base, double degrees, int frame, int frames);
 
+// A camera moved from `base` the way the viewer's mouse moves it (`render --view` replays it):
+// the offset from the target turned by yaw about the up axis, then by pitch about the camera's
+// right axis (clamped short of the poles), scaled by dolly (> 0), and camera and target shifted
+// by pan_x right and pan_y up, in units of the base camera's distance to its target.
+struct CameraMove {
+  double yaw_deg = 0.0;
+  double pitch_deg = 0.0;
+  double dolly = 1.0;
+  double pan_x = 0.0;
+  double pan_y = 0.0;
+};
+Camera moved_camera(const Camera& base, const CameraMove& move);
+
 }  // namespace dv

@@ -11,6 +11,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   libgtest-dev libbenchmark-dev
   libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
+  xvfb xauth libglx-mesa0
   python3-matplotlib
 )
 

@@ -1,15 +1,16 @@
 // `deepvox render SCENE --out img.png [--backend cpu|cuda] [--renderer raster|raytrace]
 //  [--shadows NAME] [--stats s.json] [--frames N --orbit DEG] [--width W --height H]
-//  [--exposure EV] [--tonemap none|reinhard|aces] [--ground]`: the rasterizing renderer (or the
-// BVH ray-walk reference) with a shadow method, PNG (exposed and tone-mapped) or EXR (linear)
-// out, per-frame pass timings and counters in a stats JSON.
+//  [--exposure EV] [--tonemap none|reinhard|aces] [--ground] [--view YAW,PITCH,DOLLY,PX,PY]`:
+// the rasterizing renderer (or the BVH ray-walk reference) with a shadow method, the camera
+// moved as the viewer moves it (--view), PNG (exposed and tone-mapped) or EXR (linear) out,
+// per-frame pass timings and counters in a stats JSON.
 #include <filesystem>
 #include <fstream>
 
 #include "apps/deepvox/commands.h"
-#include "experiments/harness/run_metadata.h"
 #include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
+#include "experiments/harness/run_metadata.h"
 #include "io/image.h"
 #include "io/output_path.h"
 #include "io/scene_loader.h"
@@ -37,6 +38,7 @@ Runner add_render(CLI::App& app) {
   struct Options {
     std::string scene, out, stats, backend, renderer = "raster", tonemap = "none";
     ShadowOptions shadows;
+    std::vector<double> view;
     int frames = 1, width = 0, height = 0;
     double orbit = 0.0, exposure = 0.0;
     bool ground = false;
@@ -68,6 +70,11 @@ Runner add_render(CLI::App& app) {
   cmd->add_option("--tonemap", opt->tonemap, "PNG only: tone curve after the exposure")
       ->check(CLI::IsMember({"none", "reinhard", "aces"}))
       ->capture_default_str();
+  cmd->add_option("--view", opt->view,
+                  "move the scene camera first, as `deepvox view` does: yaw and pitch degrees, "
+                  "dolly factor, pan right and up in target distances")
+      ->delimiter(',')
+      ->expected(5);
   cmd->add_flag("--ground", opt->ground,
                 "add an opaque ground plane just below the scene bounds (if none is named ground)");
   return [opt] {
@@ -81,6 +88,11 @@ Runner add_render(CLI::App& app) {
     const DisplayTransform display{opt->exposure, parse_tone_curve(opt->tonemap)};
     if (opt->width) scene.camera.width = opt->width;
     if (opt->height) scene.camera.height = opt->height;
+    if (!opt->view.empty()) {
+      if (!(opt->view[2] > 0.0)) throw InputError("--view", "the dolly factor must be positive");
+      scene.camera = moved_camera(
+          scene.camera, {opt->view[0], opt->view[1], opt->view[2], opt->view[3], opt->view[4]});
+    }
     const SceneData data(scene, memory_of(backend));
     nlohmann::json stats = {
         {"meta", run_metadata(backend)},

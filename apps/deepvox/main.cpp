@@ -33,6 +33,9 @@ int main(int argc, char** argv) {
   runners["suite"] = dv::cli::add_suite(app);
   runners["merge"] = dv::cli::add_merge(app);
   runners["report"] = dv::cli::add_report(app);
+#if DEEPVOX_WITH_VIEWER
+  runners["view"] = dv::cli::add_view(app);
+#endif
   if (const int parse_exit = dv::cli::parse_command_line(app, argc, argv); parse_exit >= 0)
     return parse_exit;
   try {

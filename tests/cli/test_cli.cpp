@@ -140,6 +140,25 @@ TEST_F(Cli, RenderWritesImagesAndStats) {
   EXPECT_EQ(nlohmann::json::parse(info.output)["triangles"].get<int>(), 24);
 }
 
+TEST_F(Cli, RenderViewMovesTheCameraAndRejectsBadMoves) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string common = "render " + scene + " --backend cpu --width 32 --height 24";
+  ASSERT_EQ(run(common + " --out " + path("plain.png")).exit_code, 0);
+  ASSERT_EQ(run(common + " --out " + path("still.png") + " --view 0,0,1,0,0").exit_code, 0);
+  ASSERT_EQ(run(common + " --out " + path("moved.png") + " --view 20,-5,0.8,0.1,0").exit_code, 0);
+  const auto bytes = [&](const std::string& name) {
+    std::ifstream in(path(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_TRUE(bytes("plain.png") == bytes("still.png"));
+  EXPECT_FALSE(bytes("plain.png") == bytes("moved.png"));
+  const CommandResult zero = run(common + " --out " + path("z.png") + " --view 0,0,0,0,0");
+  EXPECT_EQ(zero.exit_code, 2) << zero.output;
+  EXPECT_NE(zero.output.find("--view: the dolly factor must be positive"), std::string::npos)
+      << zero.output;
+  EXPECT_EQ(run(common + " --out " + path("z.png") + " --view 1,2").exit_code, 2);
+}
+
 // Width and height from a PNG file's IHDR chunk.
 std::pair<int, int> png_size(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -1,0 +1,356 @@
+// The viewer's state and its changes (see viewer_state.h).
+#include "apps/viewer/viewer_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <utility>
+
+#include "core/buffer.h"
+#include "core/error.h"
+#include "dsm/deep_shadow_maps.h"
+#include "dsm/dsm_export.h"
+#include "io/layer_heatmap.h"
+#include "io/scene_loader.h"
+#include "renderer/raster_render.h"
+#include "scene/default_staging.h"
+#include "scene/scene_view.h"
+#include "strategies/shadow/shadow_method.h"
+#include "strategies/storage/dsm_storage.h"
+#include "strategies/voxelizer/voxelizer.h"
+
+namespace dv::viewer {
+
+namespace {
+
+// The registry name after `current` (case-insensitive), wrapping; the first when absent.
+std::string next_name(const std::vector<std::string>& names, const std::string& current) {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (lowercase(names[i]) == lowercase(current)) return names[(i + 1) % names.size()];
+  return names.empty() ? current : names.front();
+}
+
+std::string number_text(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+// Black - red - yellow - white for t in [0, 1]: the error view's scale.
+dvec3 heat(double t) {
+  t = std::clamp(t, 0.0, 1.0) * 3.0;
+  return {std::min(t, 1.0), std::clamp(t - 1.0, 0.0, 1.0), std::clamp(t - 2.0, 0.0, 1.0)};
+}
+
+// A JSON value for the panel: numbers with 4 significant digits, strings unquoted.
+std::string short_text(const nlohmann::json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (!value.is_number_float()) return value.dump();
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value.get<double>());
+  return text;
+}
+
+double luminance(const dvec3& c) {
+  return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
+
+std::vector<unsigned char> srgb_bytes(const Image& image) {
+  std::vector<unsigned char> bytes(image.rgb.size());
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(image.rgb[i]);
+  return bytes;
+}
+
+}  // namespace
+
+ViewerState::ViewerState(const ViewerSetup& setup)
+    : setup_(setup),
+      move_(setup.start),
+      backend_(setup.backend.empty() ? default_backend() : parse_backend(setup.backend)),
+      transform_{setup.exposure, parse_tone_curve(setup.tonemap)},
+      shadows_(setup.shadows) {
+  require_backend(backend_);
+  method_ = cli::make_shadow_method(shadows_);
+  scene_ = load_scene(setup.scene_path);
+  if (setup.ground) add_ground_plane(scene_);
+  camera_ = scene_.camera;
+  if (setup.width) camera_.width = setup.width;
+  if (setup.height) camera_.height = setup.height;
+  data_ = std::make_unique<SceneData>(scene_, memory_of(backend_));
+}
+
+ViewerState::~ViewerState() = default;
+
+bool ViewerState::try_shadows(const cli::ShadowOptions& options) {
+  try {
+    method_ = cli::make_shadow_method(options);
+    shadows_ = options;
+    dirty_ = heat_stale_ = true;
+    return true;
+  } catch (const InputError& e) {
+    message_ = e.what();
+    return false;
+  }
+}
+
+void ViewerState::set_backend(Backend backend) {
+  try {
+    require_backend(backend);
+  } catch (const Error& e) {  // not built, or no device: the previous backend stays
+    message_ = e.what();
+    return;
+  }
+  data_ = std::make_unique<SceneData>(scene_, memory_of(backend));
+  backend_ = backend;
+  method_ = cli::make_shadow_method(shadows_);  // fresh maps for the new backend's memory
+  dirty_ = heat_stale_ = true;
+}
+
+KeyAction ViewerState::key(const std::string& name) {
+  message_.clear();
+  const nlohmann::json params = method_->params();
+  cli::ShadowOptions next = shadows_;
+  if (name == "M") {
+    next = cli::ShadowOptions{};
+    next.name = next_name(shadow_registry().names(), shadows_.name);
+    // Keep the knobs the new method accepts; a method that takes none of them starts plain.
+    next.params = shadows_.params;
+    next.storage = shadows_.storage;
+    next.filter = shadows_.filter;
+    next.voxelizer = shadows_.voxelizer;
+    next.dsm_res = shadows_.dsm_res;
+    next.eps = shadows_.eps;
+    if (!try_shadows(next)) {
+      const std::string dropped = message_;
+      if (try_shadows(cli::ShadowOptions{next.name, {}, "", "", "", 0, -1.0}))
+        message_ = "settings not taken by " + next.name + " were dropped (" + dropped + ")";
+    }
+  } else if (name == "T") {
+    next.storage = next_name(storage_registry().names(), params.value("storage", shadows_.storage));
+    try_shadows(next);
+  } else if (name == "[" || name == "]") {
+    if (!params.contains("eps") || !params["eps"].is_number()) {
+      message_ = method_->name() + " has no eps parameter";
+    } else {
+      const double eps = params["eps"].get<double>();
+      next.eps = std::clamp(name == "[" ? eps * 0.5 : eps * 2.0, 0.0, 4.0);
+      try_shadows(next);
+    }
+  } else if (name == "-" || name == "=") {
+    if (!params.contains("res") || !params["res"].is_number_integer()) {
+      message_ = method_->name() + " has no res parameter";
+    } else {
+      const int res = params["res"].get<int>();
+      next.dsm_res = std::clamp(name == "-" ? res / 2 : res * 2, 8, 16384);
+      try_shadows(next);
+    }
+  } else if (name == "F") {
+    next.filter = params.value("filter", std::string("none")) == "bilinear" ? "none" : "bilinear";
+    try_shadows(next);
+  } else if (name == "C") {
+    if (!params.contains("clusters")) {
+      message_ = method_->name() + " has no clusters parameter";
+    } else {
+      const int clusters = params["clusters"].is_number() ? params["clusters"].get<int>() : 1;
+      std::erase_if(next.params, [](const std::string& p) { return p.starts_with("clusters="); });
+      next.params.push_back("clusters=" + std::to_string(clusters >= 8 ? 1 : clusters * 2));
+      try_shadows(next);
+    }
+  } else if (name == "V") {
+    next.voxelizer =
+        next_name(voxelizer_registry().names(), params.value("voxelizer", shadows_.voxelizer));
+    try_shadows(next);
+  } else if (name == "B") {
+    set_backend(backend_ == Backend::cpu ? Backend::cuda : Backend::cpu);
+  } else if (name == "H") {
+    heatmap_on_ = !heatmap_on_;
+  } else if (name == "E") {
+    error_view_ = !error_view_;
+    dirty_ = true;
+  } else if (name == "P") {
+    panel_ = !panel_;
+  } else if (name == "F1") {
+    help_ = !help_;
+  } else if (name == "R") {
+    move_ = CameraMove{};
+    dirty_ = true;
+  } else if (name == "S") {
+    return KeyAction::save;
+  } else if (name == "Q") {
+    return KeyAction::quit;
+  }
+  return KeyAction::none;
+}
+
+void ViewerState::drag(double dx, double dy, MouseButton button) {
+  if (button == MouseButton::left) {
+    move_.yaw_deg -= 0.25 * dx;
+    move_.pitch_deg = std::clamp(move_.pitch_deg + 0.25 * dy, -179.0, 179.0);
+  } else if (button == MouseButton::right) {
+    move_.dolly = std::clamp(move_.dolly * std::pow(1.005, dy), 1e-3, 1e3);
+  } else {
+    const double scale = 2.0 * move_.dolly / double(camera_.height);
+    move_.pan_x -= dx * scale;
+    move_.pan_y += dy * scale;
+  }
+  dirty_ = true;
+}
+
+void ViewerState::scroll(double steps) {
+  move_.dolly = std::clamp(move_.dolly * std::pow(0.9, steps), 1e-3, 1e3);
+  dirty_ = true;
+}
+
+bool ViewerState::update(bool coarse) {
+  if (heatmap_on_ && heat_stale_) {
+    heat_stale_ = false;
+    build_heatmap();
+  }
+  if (!dirty_ && !(coarse_shown_ && !coarse)) return false;
+  dirty_ = false;
+  coarse_shown_ = coarse;
+  Camera cam = moved_camera(camera_, move_);
+  const int step = coarse ? 4 : 1;
+  cam.width = std::max(1, camera_.width / step);
+  cam.height = std::max(1, camera_.height / step);
+  RasterRenderResult rr = render_raster(backend_, *data_, cam, *method_, scene_.background);
+  stats_ = rr.stats();
+  stats_["shadows"] = {
+      {"name", method_->name()}, {"params", method_->params()}, {"stats", method_->stats()}};
+  stats_["backend"] = to_string(backend_);
+  if (coarse) {
+    stats_["coarse"] = step;
+    image_ = Image(camera_.width, camera_.height);  // nearest-neighbour scale-up
+    for (int y = 0; y < camera_.height; ++y)
+      for (int x = 0; x < camera_.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          image_.rgb[(size_t(y) * camera_.width + x) * 3 + c] =
+              rr.render.image.rgb[(size_t(std::min(y / step, cam.height - 1)) * cam.width +
+                                   std::min(x / step, cam.width - 1)) *
+                                      3 +
+                                  c];
+  } else {
+    slow_ = rr.render.milliseconds > 100.0;
+    image_ = std::move(rr.render.image);
+  }
+  display_ = apply_display_transform(image_, transform_);
+  if (error_view_ && !coarse) render_error_view();
+  bytes_ = srgb_bytes(display_);
+  ++renders_;
+  return true;
+}
+
+// Labelled "image difference vs reference": |luminance(method) - luminance(reference)| of the
+// displayed images per pixel, scaled to its maximum (not the per-sample |T' - T| of probe).
+void ViewerState::render_error_view() {
+  auto reference = shadow_registry().create("reference");
+  const Camera cam = moved_camera(camera_, move_);
+  const Image ref = apply_display_transform(
+      render_raster(backend_, *data_, cam, *reference, scene_.background).render.image, transform_);
+  double max_error = 0.0;
+  std::vector<double> error(size_t(ref.width) * ref.height);
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x) {
+      const double e = std::abs(luminance(glm::clamp(display_.at(x, y), 0.0, 1.0)) -
+                                luminance(glm::clamp(ref.at(x, y), 0.0, 1.0)));
+      error[size_t(y) * ref.width + x] = e;
+      max_error = std::max(max_error, e);
+    }
+  for (size_t i = 0; i < error.size(); ++i) {
+    const dvec3 c = heat(max_error > 0.0 ? error[i] / max_error : 0.0);
+    display_.rgb[i * 3] = float(c.x);
+    display_.rgb[i * 3 + 1] = float(c.y);
+    display_.rgb[i * 3 + 2] = float(c.z);
+  }
+  stats_["error_view"] = {{"kind", "image luminance difference vs reference"}, {"max", max_error}};
+}
+
+void ViewerState::build_heatmap() {
+  const nlohmann::json params = method_->params();
+  if (method_->name() != "dsm") {
+    heatmap_ = Image();
+    message_ = "heat map: only the dsm method has layers per texel";
+    return;
+  }
+  DsmSettings settings;
+  settings.resolution = params["res"].get<int>();
+  settings.eps = params["eps"].get<float>();
+  DeepShadowMaps maps(settings);
+  maps.generate(*data_, backend_);
+  heatmap_ = layer_heatmap(stored_layers(maps), int(maps.layout().faces.size()),
+                           settings.resolution, face_labels(maps.layout()));
+}
+
+const Image* ViewerState::heatmap() const {
+  return heatmap_on_ && heatmap_.width > 0 ? &heatmap_ : nullptr;
+}
+
+std::string ViewerState::panel_text() const {
+  std::string text = method_->name() + " on " + to_string(backend_) + "  " +
+                     std::to_string(camera_.width) + "x" + std::to_string(camera_.height);
+  const nlohmann::json params = method_->params();
+  for (const char* key : {"storage", "res", "eps", "filter", "voxelizer", "clusters"})
+    if (params.contains(key)) text += std::string("  ") + key + "=" + short_text(params[key]);
+  if (stats_.is_object()) {
+    text += "\n";
+    for (const char* key : {"milliseconds", "raster_ms", "fragment_ms"})
+      if (stats_.contains(key)) text += std::string(key) + " " + short_text(stats_[key]) + "  ";
+    // The method's figures and those of its parts one level down (storage bytes, layers).
+    const nlohmann::json& s = stats_["shadows"]["stats"];
+    std::string line;
+    const auto add = [&](const std::string& item) {
+      if (!line.empty() && line.size() + item.size() > 64) text += "\n" + std::exchange(line, "");
+      line += item + "  ";
+    };
+    for (auto it = s.begin(); it != s.end(); ++it) {
+      if (it.value().is_number()) add(it.key() + " " + short_text(it.value()));
+      if (it.value().is_object())
+        for (auto in = it.value().begin(); in != it.value().end(); ++in)
+          if (in.value().is_number()) add(it.key() + "." + in.key() + " " + short_text(in.value()));
+    }
+    if (!line.empty()) text += "\n" + line;
+    if (stats_.contains("error_view"))
+      text += "\nerror view: |lum - lum(reference)|, black 0 .. white " +
+              short_text(stats_["error_view"]["max"]);
+  }
+  if (!message_.empty()) text += "\n" + message_;
+  return text;
+}
+
+std::string ViewerState::render_command(const std::string& out) const {
+  std::string cmd = "deepvox render " + setup_.scene_path + " --out " + out + " --backend " +
+                    to_string(backend_) + " --shadows " + shadows_.name;
+  for (const std::string& p : shadows_.params) cmd += " --param " + p;
+  if (!shadows_.storage.empty()) cmd += " --storage " + shadows_.storage;
+  if (shadows_.dsm_res > 0) cmd += " --dsm-res " + std::to_string(shadows_.dsm_res);
+  if (shadows_.eps >= 0.0) cmd += " --eps " + number_text(shadows_.eps);
+  if (!shadows_.filter.empty()) cmd += " --filter " + shadows_.filter;
+  if (!shadows_.voxelizer.empty()) cmd += " --voxelizer " + shadows_.voxelizer;
+  cmd +=
+      " --width " + std::to_string(camera_.width) + " --height " + std::to_string(camera_.height);
+  if (setup_.exposure != 0.0) cmd += " --exposure " + number_text(setup_.exposure);
+  if (setup_.tonemap != "none") cmd += " --tonemap " + setup_.tonemap;
+  if (setup_.ground) cmd += " --ground";
+  const CameraMove& m = move_;
+  if (m.yaw_deg != 0.0 || m.pitch_deg != 0.0 || m.dolly != 1.0 || m.pan_x != 0.0 || m.pan_y != 0.0)
+    cmd += " --view " + number_text(m.yaw_deg) + "," + number_text(m.pitch_deg) + "," +
+           number_text(m.dolly) + "," + number_text(m.pan_x) + "," + number_text(m.pan_y);
+  return cmd;
+}
+
+void ViewerState::write_screenshot(const std::string& path) const {
+  write_image(path, image_, transform_);
+}
+
+void ViewerState::save(const std::string& prefix) const {
+  write_screenshot(prefix + ".png");
+  std::ofstream stats(prefix + ".json");
+  if (!stats) throw InputError(prefix + ".json", "cannot write stats file");
+  stats << stats_.dump(2) << "\n";
+  std::ofstream command(prefix + ".txt");
+  if (!command) throw InputError(prefix + ".txt", "cannot write the command line");
+  command << render_command(prefix + ".png") << "\n";
+}
+
+}  // namespace dv::viewer
