@@ -120,17 +120,13 @@ TEST(SuiteFile, BuiltInSuitesLoadAndQuickIsAmongThem) {
         for (const std::string& paper : e.paper_files) EXPECT_TRUE(fs::exists(paper)) << paper;
       }
   }
-  // seeds names every paper table file but the clustered-only ones (pending: clustering is not
-  // in deepvox yet, experiments/suites/seeds-plan.md); accuracy has its Pareto fronts.
-  const std::set<std::string> pending{"knecht-2011-table-5.2.json", "knecht-2011-table-5.4.json"};
+  // seeds names every paper table file; accuracy has its Pareto fronts.
   std::set<std::string> papers;
   for (const ExperimentSpec& e : load_suite(resolve_suite_path("seeds")).experiments)
     for (const std::string& paper : e.paper_files)
       papers.insert(fs::path(paper).filename().string());
   for (const auto& entry : fs::directory_iterator(test::source_dir() + "/experiments/papers"))
-    EXPECT_NE(papers.count(entry.path().filename().string()),
-              pending.count(entry.path().filename().string()))
-        << entry.path();
+    EXPECT_EQ(papers.count(entry.path().filename().string()), 1u) << entry.path();
   for (const ExperimentSpec& e : load_suite(resolve_suite_path("accuracy")).experiments) {
     if (e.name == "methods") {
       EXPECT_TRUE(e.pareto.is_object());
