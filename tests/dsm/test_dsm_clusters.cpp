@@ -206,7 +206,7 @@ TEST(ClusteredMaps, EachFaceHoldsExactlyItsClusterObjects) {
           continue;
         int hint[4] = {-1, -1, -1, -1};
         const double exact = test::oracle_at(only_data, int(li), p);
-        ASSERT_NEAR(source.face_visibility(f, fp, hint), exact, 1.5 * eps + 1e-5)
+        ASSERT_NEAR(source.face_visibility(f, fp, ShadowReceiver{p}, hint), exact, 1.5 * eps + 1e-5)
             << "light " << li << " face " << fi;
         ++checked;
         shadowed += exact < 0.99;
@@ -232,8 +232,8 @@ ErrorFigures error_near(const SceneData& data, const DsmSource& source, int ligh
       const dvec3 p = centre + dvec3(radius * (2.0 * (i + 0.5) / n - 1.0), 0.01,
                                      radius * (2.0 * (j + 0.5) / n - 1.0));
       DsmSource::Cursor cursor;
-      const double d =
-          std::abs(source.transmittance(cursor, p, light) - test::oracle_at(data, light, p));
+      const double d = std::abs(source.transmittance(cursor, ShadowReceiver{p}, light) -
+                                test::oracle_at(data, light, p));
       e.mean += d, e.max = std::max(e.max, d), ++count;
     }
   e.mean /= count;
@@ -310,8 +310,8 @@ TEST(ClusteredMaps, LookupsMatchTheOracleForSpotOmniAndDirectional) {
     for (int k = 0; k < 600; ++k) {
       const dvec3 p = groups[k % 3] + dvec3(1.5 * u(rng), 0.9 + 0.9 * u(rng), 1.5 * u(rng));
       DsmSource::Cursor cursor;
-      const double d =
-          std::abs(source.transmittance(cursor, p, light) - test::oracle_at(data, light, p));
+      const double d = std::abs(source.transmittance(cursor, ShadowReceiver{p}, light) -
+                                test::oracle_at(data, light, p));
       sum += d, ++count, far_off += d > 0.2;
     }
     EXPECT_LT(sum / count, 0.01) << "light " << light;
@@ -343,7 +343,8 @@ TEST(ClusteredMaps, LispsmClustersServeTheCamera) {
   for (int k = 0; k < 300; ++k) {
     const dvec3 p = dvec3(-7.0, 0.01, -7.0) + dvec3(u(rng), 0.0, u(rng));
     DsmSource::Cursor cursor;
-    sum += std::abs(maps.source().transmittance(cursor, p, 0) - test::oracle_at(data, 0, p));
+    sum += std::abs(maps.source().transmittance(cursor, ShadowReceiver{p}, 0) -
+                    test::oracle_at(data, 0, p));
   }
   EXPECT_LT(sum / 300.0, 0.01);
 }
