@@ -104,8 +104,9 @@ TEST(ViewerState, SwitchesGoThroughTheRegistries) {
   state.key("T");  // the storage after compact in the storage registry
   EXPECT_TRUE(contains(state.render_command("o.png"), "--storage "));
 
-  state.key("C");  // dsm has no clusters parameter: a message, nothing else changes
-  EXPECT_TRUE(contains(state.message(), "no clusters parameter")) << state.message();
+  state.key("C");  // dsm's cluster count doubles: 1 -> 2 maps per light face
+  EXPECT_TRUE(contains(state.render_command("o.png"), "--param clusters=2"))
+      << state.render_command("o.png");
   EXPECT_TRUE(contains(state.render_command("o.png"), "--shadows dsm"));
 
   state.key("V");  // dsm rejects a voxelizer: the registry's error, the old method stays
@@ -122,6 +123,19 @@ TEST(ViewerState, SwitchesGoThroughTheRegistries) {
   EXPECT_FALSE(contains(state.render_command("o.png"), "--eps"));
   EXPECT_TRUE(contains(state.message(), "dropped")) << state.message();
   EXPECT_TRUE(state.update());
+
+  // On to the first method with no clusters parameter: there C is a message.
+  const auto method_of = [](const ViewerState& v) {
+    const std::string cmd = v.render_command("o.png");
+    const size_t at = cmd.find("--shadows ") + 10;
+    return cmd.substr(at, cmd.find(' ', at) - at);
+  };
+  for (size_t i = 0; i < names.size() &&
+                     shadow_registry().create(method_of(state), {})->params().contains("clusters");
+       ++i)
+    state.key("M");
+  state.key("C");
+  EXPECT_TRUE(contains(state.message(), "no clusters parameter")) << state.message();
 }
 
 #if !DEEPVOX_WITH_CUDA
