@@ -24,7 +24,7 @@ struct DsmSettings {
   std::string storage = "compact";
   StrategyParams storage_params;
   int resolution = 1024;
-  float eps = 0.05f;
+  float eps = 0.02f;
   bool bilinear = false;
   int subrays = 1;             // 4, 9, 16: jittered sub-rays per texel, averaged (pre-filtering)
   bool precompressed = false;  // volume steps from Hadwiger's pre-compressed tables

@@ -2,6 +2,7 @@
 #include "apps/viewer/viewer_state.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -35,6 +36,14 @@ std::string number_text(double value) {
   char text[64];
   std::snprintf(text, sizeof text, "%.17g", value);
   return text;
+}
+
+// The shortest decimal that reads back as the same float: how a float parameter such as eps
+// (stored as float by the method) is written into a command line and halved or doubled.
+std::string float_text(float value) {
+  char text[64];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
 }
 
 // Black - red - yellow - white for t in [0, 1]: the error view's scale.
@@ -133,7 +142,7 @@ KeyAction ViewerState::key(const std::string& name) {
     if (!params.contains("eps") || !params["eps"].is_number()) {
       message_ = method_->name() + " has no eps parameter";
     } else {
-      const double eps = params["eps"].get<double>();
+      const double eps = std::stod(float_text(params["eps"].get<float>()));
       next.eps = std::clamp(name == "[" ? eps * 0.5 : eps * 2.0, 0.0, 4.0);
       try_shadows(next);
     }
@@ -324,7 +333,7 @@ std::string ViewerState::render_command(const std::string& out) const {
   for (const std::string& p : shadows_.params) cmd += " --param " + p;
   if (!shadows_.storage.empty()) cmd += " --storage " + shadows_.storage;
   if (shadows_.dsm_res > 0) cmd += " --dsm-res " + std::to_string(shadows_.dsm_res);
-  if (shadows_.eps >= 0.0) cmd += " --eps " + number_text(shadows_.eps);
+  if (shadows_.eps >= 0.0) cmd += " --eps " + float_text(float(shadows_.eps));
   if (!shadows_.filter.empty()) cmd += " --filter " + shadows_.filter;
   if (!shadows_.voxelizer.empty()) cmd += " --voxelizer " + shadows_.voxelizer;
   cmd +=

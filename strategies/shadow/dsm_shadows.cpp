@@ -1,6 +1,6 @@
 // Shadow method "dsm": deep shadow maps (dsm/deep_shadow_maps.h). Parameters: storage (compact,
 // texture3d, chunked, blocked; default compact), res (texels per side, default 1024), eps (error
-// bound, default 0.05), filter (none | bilinear, default none), bias (world units, default 1e-4
+// bound, default 0.02), filter (none | bilinear, default none), bias (world units, default 1e-4
 // of the scene diagonal) and slope (texel sizes times the receiver's tangent to the light,
 // default 3) for surface receivers (light_faces.h, receiver_depth), storage.KEY passed to the
 // storage strategy (e.g. storage.alloc=thesis), and for clustered maps

@@ -95,12 +95,12 @@ TEST(ShadowBias, GrazingBackdropIsCleanAtDefaults) {
   EXPECT_LE(reported_fraction(false, "transmittance-slicemap", ""), 0.01);
 }
 
-// Translucent casters, DSM at the default bias. Its default eps (0.05) alone can move a dim
-// translucent shadow by more than 8/255 (a compression error within the bound, not acne), so
-// the bound is tightened to 0.01 here. (The transmittance slicemap is left out: a slab's two
-// faces share a slice and count once, which no bias changes.)
+// Translucent casters, DSM at its defaults (bias and eps 0.02: a visibility error within 0.02
+// stays under 8/255 of the light; eps 0.05 alone moved 4.5% of these pixels by more). (The
+// transmittance slicemap is left out: a slab's two faces share a slice and count once, which
+// no bias changes.)
 TEST(ShadowBias, GrazingBackdropBehindTranslucentSlabsIsClean) {
-  EXPECT_LE(reported_fraction(true, "dsm", "eps=0.01"), 0.01);
+  EXPECT_LE(reported_fraction(true, "dsm", ""), 0.01);
 }
 
 // The bias helper itself: surface receivers get the constant plus slope x reach x texel x

@@ -95,7 +95,7 @@ TEST(ViewerState, CoarseImageIsRefinedByTheNextFullUpdate) {
 TEST(ViewerState, SwitchesGoThroughTheRegistries) {
   ViewerState state(small_dsm_setup());
   state.key("[");
-  EXPECT_TRUE(contains(state.render_command("o.png"), "--eps 0.025"))
+  EXPECT_TRUE(contains(state.render_command("o.png"), "--eps 0.01"))
       << state.render_command("o.png");
   state.key("-");
   EXPECT_TRUE(contains(state.render_command("o.png"), "--dsm-res 32"));
