@@ -20,6 +20,7 @@
 #include "experiments/harness/runner.h"
 #include "experiments/harness/suite_file.h"
 #include "tests/support/paths.h"
+#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -86,10 +87,8 @@ TEST(Findings, MeansOfTheSelectedItemsDecide) {
 class PaperFindings : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_tmp" / info->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test::scratch_dir("test_harness_tmp",
+                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   std::string write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name) << text;

@@ -18,6 +18,7 @@
 #include "experiments/harness/runner.h"
 #include "io/json_reader.h"
 #include "tests/support/paths.h"
+#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -46,10 +47,8 @@ std::string tiny_suite(const std::string& extra_strategy = "") {
 class Runner : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_tmp" / info->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test::scratch_dir("test_harness_tmp",
+                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   std::string write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name) << text;

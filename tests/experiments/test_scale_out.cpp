@@ -19,6 +19,7 @@
 #include "experiments/harness/slurm.h"
 #include "io/json_reader.h"
 #include "tests/support/paths.h"
+#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -41,10 +42,7 @@ std::string small_suite() {
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_tmp" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::scratch_dir("test_harness_tmp", name);
 }
 
 std::string read(const fs::path& path) {

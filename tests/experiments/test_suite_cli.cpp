@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "tests/support/paths.h"
+#include "tests/support/scratch_dir.h"
 
 extern char** environ;
 
@@ -38,10 +39,7 @@ CommandResult run(const std::string& args) {
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_tmp" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::scratch_dir("test_harness_tmp", name);
 }
 
 TEST(SuiteCli, ListShowsTheBuiltInSuitesWithADescription) {

@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "generators/volume_generators.h"
 #include "io/volume_io.h"
-#include "scratch_dir.h"
+#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -69,7 +69,7 @@ TEST(GenerateVolume, SmokeSeedAndTurbulence) {
 }
 
 TEST(GenerateVolume, RawPathResolvesAgainstSceneDir) {
-  const auto dir = volume_test_scratch_dir();
+  const auto dir = test::scratch_dir("test_volumes_tmp");
   std::filesystem::create_directories(dir / "data");
   {
     std::ofstream out(dir / "data" / "v.raw", std::ios::binary);

@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "io/volume_io.h"
-#include "scratch_dir.h"
+#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -38,7 +38,7 @@ bool contains(const std::string& text, const std::string& part) {
 }
 
 TEST(RawVolume, Uint8NormalisedAndCentred) {
-  const std::string path = (volume_test_scratch_dir() / "u8.raw").string();
+  const std::string path = (test::scratch_dir("test_volumes_tmp") / "u8.raw").string();
   std::vector<unsigned char> bytes(12);
   for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = (unsigned char)(i * 23);
   bytes[11] = 255;
@@ -54,7 +54,7 @@ TEST(RawVolume, Uint8NormalisedAndCentred) {
 }
 
 TEST(RawVolume, Uint16BothByteOrders) {
-  const auto dir = volume_test_scratch_dir();
+  const auto dir = test::scratch_dir("test_volumes_tmp");
   const std::vector<uint16_t> values = {0, 1, 0x0102, 32768, 65534, 65535};
   std::vector<unsigned char> little, big;
   for (uint16_t v : values) {
@@ -81,7 +81,7 @@ TEST(RawVolume, Uint16BothByteOrders) {
 }
 
 TEST(RawVolume, Float32RoundTripAndBigEndian) {
-  const auto dir = volume_test_scratch_dir();
+  const auto dir = test::scratch_dir("test_volumes_tmp");
   VolumeGrid original;
   original.name = "test";
   original.dims = {4, 3, 2};
@@ -105,7 +105,7 @@ TEST(RawVolume, Float32RoundTripAndBigEndian) {
 }
 
 TEST(RawVolume, WrongFileSizeNamesFileAndBothSizes) {
-  const std::string path = (volume_test_scratch_dir() / "short.raw").string();
+  const std::string path = (test::scratch_dir("test_volumes_tmp") / "short.raw").string();
   write_bytes(path, std::vector<unsigned char>(23));
   const std::string message = input_error_message([&] {
     load_raw_volume(path, {3, 2, 2}, RawType::uint16, dvec3(1.0));
@@ -122,7 +122,7 @@ TEST(RawVolume, WrongFileSizeNamesFileAndBothSizes) {
 }
 
 TEST(RawVolume, ZeroDimsMissingFileAndBadValues) {
-  const auto dir = volume_test_scratch_dir();
+  const auto dir = test::scratch_dir("test_volumes_tmp");
   const std::string path = (dir / "v.raw").string();
   write_bytes(path, std::vector<unsigned char>(8));
   EXPECT_TRUE(contains(input_error_message([&] {
@@ -176,7 +176,8 @@ TEST(RawVolume, SaveRejectsMismatchedDensityCount) {
   VolumeGrid v;
   v.dims = {2, 2, 2};
   v.density.assign(7, 0.5f);
-  EXPECT_THROW(save_raw_volume((volume_test_scratch_dir() / "bad.raw").string(), v), InputError);
+  EXPECT_THROW(save_raw_volume((test::scratch_dir("test_volumes_tmp") / "bad.raw").string(), v),
+               InputError);
 }
 
 }  // namespace
