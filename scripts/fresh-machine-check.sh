@@ -33,7 +33,8 @@ cleanup() {
   for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do umount -l "${mounted[i]}" 2>/dev/null || true; done
 }
 trap cleanup EXIT
-bind() { mkdir -p "$root$1" && mount --bind "$1" "$root$1" && mounted+=("$root$1"); }
+# --rbind: /sys with its submounts (cgroup2 under /sys/fs/cgroup, which slurmd needs).
+bind() { mkdir -p "$root$1" && mount --rbind "$1" "$root$1" && mounted+=("$root$1"); }
 
 mkdir -p "$log_dir"
 summary="$log_dir/summary.txt"
