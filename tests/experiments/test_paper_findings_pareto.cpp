@@ -19,8 +19,8 @@
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
 #include "experiments/harness/suite_file.h"
+#include "tests/experiments/harness_test.h"
 #include "tests/support/paths.h"
-#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -84,25 +84,13 @@ TEST(Findings, MeansOfTheSelectedItemsDecide) {
   EXPECT_EQ(r[2].than_items, 4);  // the empty selector matches every item
 }
 
-class PaperFindings : public ::testing::Test {
+class PaperFindings : public test::HarnessTest {
  protected:
-  void SetUp() override {
-    dir_ = test::scratch_dir("test_harness_tmp",
-                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
   SuiteOutcome run(const std::string& suite, bool smoke, const std::string& only = "") {
-    SuiteOptions o;
-    o.suite = suite;
-    o.backend = "cpu";
-    o.out = (dir_ / "out").string();
+    SuiteOptions o = cpu_options(suite);
     o.smoke = smoke;
     o.only = only;
     o.repeat = 1;
-    o.progress = false;
     return run_suite(o);
   }
   static std::string read(const fs::path& p) {
@@ -111,7 +99,6 @@ class PaperFindings : public ::testing::Test {
     s << in.rdbuf();
     return s.str();
   }
-  fs::path dir_;
 };
 
 TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerdicts) {

@@ -17,8 +17,8 @@
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
 #include "io/json_reader.h"
+#include "tests/experiments/harness_test.h"
 #include "tests/support/paths.h"
-#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -44,26 +44,13 @@ std::string tiny_suite(const std::string& extra_strategy = "") {
      "strategy": ["exact", "sat", "slicemap"], "settings": {"res": "32"}}]})";
 }
 
-class Runner : public ::testing::Test {
+class Runner : public test::HarnessTest {
  protected:
-  void SetUp() override {
-    dir_ = test::scratch_dir("test_harness_tmp",
-                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
   SuiteOutcome run(const std::string& suite_file, const std::string& shard = "") {
-    SuiteOptions o;
-    o.suite = suite_file;
-    o.backend = "cpu";
-    o.out = (dir_ / "out").string();
+    SuiteOptions o = cpu_options(suite_file);
     o.shard = shard;
-    o.progress = false;
     return run_suite(o);
   }
-  fs::path dir_;
 };
 
 // Rows without timings (unit ms), which differ from run to run.
