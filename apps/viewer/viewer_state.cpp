@@ -247,6 +247,11 @@ bool ViewerState::update(bool coarse) {
   if (error_view_ && !coarse) render_error_view();
   bytes_ = srgb_bytes(display_);
   ++renders_;
+  heat_stale_ = true;
+  if (heatmap_on_) {
+    heat_stale_ = false;
+    build_heatmap();
+  }
   return true;
 }
 
@@ -275,20 +280,17 @@ void ViewerState::render_error_view() {
   stats_["error_view"] = {{"kind", "image luminance difference vs reference"}, {"max", max_error}};
 }
 
+// The layers per texel of the maps the method itself generated for the frame shown (built
+// again after each render while the overlay is on; none before the method's first frame).
 void ViewerState::build_heatmap() {
-  const nlohmann::json params = method_->params();
-  if (method_->name() != "dsm") {
+  const DeepShadowMaps* maps = method_->deep_shadow_maps();
+  if (!maps) {
     heatmap_ = Image();
-    message_ = "heat map: only the dsm method has layers per texel";
+    if (method_->name() != "dsm") message_ = "heat map: only the dsm method has layers per texel";
     return;
   }
-  DsmSettings settings;
-  settings.resolution = params["res"].get<int>();
-  settings.eps = params["eps"].get<float>();
-  DeepShadowMaps maps(settings);
-  maps.generate(*data_, backend_);
-  heatmap_ = layer_heatmap(stored_layers(maps), int(maps.layout().faces.size()),
-                           settings.resolution, face_labels(maps.layout()));
+  heatmap_ = layer_heatmap(stored_layers(*maps), int(maps->layout().faces.size()),
+                           maps->resolution(), face_labels(maps->layout()));
 }
 
 const Image* ViewerState::heatmap() const {

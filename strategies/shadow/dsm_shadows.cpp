@@ -68,6 +68,9 @@ class DsmShadows final : public ShadowMethod {
  public:
   explicit DsmShadows(const StrategyParams& p) : maps_(dsm_settings(p)) {}
   std::string name() const override { return "dsm"; }
+  const DeepShadowMaps* deep_shadow_maps() const override {
+    return maps_.generations() > 0 ? &maps_ : nullptr;
+  }
   nlohmann::json params() const override {
     const DsmSettings& s = maps_.settings();
     return {{"storage", maps_.storage().name()},

@@ -14,6 +14,8 @@
 
 namespace dv {
 
+class DeepShadowMaps;
+
 class ShadowMethod {
  public:
   virtual ~ShadowMethod() = default;
@@ -26,6 +28,9 @@ class ShadowMethod {
   // answers are for (methods that focus on what it sees use it), or null for queries anywhere.
   virtual ShadowSourceVariant prepare(const SceneData& scene, Backend backend,
                                       const Camera* view) = 0;
+  // The deep shadow maps the last prepare generated or kept, for inspection (heat maps); null
+  // for methods without them and before the first prepare.
+  virtual const DeepShadowMaps* deep_shadow_maps() const { return nullptr; }
 };
 
 Registry<ShadowMethod>& shadow_registry();
