@@ -121,18 +121,13 @@ KeyAction ViewerState::key(const std::string& name) {
   const nlohmann::json params = method_->params();
   cli::ShadowOptions next = shadows_;
   if (name == "M") {
-    next = cli::ShadowOptions{};
-    next.name = next_name(shadow_registry().names(), shadows_.name);
     // Keep the knobs the new method accepts; a method that takes none of them starts plain.
-    next.params = shadows_.params;
-    next.storage = shadows_.storage;
-    next.filter = shadows_.filter;
-    next.voxelizer = shadows_.voxelizer;
-    next.dsm_res = shadows_.dsm_res;
-    next.eps = shadows_.eps;
+    next.name = next_name(shadow_registry().names(), shadows_.name);
     if (!try_shadows(next)) {
       const std::string dropped = message_;
-      if (try_shadows(cli::ShadowOptions{next.name, {}, "", "", "", 0, -1.0}))
+      cli::ShadowOptions plain;
+      plain.name = next.name;
+      if (try_shadows(plain))
         message_ = "settings not taken by " + next.name + " were dropped (" + dropped + ")";
     }
   } else if (name == "T") {
