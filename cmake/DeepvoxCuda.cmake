@@ -37,12 +37,3 @@ function(deepvox_kernel_sources)
                                 PROPERTIES LANGUAGE CUDA)
   endif()
 endfunction()
-
-# Adds the listed sources that exist (used while areas are being filled in).
-function(deepvox_sources target)
-  foreach(f ${ARGN})
-    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${f})
-      target_sources(${target} PRIVATE ${f})
-    endif()
-  endforeach()
-endfunction()

@@ -18,7 +18,7 @@ find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 include(CGAL_Eigen3_support)  # CGAL::Eigen3_support: hole fairing and parameterization
 
 add_library(deepvox_deps INTERFACE)
-# tinygltf is compiled from its header in io/gltf_impl.cpp (no libtinygltf.so at run time).
+# tinygltf is compiled from its header in load/gltf_impl.cpp (no libtinygltf.so at run time).
 target_include_directories(deepvox_deps SYSTEM INTERFACE ${STB_INCLUDE_DIR} ${TINYGLTF_INCLUDE_DIR})
 target_link_libraries(deepvox_deps INTERFACE glm::glm nlohmann_json::nlohmann_json CLI11::CLI11
                                              Threads::Threads CGAL::CGAL CGAL::Eigen3_support)

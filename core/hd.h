@@ -1,6 +1,6 @@
 // Host/device qualifiers: the one place that knows whether code is being compiled for CUDA.
 // Shared per-pixel, per-triangle and per-texel code is written once with DV_HD and compiled
-// by g++ for CPU threads and by nvcc for CUDA kernels (see core/execute.h).
+// by g++ for CPU threads and by nvcc for CUDA kernels (see cuda/execute.h).
 #pragma once
 
 #if defined(__CUDACC__)

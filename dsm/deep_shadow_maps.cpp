@@ -2,7 +2,7 @@
 #include "dsm/deep_shadow_maps.h"
 
 #include "core/error.h"
-#include "strategies/storage/ensure_buffer.h"
+#include "cuda/ensure_buffer.h"
 
 namespace dv {
 

@@ -1,6 +1,6 @@
 // Deep shadow maps of every light of a scene, end to end: generation (dsm/dsm_generation.h) into
 // a storage strategy chosen by name (strategies/storage/), figures, and the kernel-side source
-// the renderer and probe query (strategies/shadow/dsm_source.h). The `dsm` shadow method wraps
+// the renderer and probe query (dsm/dsm_device.h). The `dsm` shadow method wraps
 // it; `deepvox dsm` (export) and the tests use it directly.
 #pragma once
 
@@ -10,13 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/buffer.h"
-#include "core/execute.h"
+#include "core/registry.h"
+#include "cuda/buffer.h"
+#include "cuda/execute.h"
+#include "dsm/dsm_device.h"
 #include "dsm/dsm_generation.h"
+#include "dsm/storage/dsm_storage.h"
 #include "scene/scene_view.h"
-#include "strategies/registry.h"
-#include "strategies/shadow/dsm_source.h"
-#include "strategies/storage/dsm_storage.h"
 
 namespace dv {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/pass_timer.h"
+#include "cuda/pass_timer.h"
 #include "dsm/precompressed_table.h"
 #include "renderer/fragment_walk.h"
 

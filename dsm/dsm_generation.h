@@ -1,20 +1,20 @@
 // Host side of deep-shadow-map generation that does not depend on the storage strategy: the
-// faces of every light (strategies/shadow/light_faces.h; fitted to the casters only, never to a
+// faces of every light (renderer/light_faces.h; fitted to the casters only, never to a
 // camera, so a camera move never forces regeneration) or the clusters' faces with the objects
-// each sees (strategies/shadow/light_clusters.h), the tile lists of each face from the shared
+// each sees (dsm/light_clusters.h), the tile lists of each face from the shared
 // rasterizer, the media containing each face's ray origins, and the per-texel records.
 // Storage strategies run their passes over DsmGeneration::generator() (dsm/dsm_generator.h).
 #pragma once
 
 #include <vector>
 
-#include "core/buffer.h"
-#include "core/execute.h"
+#include "cuda/buffer.h"
+#include "cuda/execute.h"
 #include "dsm/dsm_generator.h"
+#include "dsm/light_clusters.h"
+#include "renderer/light_faces.h"
 #include "renderer/raster/tile_raster.h"
 #include "scene/scene_view.h"
-#include "strategies/shadow/light_clusters.h"
-#include "strategies/shadow/light_faces.h"
 
 namespace dv {
 

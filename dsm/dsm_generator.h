@@ -9,14 +9,14 @@
 
 #include <cstdint>
 
-#include "core/buffer.h"
 #include "core/hd.h"
+#include "cuda/buffer.h"
 #include "dsm/object_mask.h"
 #include "dsm/prefilter.h"
 #include "dsm/visibility_compressor.h"
 #include "dsm/visibility_payload.h"
+#include "renderer/light_faces.h"
 #include "renderer/raster_fragments.h"
-#include "strategies/shadow/light_faces.h"
 
 namespace dv {
 

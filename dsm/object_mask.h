@@ -7,8 +7,8 @@
 
 #include <cstdint>
 
-#include "core/buffer.h"
 #include "core/hd.h"
+#include "cuda/buffer.h"
 #include "renderer/fragment_walk.h"
 #include "renderer/raster_fragments.h"
 #include "scene/scene_view.h"

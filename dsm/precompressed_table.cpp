@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/buffer.h"
+#include "cuda/buffer.h"
 #include "dsm/visibility_compressor.h"
 #include "scene/volume_sampling.h"
 

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/buffer.h"
 #include "core/hd.h"
+#include "cuda/buffer.h"
 #include "scene/scene_view.h"
 
 namespace dv {

@@ -11,7 +11,7 @@
 #if defined(DEEPVOX_WITH_CUDA)
 #include <cuda_runtime_api.h>
 
-#include "core/cuda_check.h"
+#include "cuda/cuda_check.h"
 #endif
 
 namespace dv {

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "core/device_memory.h"
+#include "cuda/device_memory.h"
 #include "dsm/deep_shadow_maps.h"
-#include "io/scene_loader.h"
-#include "renderer/raster_render.h"
+#include "frame/raster_render.h"
+#include "load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
 #include "tests/support/paths.h"
 

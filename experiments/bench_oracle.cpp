@@ -7,9 +7,9 @@
 #include <random>
 #include <string>
 
-#include "core/device_memory.h"
-#include "io/scene_loader.h"
-#include "renderer/reference_render.h"
+#include "cuda/device_memory.h"
+#include "frame/reference_render.h"
+#include "load/scene_loader.h"
 #include "strategies/shadow/probe.h"
 #include "tests/support/paths.h"
 

@@ -7,9 +7,9 @@
 
 #include <string>
 
-#include "core/device_memory.h"
-#include "io/scene_loader.h"
-#include "renderer/raster_render.h"
+#include "cuda/device_memory.h"
+#include "frame/raster_render.h"
+#include "load/scene_loader.h"
 #include "tests/support/paths.h"
 
 namespace dv {

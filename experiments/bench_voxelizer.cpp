@@ -16,12 +16,12 @@
 #include <optional>
 #include <string>
 
-#include "core/device_memory.h"
+#include "cuda/device_memory.h"
 #include "experiments/bandwidth_floor.h"
 #include "generators/mesh_generators.h"
 #include "strategies/voxelizer/atlas_voxelizer.h"
 #include "strategies/voxelizer/triangle_soup.h"
-#include "strategies/voxelizer/voxelize_job.h"
+#include "strategies/voxelizer/voxel_bounds.h"
 #include "strategies/voxelizer/voxelizer.h"
 #include "tests/support/paths.h"
 

@@ -13,9 +13,9 @@
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
 
 #include "core/error.h"
-#include "generators/cgal_surface_mesh.h"
-#include "generators/mesh_topology.h"
 #include "io/mesh_io.h"
+#include "scene/cgal_surface_mesh.h"
+#include "scene/mesh_topology.h"
 
 namespace dv {
 namespace {

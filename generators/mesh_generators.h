@@ -56,7 +56,7 @@
 #include <string>
 #include <vector>
 
-#include "io/json_reader.h"
+#include "core/json_reader.h"
 #include "scene/scene.h"
 
 namespace dv {

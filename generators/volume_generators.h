@@ -49,8 +49,8 @@
 #include <string>
 #include <vector>
 
+#include "core/json_reader.h"
 #include "core/math.h"
-#include "io/json_reader.h"
 #include "scene/scene.h"
 
 namespace dv {

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/pass_timer.h"
+#include "cuda/pass_timer.h"
 #include "gl/gl_grid_image.h"
 #include "gl/gl_program.h"
-#include "strategies/voxelizer/atlas_kernels.h"
+#include "strategies/voxelizer/atlas_device.h"
 #include "strategies/voxelizer/atlas_packing.h"
 
 namespace dv::gl {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/pass_timer.h"
+#include "cuda/pass_timer.h"
 #include "gl/gl_grid_image.h"
 #include "gl/gl_program.h"
 

@@ -1,5 +1,6 @@
-// Linear RGB float images and their files: PNG (sRGB-encoded, 8 bit, through stb_image_write,
-// in every build) and OpenEXR (linear half/float, through OpenImageIO, full build only).
+// Files of linear RGB float images (core/image.h): PNG (sRGB-encoded, 8 bit, through
+// stb_image_write, in every build) and OpenEXR (linear half/float, through OpenImageIO, full build
+// only).
 #pragma once
 
 #include <algorithm>
@@ -7,22 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
 #include "core/math.h"
 
 namespace dv {
-
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<float> rgb;  // row-major from the top row, 3 floats per pixel, linear
-
-  Image() = default;
-  Image(int w, int h) : width(w), height(h), rgb(size_t(w) * h * 3, 0.0f) {}
-  dvec3 at(int x, int y) const {
-    const float* p = &rgb[(size_t(y) * width + x) * 3];
-    return {p[0], p[1], p[2]};
-  }
-};
 
 // Writes by extension: .png always; .exr only where exr_supported(). 8-bit files (PNG) show
 // `image` through `display` (io/tone_mapping.h: exposure and tone curve); EXR stays linear.

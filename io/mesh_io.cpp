@@ -20,7 +20,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
-#include "generators/mesh_topology.h"
+#include "scene/mesh_topology.h"
 
 namespace dv {
 namespace {

@@ -1,5 +1,5 @@
 // Exposure and tone curves for 8-bit output: render writes linear radiometric values
-// (renderer units, see io/gltf_import.h), and a PNG can hold only [0, 1]. The display
+// (renderer units, see load/gltf_import.h), and a PNG can hold only [0, 1]. The display
 // transform scales by 2^EV and maps through a tone curve per channel before sRGB encoding;
 // EXR files stay linear and untouched.
 #pragma once

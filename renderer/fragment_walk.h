@@ -2,7 +2,7 @@
 // (depth, triangle) order, the media the ray is inside are tracked (closed meshes with an
 // interior: +1 entering, -1 leaving), and a payload receives each homogeneous segment between
 // consecutive crossings and each surface crossing. The camera pass plugs in shading and
-// compositing (renderer/shade_payload.h); the deep-shadow-map pass will plug in a visibility
+// compositing (frame/shade_payload.h); the deep-shadow-map pass will plug in a visibility
 // payload. Where the crossings come from is a second plug: the BVH (ray walk) here, per-pixel
 // tile lists of the rasterizer later. Host and device code.
 #pragma once

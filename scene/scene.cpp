@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "generators/mesh_topology.h"
+#include "scene/mesh_topology.h"
 
 namespace dv {
 

@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "core/buffer.h"
 #include "core/math.h"
+#include "cuda/buffer.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
 

@@ -6,14 +6,14 @@
 #include <fstream>
 
 #include "apps/deepvox/commands.h"
-#include "experiments/harness/run_metadata.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/text.h"
-#include "dsm/dsm_export.h"
+#include "experiments/harness/run_metadata.h"
+#include "io/dsm_export.h"
 #include "io/layer_heatmap.h"
 #include "io/output_path.h"
-#include "io/scene_loader.h"
+#include "load/scene_loader.h"
 
 namespace dv::cli {
 
@@ -66,10 +66,8 @@ Runner add_dsm(CLI::App& app) {
   cmd->add_option("scene", opt->scene, "scene: .json, .gltf/.glb or a mesh file")->required();
   cmd->add_option("--out", opt->out, "deep EXR file, one subimage per map face (full build only)");
   cmd->add_option("--dsm-res", opt->settings.resolution, "texels per side of each map")
-      ->check(CLI::Range(1, 65536))
       ->capture_default_str();
   cmd->add_option("--eps", opt->settings.eps, "error bound of the visibility functions")
-      ->check(CLI::Range(0.0, 4.0))
       ->capture_default_str();
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   cmd->add_option("--heatmap", opt->heatmap,
@@ -89,9 +87,8 @@ Runner add_dsm(CLI::App& app) {
     if (!opt->out.empty())
       write_deep_exr(opt->out, deep_map_file(maps, stats["meta"]["git_sha"].get<std::string>()));
     if (!opt->heatmap.empty())
-      write_image(opt->heatmap,
-                  layer_heatmap(stored_layers(maps), int(maps.layout().faces.size()),
-                                maps.resolution(), face_labels(maps.layout())));
+      write_image(opt->heatmap, layer_heatmap(stored_layers(maps), int(maps.layout().faces.size()),
+                                              maps.resolution(), face_labels(maps.layout())));
     if (!opt->stats.empty()) {
       std::ofstream out(opt->stats);
       if (!out) throw InputError(opt->stats, "cannot write stats file");

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/deepvox/commands.h"
-#include "io/scene_loader.h"
+#include "load/scene_loader.h"
 #include "scene/scene.h"
 
 namespace dv::cli {
@@ -17,7 +17,7 @@ nlohmann::json vec(const dvec3& v) {
   return {v.x, v.y, v.z};
 }
 
-// Renderer units of a light's intensity (radiometric; see io/gltf_import.h).
+// Renderer units of a light's intensity (radiometric; see load/gltf_import.h).
 const char* intensity_unit(LightType type) {
   return type == LightType::directional ? "W/m^2" : "W/sr";
 }

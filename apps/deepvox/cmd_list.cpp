@@ -2,12 +2,12 @@
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
-#include "core/device_memory.h"
+#include "cuda/device_memory.h"
+#include "dsm/storage/dsm_storage.h"
 #include "experiments/harness/driver.h"
 #include "generators/mesh_generators.h"
 #include "generators/volume_generators.h"
 #include "strategies/shadow/shadow_method.h"
-#include "strategies/storage/dsm_storage.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv::cli {

@@ -6,12 +6,12 @@
 
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/shadow_options.h"
-#include "core/device_memory.h"
-#include "core/execute.h"
 #include "core/log.h"
+#include "cuda/device_memory.h"
+#include "cuda/execute.h"
 #include "io/output_path.h"
 #include "io/points_csv.h"
-#include "io/scene_loader.h"
+#include "load/scene_loader.h"
 #include "scene/scene_view.h"
 #include "strategies/shadow/probe.h"
 

@@ -11,13 +11,13 @@
 #include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
 #include "experiments/harness/run_metadata.h"
+#include "frame/raster_render.h"
+#include "frame/reference_render.h"
 #include "io/image.h"
 #include "io/output_path.h"
-#include "io/scene_loader.h"
 #include "io/tone_mapping.h"
+#include "load/scene_loader.h"
 #include "renderer/camera_rays.h"
-#include "renderer/raster_render.h"
-#include "renderer/reference_render.h"
 #include "scene/default_staging.h"
 
 namespace dv::cli {

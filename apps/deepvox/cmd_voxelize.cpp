@@ -2,15 +2,15 @@
 //  [--bounds x0,y0,z0,x1,y1,z1] --out grid.binvox [--stats stats.json] [--compare-exact]`:
 // a binary surface voxel grid of every triangle of the scene, written as binvox, with counts,
 // pass timings and (optionally) the metrics against `exact` in the stats JSON. The work itself
-// is run_voxelize_job (strategies/voxelizer/voxelize_job.h). In the full binary `--backend gl`
+// is run_voxelize_job (apps/deepvox/voxelize_job.h). In the full binary `--backend gl`
 // runs the OpenGL implementations (gl/gl_voxelizers.h, registered by main.cpp), headless
 // through EGL.
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
-#include "experiments/harness/run_metadata.h"
+#include "apps/deepvox/voxelize_job.h"
 #include "core/log.h"
-#include "strategies/voxelizer/voxelize_job.h"
+#include "experiments/harness/run_metadata.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv::cli {

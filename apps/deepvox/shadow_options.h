@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,8 +19,9 @@ struct ShadowOptions {
   std::string name = "reference";
   std::vector<std::string> params;
   std::string storage, filter, voxelizer;
-  int dsm_res = 0;
-  double eps = -1.0;
+  // Given or not; the values are checked once, by the method that reads them.
+  std::optional<int> dsm_res;
+  std::optional<double> eps;
 };
 
 void add_shadow_options(CLI::App* cmd, ShadowOptions& options);

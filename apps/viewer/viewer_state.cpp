@@ -8,17 +8,17 @@
 #include <fstream>
 #include <utility>
 
-#include "core/buffer.h"
 #include "core/error.h"
+#include "cuda/buffer.h"
 #include "dsm/deep_shadow_maps.h"
-#include "dsm/dsm_export.h"
+#include "dsm/storage/dsm_storage.h"
+#include "frame/raster_render.h"
+#include "io/dsm_export.h"
 #include "io/layer_heatmap.h"
-#include "io/scene_loader.h"
-#include "renderer/raster_render.h"
+#include "load/scene_loader.h"
 #include "scene/default_staging.h"
 #include "scene/scene_view.h"
 #include "strategies/shadow/shadow_method.h"
-#include "strategies/storage/dsm_storage.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv::viewer {
@@ -329,8 +329,8 @@ std::string ViewerState::render_command(const std::string& out) const {
                     to_string(backend_) + " --shadows " + shadows_.name;
   for (const std::string& p : shadows_.params) cmd += " --param " + p;
   if (!shadows_.storage.empty()) cmd += " --storage " + shadows_.storage;
-  if (shadows_.dsm_res > 0) cmd += " --dsm-res " + std::to_string(shadows_.dsm_res);
-  if (shadows_.eps >= 0.0) cmd += " --eps " + float_text(float(shadows_.eps));
+  if (shadows_.dsm_res) cmd += " --dsm-res " + std::to_string(*shadows_.dsm_res);
+  if (shadows_.eps) cmd += " --eps " + float_text(float(*shadows_.eps));
   if (!shadows_.filter.empty()) cmd += " --filter " + shadows_.filter;
   if (!shadows_.voxelizer.empty()) cmd += " --voxelizer " + shadows_.voxelizer;
   cmd +=

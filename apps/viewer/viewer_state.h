@@ -12,7 +12,7 @@
 
 #include "apps/deepvox/shadow_options.h"
 #include "apps/viewer/viewer_script.h"
-#include "core/execute.h"
+#include "cuda/execute.h"
 #include "io/image.h"
 #include "io/tone_mapping.h"
 #include "renderer/camera_rays.h"

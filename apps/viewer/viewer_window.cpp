@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/gl_program.h"
+#include "io/image.h"
 
 namespace dv::viewer {
 

@@ -11,12 +11,8 @@ void RowSink::add(const std::string& metric, const std::string& stat, double val
 }
 
 Registry<Driver>& driver_registry() {
-  static Registry<Driver> registry = [] {
-    Registry<Driver> r("experiment kind");
-    register_shadow_driver(r);
-    register_voxelize_driver(r);
-    return r;
-  }();
+  static Registry<Driver> registry =
+      make_registry<Driver>("experiment kind", {register_shadow_driver, register_voxelize_driver});
   return registry;
 }
 

@@ -13,10 +13,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "core/execute.h"
+#include "core/registry.h"
+#include "cuda/execute.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/suite_file.h"
-#include "strategies/registry.h"
 
 namespace dv {
 

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "io/image.h"
 
 namespace dv {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "io/image.h"
+#include "core/image.h"
 
 namespace dv {
 

@@ -9,11 +9,11 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/run_folder.h"
 #include "experiments/harness/run_metadata.h"
-#include "io/json_reader.h"
 
 namespace dv {
 

@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/findings.h"
 #include "experiments/harness/pareto.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/suite_file.h"
-#include "io/json_reader.h"
 
 namespace dv {
 

@@ -8,8 +8,8 @@
 #include <ctime>
 #include <fstream>
 
-#include "core/device_memory.h"
 #include "core/parallel.h"
+#include "cuda/device_memory.h"
 
 #include "git_sha.h"
 #ifndef DEEPVOX_BUILD_TYPE

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/execute.h"
+#include "cuda/execute.h"
 
 namespace dv {
 

@@ -7,9 +7,9 @@
 #include <memory>
 #include <sstream>
 
-#include "core/device_memory.h"
 #include "core/error.h"
-#include "core/execute.h"
+#include "cuda/device_memory.h"
+#include "cuda/execute.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/interrupt.h"
 #include "experiments/harness/progress.h"

@@ -8,9 +8,9 @@
 #include <string>
 #include <tuple>
 
-#include "core/execute.h"
+#include "core/image.h"
+#include "cuda/execute.h"
 #include "experiments/harness/probe_points.h"
-#include "io/image.h"
 #include "scene/scene.h"
 #include "scene/scene_view.h"
 

@@ -10,13 +10,14 @@
 #include <cmath>
 #include <filesystem>
 
-#include "core/pass_timer.h"
+#include "cuda/pass_timer.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/timing.h"
-#include "renderer/raster_render.h"
+#include "frame/raster_render.h"
+#include "io/image.h"
 #include "strategies/shadow/probe.h"
 
 namespace dv {

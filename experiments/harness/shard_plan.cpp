@@ -7,8 +7,8 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "experiments/harness/rows.h"
-#include "io/json_reader.h"
 
 namespace dv {
 

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "experiments/harness/driver.h"
-#include "io/json_reader.h"
 
 namespace dv {
 

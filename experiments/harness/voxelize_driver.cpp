@@ -10,8 +10,8 @@
 #include "experiments/harness/driver.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/timing.h"
+#include "strategies/voxelizer/voxel_bounds.h"
 #include "strategies/voxelizer/voxel_metrics.h"
-#include "strategies/voxelizer/voxelize_job.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv {

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "core/parallel.h"
 #include "experiments/harness/interrupt.h"
 #include "experiments/harness/merge.h"
@@ -24,7 +25,6 @@
 #include "experiments/harness/run_folder.h"
 #include "experiments/harness/run_metadata.h"
 #include "experiments/harness/shard_plan.h"
-#include "io/json_reader.h"
 
 extern char** environ;
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "core/atomic.h"
-#include "core/device_memory.h"
 #include "core/error.h"
+#include "cuda/device_memory.h"
 #include "renderer/raster/tile_raster.h"
 
 namespace dv {

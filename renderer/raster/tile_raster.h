@@ -47,9 +47,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "core/buffer.h"
-#include "core/execute.h"
 #include "core/hd.h"
+#include "cuda/buffer.h"
+#include "cuda/execute.h"
 #include "renderer/raster/raster_projection.h"
 #include "renderer/raster/triangle_setup.h"
 #include "scene/scene_view.h"

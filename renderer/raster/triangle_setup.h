@@ -161,6 +161,17 @@ DV_HD inline bool finish_triangle(const int64_t* xs, const int64_t* ys, int a, i
   return true;
 }
 
+// Clips the polygon in `poly` by the signed distances `d` (>= 0 inside) into `spare`, then the
+// two swap roles. False when nothing is left: `n` < 0 for an invalid polygon, else < 3.
+DV_HD inline bool clip_and_swap(ClipVertex*& poly, ClipVertex*& spare, const double* d, int& n) {
+  n = clip_polygon(poly, d, n, spare);
+  if (n < 3) return false;
+  ClipVertex* swap = poly;
+  poly = spare;
+  spare = swap;
+  return true;
+}
+
 }  // namespace raster_detail
 
 // Sets up source triangle `source` with world-space corners `world`: calls emit(piece) for each
@@ -187,12 +198,7 @@ DV_HD uint32_t setup_triangle(const RasterProjection& p, const dvec3* world, uin
   uint32_t flags = 0;
   int n = 3;
   if (behind > 0) {
-    n = clip_polygon(poly, d, n, spare);
-    if (n < 0) return kSetupCulledInvalid;
-    if (n < 3) return kSetupCulledBehind;
-    ClipVertex* swap = poly;
-    poly = spare;
-    spare = swap;
+    if (!clip_and_swap(poly, spare, d, n)) return n < 0 ? kSetupCulledInvalid : kSetupCulledBehind;
     flags |= kSetupClippedNear;
   }
   const double gx = 1.0 + 2.0 * kGuardBandPixels / double(p.width);
@@ -205,12 +211,8 @@ DV_HD uint32_t setup_triangle(const RasterProjection& p, const dvec3* world, uin
     }
     if (outside == 0) continue;
     if (outside == n) return kSetupCulledOffscreen;
-    n = clip_polygon(poly, d, n, spare);
-    if (n < 0) return kSetupCulledInvalid;
-    if (n < 3) return kSetupCulledOffscreen;
-    ClipVertex* swap = poly;
-    poly = spare;
-    spare = swap;
+    if (!clip_and_swap(poly, spare, d, n))
+      return n < 0 ? kSetupCulledInvalid : kSetupCulledOffscreen;
     flags |= kSetupClippedGuard;
   }
   int64_t xs[kMaxClipVertices], ys[kMaxClipVertices];

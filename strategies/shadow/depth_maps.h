@@ -8,11 +8,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/buffer.h"
-#include "core/execute.h"
-#include "strategies/registry.h"
-#include "strategies/shadow/light_faces.h"
-#include "strategies/shadow/shadow_map_source.h"
+#include "core/registry.h"
+#include "cuda/buffer.h"
+#include "cuda/execute.h"
+#include "renderer/light_faces.h"
+#include "strategies/shadow/shadow_map_device.h"
 
 namespace dv {
 

@@ -4,9 +4,9 @@
 // of the scene diagonal) and slope (texel sizes times the receiver's tangent to the light,
 // default 3) for surface receivers (light_faces.h, receiver_depth), storage.KEY passed to the
 // storage strategy (e.g. storage.alloc=thesis), and for clustered maps
-// (strategies/shadow/light_clusters.h) clusters (m, default 1: one map per light face),
+// (dsm/light_clusters.h) clusters (m, default 1: one map per light face),
 // cluster_d0 (distance threshold, NDC units, default 0.5), lispsm (0 | 1, default 0: cluster in
-// the light-space perspective of the camera, strategies/shadow/lispsm.h; without a camera as 0)
+// the light-space perspective of the camera, dsm/lispsm.h; without a camera as 0)
 // and cluster_hysteresis (fraction of d0 a distance may move before reclustering, default 0.5).
 // Maps are generated when the scene data or the backend changes and, clustered, when the
 // clustering no longer holds for the camera (DeepShadowMaps::clustering_holds).
@@ -73,21 +73,24 @@ class DsmShadows final : public ShadowMethod {
   }
   nlohmann::json params() const override {
     const DsmSettings& s = maps_.settings();
-    return {{"storage", maps_.storage().name()},
-            {"storage_params", maps_.storage().params()},
-            {"res", s.resolution},
-            {"eps", s.eps},
-            {"filter", s.bilinear ? "bilinear" : "none"},
-            {"bias", s.bias >= 0.0 ? nlohmann::json(s.bias) : nlohmann::json("auto")},
-            {"slope", s.slope_bias},
-            {"subrays", s.subrays},
-            {"volume", s.precompressed ? "table" : "midpoint"},
-            {"table_bins", s.table_bins},
-            {"step_scale", s.step_scale},
-            {"clusters", s.clusters.max_clusters},
-            {"cluster_d0", s.clusters.d0},
-            {"lispsm", s.clusters.lispsm ? 1 : 0},
-            {"cluster_hysteresis", s.clusters.hysteresis}};
+    nlohmann::json j = {{"storage", maps_.storage().name()},
+                        {"res", s.resolution},
+                        {"eps", s.eps},
+                        {"filter", s.bilinear ? "bilinear" : "none"},
+                        {"bias", s.bias},
+                        {"slope", s.slope_bias},
+                        {"subrays", s.subrays},
+                        {"volume", s.precompressed ? "table" : "midpoint"},
+                        {"table_bins", s.table_bins},
+                        {"step_scale", s.step_scale},
+                        {"clusters", s.clusters.max_clusters},
+                        {"cluster_d0", s.clusters.d0},
+                        {"lispsm", s.clusters.lispsm ? 1 : 0},
+                        {"cluster_hysteresis", s.clusters.hysteresis}};
+    // The storage's own parameters as the factory reads them: storage.KEY.
+    const nlohmann::json storage = maps_.storage().params();
+    for (const auto& [key, value] : storage.items()) j["storage." + key] = value;
+    return j;
   }
   nlohmann::json stats() const override {
     nlohmann::json j = {{"maps_built", maps_.generations()}, {"prepare_calls", prepare_calls_}};

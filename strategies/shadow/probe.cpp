@@ -4,7 +4,7 @@
 #include <chrono>
 #include <variant>
 
-#include "core/buffer.h"
+#include "cuda/buffer.h"
 
 namespace dv {
 

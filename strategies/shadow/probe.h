@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/execute.h"
+#include "cuda/execute.h"
 #include "scene/scene_view.h"
 #include "strategies/shadow/shadow_method.h"
 

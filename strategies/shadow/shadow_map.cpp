@@ -11,8 +11,8 @@
 // backend changes. Also implements the shared depth maps of depth_maps.h.
 #include <algorithm>
 
-#include "core/buffer.h"
-#include "core/pass_timer.h"
+#include "cuda/buffer.h"
+#include "cuda/pass_timer.h"
 #include "renderer/raster/tile_raster.h"
 #include "scene/ray_query.h"
 #include "strategies/shadow/depth_maps.h"
@@ -171,10 +171,7 @@ DepthMapParams DepthMapParams::read(const StrategyParams& p, const std::string& 
 }
 
 nlohmann::json DepthMapParams::json() const {
-  return {{"res", res},
-          {"pcf", pcf},
-          {"bias", bias >= 0.0 ? nlohmann::json(bias) : nlohmann::json("auto")},
-          {"slope", slope}};
+  return {{"res", res}, {"pcf", pcf}, {"bias", bias}, {"slope", slope}};
 }
 
 ShadowMapSource DepthMaps::source(const SceneView& s, const DepthMapParams& params) const {

@@ -7,10 +7,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/execute.h"
+#include "core/registry.h"
+#include "cuda/execute.h"
 #include "scene/scene_view.h"
-#include "strategies/registry.h"
-#include "strategies/shadow/shadow_source.h"
+#include "strategies/shadow/shadow_device.h"
 
 namespace dv {
 
@@ -34,12 +34,5 @@ class ShadowMethod {
 };
 
 Registry<ShadowMethod>& shadow_registry();
-
-// Registration functions, one per method file; shadow_registry() calls each once.
-void register_no_shadows(Registry<ShadowMethod>& registry);
-void register_reference_shadows(Registry<ShadowMethod>& registry);
-void register_shadow_maps(Registry<ShadowMethod>& registry);
-void register_dsm_shadows(Registry<ShadowMethod>& registry);
-void register_transmittance_slicemap(Registry<ShadowMethod>& registry);
 
 }  // namespace dv

@@ -3,16 +3,16 @@
 
 namespace dv {
 
+void register_no_shadows(Registry<ShadowMethod>& registry);
+void register_reference_shadows(Registry<ShadowMethod>& registry);
+void register_shadow_maps(Registry<ShadowMethod>& registry);
+void register_dsm_shadows(Registry<ShadowMethod>& registry);
+void register_transmittance_slicemap(Registry<ShadowMethod>& registry);
+
 Registry<ShadowMethod>& shadow_registry() {
-  static Registry<ShadowMethod> registry = [] {
-    Registry<ShadowMethod> r("shadow method");
-    register_no_shadows(r);
-    register_reference_shadows(r);
-    register_shadow_maps(r);
-    register_dsm_shadows(r);
-    register_transmittance_slicemap(r);
-    return r;
-  }();
+  static Registry<ShadowMethod> registry = make_registry<ShadowMethod>(
+      "shadow method", {register_no_shadows, register_reference_shadows, register_shadow_maps,
+                        register_dsm_shadows, register_transmittance_slicemap});
   return registry;
 }
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/buffer.h"
+#include "cuda/buffer.h"
 
 namespace dv {
 

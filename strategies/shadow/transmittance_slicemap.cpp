@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/pass_timer.h"
+#include "cuda/pass_timer.h"
 #include "strategies/shadow/depth_maps.h"
 #include "strategies/shadow/shadow_method.h"
 #include "strategies/shadow/translucent_casters.h"
@@ -41,7 +41,8 @@ class TransmittanceSlicemap final : public ShadowMethod {
   nlohmann::json params() const override {
     nlohmann::json j = params_.json();
     j["voxelizer"] = voxelizer_name_;
-    j["voxelizer_params"] = voxelizer_->params();
+    const nlohmann::json voxelizer = voxelizer_->params();
+    for (const auto& [key, value] : voxelizer.items()) j["voxelizer." + key] = value;
     j["slices"] = slices_;
     return j;
   }

@@ -6,7 +6,7 @@
 #include <numeric>
 
 #include "core/error.h"
-#include "strategies/voxelizer/atlas_kernels.h"
+#include "strategies/voxelizer/atlas_device.h"
 #include "strategies/voxelizer/work_items.h"
 
 namespace dv {

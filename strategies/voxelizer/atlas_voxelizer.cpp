@@ -3,11 +3,13 @@
 // covers the texel centre, all zero elsewhere.
 #include "strategies/voxelizer/atlas_voxelizer.h"
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <span>
 
-#include "core/pass_timer.h"
-#include "strategies/voxelizer/atlas_kernels.h"
+#include "cuda/pass_timer.h"
+#include "strategies/voxelizer/atlas_device.h"
+#include "strategies/voxelizer/atlas_packing.h"
 #include "strategies/voxelizer/raster_input.h"
 #include "strategies/voxelizer/work_items.h"
 
@@ -140,6 +142,46 @@ VoxelizeResult voxelize_atlas_compute(Backend backend, const TriangleSoup& soup,
     result.passes.push_back({"points", timer.stop()});
   }
   return result;
+}
+
+namespace {
+
+class AtlasVoxelizer : public Voxelizer {
+ public:
+  AtlasVoxelizer(bool compute, const StrategyParams& params)
+      : compute_(compute), side_(params.integer("atlas", kDefaultAtlasSide)) {
+    if (side_ < 1 || side_ > kMaxAtlasSide)
+      throw InputError("voxelizer '" + name() + "'",
+                       "atlas=" + std::to_string(side_) + " must be in [1, " +
+                           std::to_string(kMaxAtlasSide) + "] (texels per atlas side)");
+  }
+  std::string name() const override { return compute_ ? "atlas-compute" : "atlas"; }
+  nlohmann::json params() const override { return {{"atlas", side_}}; }
+  bool supports(Backend backend) const override {
+    return backend == Backend::cpu || kBuiltWithCuda;
+  }
+  VoxelizeResult voxelize(Backend backend, const TriangleSoup& soup,
+                          const GridSpec& spec) override {
+    return compute_ ? voxelize_atlas_compute(backend, soup, spec, side_)
+                    : voxelize_atlas(backend, soup, spec, side_);
+  }
+
+ private:
+  bool compute_;
+  int side_;
+};
+
+}  // namespace
+
+void register_atlas_voxelizers(Registry<Voxelizer>& registry) {
+  registry.add("atlas",
+               "one point per texel of a triangle atlas rasterized into a position texture "
+               "(Thiedemann et al. 2011), CPU and CUDA; param atlas=texels per side",
+               [](const StrategyParams& p) { return std::make_unique<AtlasVoxelizer>(false, p); });
+  registry.add("atlas-compute",
+               "the atlas points computed and written by a compute kernel, no rasterization "
+               "(Buchacher 2014 3.4), CPU and CUDA; param atlas=texels per side",
+               [](const StrategyParams& p) { return std::make_unique<AtlasVoxelizer>(true, p); });
 }
 
 }  // namespace dv

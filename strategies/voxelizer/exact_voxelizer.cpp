@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "core/parallel.h"
 #include "strategies/voxelizer/voxel_geometry.h"
@@ -155,6 +156,31 @@ ExactVoxelization voxelize_exact(const TriangleSoup& soup, const GridSpec& spec,
   out.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+namespace {
+
+VoxelizeResult voxelize_exact_result(Backend backend, const TriangleSoup& soup,
+                                     const GridSpec& spec) {
+  if (backend != Backend::cpu)
+    throw InputError("voxelizer 'exact'", "runs on the CPU only (use --backend cpu)");
+  ExactVoxelization exact = voxelize_exact(soup, spec, false);
+  VoxelizeResult result;
+  result.grid = std::move(exact.exact);
+  result.passes.push_back({"voxelize", exact.milliseconds});
+  result.counters["triangles"] = soup.triangle_count();
+  return result;
+}
+
+}  // namespace
+
+void register_exact_voxelizer(Registry<Voxelizer>& registry) {
+  registry.add("exact",
+               "CPU reference: voxels whose closed box overlaps a triangle (13-axis "
+               "separating-axis test, double precision)",
+               [](const StrategyParams&) {
+                 return std::make_unique<FunctionVoxelizer>("exact", voxelize_exact_result, false);
+               });
 }
 
 }  // namespace dv

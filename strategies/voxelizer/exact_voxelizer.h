@@ -11,6 +11,7 @@
 
 #include "strategies/voxelizer/triangle_soup.h"
 #include "strategies/voxelizer/voxel_grid.h"
+#include "strategies/voxelizer/voxelizer.h"
 
 namespace dv {
 

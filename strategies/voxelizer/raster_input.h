@@ -8,10 +8,10 @@
 #include <limits>
 #include <string>
 
-#include "core/buffer.h"
 #include "core/error.h"
-#include "core/execute.h"
 #include "core/math.h"
+#include "cuda/buffer.h"
+#include "cuda/execute.h"
 #include "renderer/raster/tile_raster.h"
 
 namespace dv {

@@ -4,7 +4,7 @@
 //   upload   the triangles' corners;
 //   setup    allocation of the counts, then per triangle: corners to grid coordinates (in
 //            place), bounding range, work-item count, and a count of the degenerate ones;
-//   scan     exclusive scan of the counts where they live (core/scan.h), then one read-back of
+//   scan     exclusive scan of the counts where they live (cuda/scan.h), then one read-back of
 //            the total and the degenerate count (the total sizes the next launch);
 //   voxelize one thread per work item (a column or a slice of one triangle): it finds its
 //            triangle by binary search over the offsets, rebuilds the triangle's test from its
@@ -13,12 +13,13 @@
 #include "strategies/voxelizer/sat_voxelizer.h"
 
 #include <cstring>
+#include <memory>
 #include <span>
 
 #include "core/atomic.h"
-#include "core/pass_timer.h"
-#include "core/scan.h"
-#include "strategies/voxelizer/sat_kernels.h"
+#include "cuda/pass_timer.h"
+#include "cuda/scan.h"
+#include "strategies/voxelizer/sat_device.h"
 #include "strategies/voxelizer/work_items.h"
 
 namespace dv {
@@ -119,6 +120,15 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
     result.passes.push_back({"voxelize", timer.stop()});
   }
   return result;
+}
+
+void register_sat_voxelizer(Registry<Voxelizer>& registry) {
+  registry.add("sat",
+               "conservative surface voxelization, plane + 2D edge tests (Schwarz & Seidel "
+               "2010), CPU and CUDA",
+               [](const StrategyParams&) {
+                 return std::make_unique<FunctionVoxelizer>("sat", voxelize_sat, true);
+               });
 }
 
 }  // namespace dv

@@ -11,10 +11,11 @@
 //           slice, whose bit is ORed into the pixel's column.
 #include "strategies/voxelizer/slicemap_voxelizer.h"
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <span>
 
-#include "core/pass_timer.h"
+#include "cuda/pass_timer.h"
 #include "scene/ray_query.h"
 #include "strategies/voxelizer/raster_input.h"
 #include "strategies/voxelizer/voxel_geometry.h"
@@ -118,6 +119,15 @@ VoxelizeResult voxelize_slicemap(Backend backend, const TriangleSoup& soup, cons
     result.passes.push_back({"slices", timer.stop()});
   }
   return result;
+}
+
+void register_slicemap_voxelizer(Registry<Voxelizer>& registry) {
+  registry.add("slicemap",
+               "slices of the fragments rasterized along +z, one bit per fragment (Eisemann & "
+               "Decoret 2006), CPU and CUDA; OpenGL with --backend gl",
+               [](const StrategyParams&) {
+                 return std::make_unique<FunctionVoxelizer>("slicemap", voxelize_slicemap, true);
+               });
 }
 
 }  // namespace dv

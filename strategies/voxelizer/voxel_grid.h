@@ -26,9 +26,9 @@
 #include <vector>
 
 #include "core/atomic.h"
-#include "core/buffer.h"
-#include "core/execute.h"
 #include "core/math.h"
+#include "cuda/buffer.h"
+#include "cuda/execute.h"
 #include "renderer/raster/raster_projection.h"
 
 namespace dv {

@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/execute.h"
-#include "strategies/registry.h"
+#include "core/registry.h"
+#include "cuda/execute.h"
 #include "strategies/voxelizer/triangle_soup.h"
 #include "strategies/voxelizer/voxel_grid.h"
 
@@ -44,12 +44,30 @@ class Voxelizer {
                                   const GridSpec& spec) = 0;
 };
 
-Registry<Voxelizer>& voxelizer_registry();
+// A voxelizer without parameters that is one function (exact, sat, slicemap): CPU always, CUDA
+// when `gpu` and the build has it.
+using VoxelizeFunction = VoxelizeResult (*)(Backend, const TriangleSoup&, const GridSpec&);
+class FunctionVoxelizer : public Voxelizer {
+ public:
+  FunctionVoxelizer(std::string name, VoxelizeFunction voxelize, bool gpu)
+      : name_(std::move(name)), voxelize_(voxelize), gpu_(gpu) {}
+  std::string name() const override { return name_; }
+  nlohmann::json params() const override { return nlohmann::json::object(); }
+  bool supports(Backend backend) const override {
+    return backend == Backend::cpu || (gpu_ && kBuiltWithCuda);
+  }
+  VoxelizeResult voxelize(Backend backend, const TriangleSoup& soup,
+                          const GridSpec& spec) override {
+    return voxelize_(backend, soup, spec);
+  }
 
-void register_exact_voxelizer(Registry<Voxelizer>& registry);
-void register_sat_voxelizer(Registry<Voxelizer>& registry);
-void register_slicemap_voxelizer(Registry<Voxelizer>& registry);
-void register_atlas_voxelizers(Registry<Voxelizer>& registry);  // atlas, atlas-compute
+ private:
+  std::string name_;
+  VoxelizeFunction voxelize_;
+  bool gpu_;
+};
+
+Registry<Voxelizer>& voxelizer_registry();
 
 // The OpenGL implementations of registered methods, under the same names (`deepvox voxelize
 // --backend gl`). GL is not a Backend (execute.h: kernels run on CPU threads or CUDA): these

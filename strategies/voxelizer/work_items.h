@@ -1,15 +1,15 @@
 // Variable amounts of work per primitive as one flat range of work items, shared by the
 // voxelizers that split their work (sat: columns per triangle; atlas-compute: texels per
 // triangle): per-primitive counts become offsets (on the host with work_item_offsets, where
-// they live with exclusive_scan_queued from core/scan.h), and a kernel thread finds the
+// they live with exclusive_scan_queued from cuda/scan.h), and a kernel thread finds the
 // primitive that owns its item by binary search over them (CPU and CUDA alike).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "core/buffer.h"
 #include "core/hd.h"
+#include "cuda/buffer.h"
 
 namespace dv {
 

@@ -14,7 +14,7 @@
 
 #include "io/deep_exr.h"
 #include "io/layer_heatmap.h"
-#include "io/scene_loader.h"
+#include "load/scene_loader.h"
 #include "oracle/transmittance.h"
 #include "tests/gltf/gltf_builder.h"
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "core/atomic.h"
-#include "core/buffer.h"
-#include "core/device_memory.h"
-#include "core/execute.h"
+#include "cuda/buffer.h"
+#include "cuda/device_memory.h"
+#include "cuda/execute.h"
 
 namespace dv {
 namespace {

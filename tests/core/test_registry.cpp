@@ -2,8 +2,8 @@
 // parameters are rejected, and each family exists (storage and voxelizer may still be empty).
 #include <gtest/gtest.h>
 
+#include "dsm/storage/dsm_storage.h"
 #include "strategies/shadow/shadow_method.h"
-#include "strategies/storage/dsm_storage.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv {

@@ -9,7 +9,7 @@
 
 #include "dsm/dsm_generation.h"
 #include "generators/mesh_generators.h"
-#include "io/scene_loader.h"
+#include "load/scene_loader.h"
 #include "tests/dsm/compressor_test_support.h"
 #include "tests/support/paths.h"
 #include "tests/support/scene_builder.h"

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "compressor_test_support.h"
-#include "core/buffer.h"
-#include "core/device_memory.h"
-#include "core/execute.h"
+#include "cuda/buffer.h"
+#include "cuda/device_memory.h"
+#include "cuda/execute.h"
 
 namespace dv::test {
 namespace {

@@ -1,6 +1,6 @@
-// Clustered deep shadow maps (strategies/shadow/light_clusters.h): the memory rule, Knecht's
+// Clustered deep shadow maps (dsm/light_clusters.h): the memory rule, Knecht's
 // distance, Algorithm 4.2 on known distances and the hysteresis; the light-space perspective's
-// body B (clipped hull, culling, warp; strategies/shadow/lispsm.h); each cluster face holds exactly
+// body B (clipped hull, culling, warp; dsm/lispsm.h); each cluster face holds exactly
 // its cluster's objects (lookups on its texel-centre rays match the oracle of a scene of those
 // objects only); clustered lookups (eq. 3.12) against the full oracle for spot, omni and
 // directional lights; the papers' claim at equal memory on a sparse scene (objects far apart over a
@@ -13,10 +13,10 @@
 #include <cstdio>
 #include <random>
 
-#include "core/device_memory.h"
+#include "cuda/device_memory.h"
 #include "dsm/deep_shadow_maps.h"
-#include "renderer/raster_render.h"
-#include "strategies/shadow/lispsm.h"
+#include "dsm/lispsm.h"
+#include "frame/raster_render.h"
 #include "strategies/shadow/probe.h"
 #include "strategies/shadow/shadow_method.h"
 #include "tests/dsm/dsm_test_support.h"

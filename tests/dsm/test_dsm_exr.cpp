@@ -1,4 +1,4 @@
-// The deep-EXR export of deep shadow maps (io/deep_exr.h, dsm/dsm_export.h) round trip: every
+// The deep-EXR export of deep shadow maps (io/deep_exr.h, io/dsm_export.h) round trip: every
 // face's nodes, matrix and indices come back identical, lookups on the file's nodes answer what
 // the storage answers, compositing the samples' alphas gives 1 - v, surface steps are two
 // samples at one depth, and bad files fail with the file and the problem named.
@@ -12,7 +12,7 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "dsm/dsm_export.h"
+#include "io/dsm_export.h"
 #include "io/image.h"
 #include "tests/dsm/dsm_test_support.h"
 

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "dsm/deep_shadow_maps.h"
-#include "renderer/raster_render.h"
+#include "frame/raster_render.h"
 #include "tests/dsm/dsm_test_support.h"
 
 namespace dv {

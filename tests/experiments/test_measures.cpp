@@ -9,7 +9,7 @@
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/probe_points.h"
-#include "io/scene_loader.h"
+#include "load/scene_loader.h"
 #include "renderer/fragment_walk.h"
 #include "strategies/voxelizer/triangle_soup.h"
 #include "tests/support/paths.h"

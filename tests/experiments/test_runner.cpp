@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/merge.h"
 #include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
-#include "io/json_reader.h"
 #include "tests/experiments/harness_test.h"
 #include "tests/support/paths.h"
 

@@ -12,12 +12,12 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "experiments/harness/merge.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
 #include "experiments/harness/shard_plan.h"
 #include "experiments/harness/slurm.h"
-#include "io/json_reader.h"
 #include "tests/support/paths.h"
 #include "tests/support/scratch_dir.h"
 

@@ -12,15 +12,15 @@
 #include <cstdio>
 #include <unordered_set>
 
+#include "apps/deepvox/voxelize_job.h"
 #include "core/error.h"
 #include "generators/mesh_generators.h"
 #include "gl/gl_atlas.h"
 #include "gl/gl_voxelizers.h"
-#include "strategies/shadow/light_faces.h"
-#include "strategies/voxelizer/atlas_kernels.h"
+#include "renderer/light_faces.h"
+#include "strategies/voxelizer/atlas_device.h"
 #include "strategies/voxelizer/atlas_voxelizer.h"
 #include "strategies/voxelizer/frustum_grid.h"
-#include "strategies/voxelizer/voxelize_job.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/support/light_face_cases.h"
 #include "tests/support/paths.h"

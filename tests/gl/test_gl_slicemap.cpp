@@ -10,12 +10,12 @@
 
 #include "core/error.h"
 
+#include "apps/deepvox/voxelize_job.h"
 #include "generators/mesh_generators.h"
 #include "gl/egl_context.h"
 #include "gl/gl_slicemap.h"
 #include "gl/gl_voxelizers.h"
 #include "strategies/voxelizer/slicemap_voxelizer.h"
-#include "strategies/voxelizer/voxelize_job.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/support/paths.h"
 

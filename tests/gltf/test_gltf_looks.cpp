@@ -8,11 +8,11 @@
 
 #include <gtest/gtest.h>
 
-#include "io/gltf_import.h"
-#include "io/scene_loader.h"
+#include "frame/reference_render.h"
+#include "load/gltf_import.h"
+#include "load/scene_loader.h"
 #include "oracle/transmittance.h"
 #include "renderer/camera_rays.h"
-#include "renderer/reference_render.h"
 #include "strategies/shadow/shadow_method.h"
 #include "tests/gltf/gltf_builder.h"
 

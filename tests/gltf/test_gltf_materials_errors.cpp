@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
-#include "io/gltf_import.h"
+#include "load/gltf_import.h"
 #include "tests/gltf/gltf_builder.h"
 
 namespace dv {

@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "core/log.h"
-#include "generators/mesh_topology.h"
-#include "io/gltf_import.h"
+#include "load/gltf_import.h"
 #include "scene/default_staging.h"
+#include "scene/mesh_topology.h"
 #include "tests/gltf/gltf_builder.h"
 
 namespace dv {

@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "generators/mesh_generators.h"
-#include "generators/mesh_topology.h"
+#include "scene/mesh_topology.h"
 
 namespace dv {
 namespace {

@@ -9,8 +9,8 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "generators/mesh_topology.h"
 #include "io/mesh_io.h"
+#include "scene/mesh_topology.h"
 
 namespace dv {
 namespace {

@@ -6,8 +6,8 @@
 
 #include "core/error.h"
 #include "generators/mesh_generators.h"
-#include "generators/mesh_topology.h"
 #include "io/mesh_io.h"
+#include "scene/mesh_topology.h"
 
 namespace dv {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/json_reader.h"
+#include "core/json_reader.h"
 
 namespace dv::test {
 

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "io/scene_loader.h"
+#include "load/scene_loader.h"
 #include "tests/support/paths.h"
 
 namespace dv::test {

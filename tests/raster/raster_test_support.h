@@ -14,7 +14,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/device_memory.h"
+#include "cuda/device_memory.h"
 #include "renderer/camera_rays.h"
 #include "renderer/raster/tile_raster.h"
 #include "scene/scene.h"

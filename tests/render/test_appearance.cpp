@@ -5,9 +5,9 @@
 
 #include <cmath>
 
+#include "frame/shading.h"
 #include "io/tone_mapping.h"
 #include "renderer/camera_rays.h"
-#include "renderer/shading.h"
 #include "scene/default_staging.h"
 #include "tests/support/scene_builder.h"
 

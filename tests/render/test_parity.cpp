@@ -8,10 +8,10 @@
 
 #include <random>
 
-#include "core/device_memory.h"
-#include "io/scene_loader.h"
-#include "renderer/raster_render.h"
-#include "renderer/reference_render.h"
+#include "cuda/device_memory.h"
+#include "frame/raster_render.h"
+#include "frame/reference_render.h"
+#include "load/scene_loader.h"
 #include "strategies/shadow/probe.h"
 #include "tests/support/paths.h"
 

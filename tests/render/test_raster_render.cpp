@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "io/scene_loader.h"
-#include "renderer/raster_render.h"
+#include "frame/raster_render.h"
+#include "load/scene_loader.h"
 #include "tests/support/paths.h"
 #include "tests/support/scene_builder.h"
 

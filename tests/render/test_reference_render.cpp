@@ -5,10 +5,10 @@
 
 #include <cmath>
 
+#include "frame/raster_render.h"
+#include "frame/reference_render.h"
 #include "oracle/transmittance.h"
 #include "renderer/camera_rays.h"
-#include "renderer/raster_render.h"
-#include "renderer/reference_render.h"
 #include "tests/support/scene_builder.h"
 
 namespace dv {

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "frame/raster_render.h"
+#include "frame/reference_render.h"
 #include "io/image.h"
 #include "renderer/camera_rays.h"
-#include "renderer/raster_render.h"
-#include "renderer/reference_render.h"
+#include "renderer/light_faces.h"
 #include "scene/ray_query.h"
-#include "strategies/shadow/light_faces.h"
 #include "strategies/shadow/probe.h"
 #include "tests/support/scene_builder.h"
 #include "tests/support/shadow_methods.h"

@@ -10,7 +10,7 @@
 #include <random>
 #include <string>
 
-#include "core/device_memory.h"
+#include "cuda/device_memory.h"
 #include "strategies/shadow/probe.h"
 #include "tests/support/scene_builder.h"
 #include "tests/support/shadow_methods.h"

@@ -3,8 +3,8 @@
 // to the box (-2, 0, -2)..(2, 2, 2).
 #pragma once
 
+#include "renderer/light_faces.h"
 #include "scene/scene_view.h"
-#include "strategies/shadow/light_faces.h"
 
 namespace dv::test {
 

@@ -7,9 +7,9 @@
 #include <cmath>
 
 #include "apps/viewer/viewer_state.h"
-#include "core/buffer.h"
-#include "io/scene_loader.h"
-#include "renderer/raster_render.h"
+#include "cuda/buffer.h"
+#include "frame/raster_render.h"
+#include "load/scene_loader.h"
 #include "scene/scene_view.h"
 #include "strategies/shadow/shadow_method.h"
 

@@ -9,14 +9,14 @@
 #include <cstdio>
 #include <set>
 
-#include "core/device_memory.h"
+#include "apps/deepvox/voxelize_job.h"
 #include "core/error.h"
+#include "cuda/device_memory.h"
 #include "generators/mesh_generators.h"
-#include "strategies/voxelizer/atlas_kernels.h"
+#include "strategies/voxelizer/atlas_device.h"
 #include "strategies/voxelizer/atlas_voxelizer.h"
 #include "strategies/voxelizer/slicemap_voxelizer.h"
 #include "strategies/voxelizer/voxel_metrics.h"
-#include "strategies/voxelizer/voxelize_job.h"
 #include "tests/support/paths.h"
 #include "tests/voxel/voxel_meshes.h"
 #include "tests/voxel/voxel_test_support.h"

@@ -6,11 +6,11 @@
 
 #include <cstdio>
 
-#include "core/device_memory.h"
+#include "apps/deepvox/voxelize_job.h"
+#include "cuda/device_memory.h"
 #include "generators/mesh_generators.h"
 #include "strategies/voxelizer/sat_voxelizer.h"
 #include "strategies/voxelizer/voxel_metrics.h"
-#include "strategies/voxelizer/voxelize_job.h"
 #include "tests/support/paths.h"
 #include "tests/voxel/voxel_meshes.h"
 

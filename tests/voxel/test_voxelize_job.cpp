@@ -8,11 +8,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/deepvox/voxelize_job.h"
 #include "core/error.h"
 #include "io/binvox.h"
-#include "io/scene_loader.h"
+#include "load/scene_loader.h"
 #include "strategies/voxelizer/triangle_soup.h"
-#include "strategies/voxelizer/voxelize_job.h"
 #include "tests/support/paths.h"
 
 namespace dv {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "strategies/voxelizer/exact_voxelizer.h"
-#include "strategies/voxelizer/sat_kernels.h"
+#include "strategies/voxelizer/sat_device.h"
 #include "strategies/voxelizer/voxel_grid.h"
 
 namespace dv::test {

@@ -1,0 +1,58 @@
+// PassTimer: CUDA events or a steady clock (see pass_timer.h).
+#include "cuda/pass_timer.h"
+
+#include <chrono>
+
+#if defined(DEEPVOX_WITH_CUDA)
+#include <cuda_runtime_api.h>
+
+#include "cuda/cuda_check.h"
+#endif
+
+namespace dv {
+
+namespace {
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+}  // namespace
+
+PassTimer::PassTimer(Backend backend) : backend_(backend) {
+#if defined(DEEPVOX_WITH_CUDA)
+  if (backend_ == Backend::cuda) {
+    cudaEvent_t start, stop;
+    DV_CUDA_CHECK(cudaEventCreate(&start));
+    DV_CUDA_CHECK(cudaEventCreate(&stop));
+    DV_CUDA_CHECK(cudaEventRecord(start));
+    start_event_ = start;
+    stop_event_ = stop;
+    return;
+  }
+#endif
+  start_ms_ = now_ms();
+}
+
+PassTimer::~PassTimer() {
+#if defined(DEEPVOX_WITH_CUDA)
+  if (start_event_) cudaEventDestroy(static_cast<cudaEvent_t>(start_event_));
+  if (stop_event_) cudaEventDestroy(static_cast<cudaEvent_t>(stop_event_));
+#endif
+}
+
+double PassTimer::stop() {
+#if defined(DEEPVOX_WITH_CUDA)
+  if (backend_ == Backend::cuda) {
+    auto stop = static_cast<cudaEvent_t>(stop_event_);
+    DV_CUDA_CHECK(cudaEventRecord(stop));
+    DV_CUDA_CHECK(cudaEventSynchronize(stop));
+    float ms = 0.0f;
+    DV_CUDA_CHECK(cudaEventElapsedTime(&ms, static_cast<cudaEvent_t>(start_event_), stop));
+    return double(ms);
+  }
+#endif
+  return now_ms() - start_ms_;
+}
+
+}  // namespace dv

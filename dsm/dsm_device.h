@@ -1,0 +1,99 @@
+// Kernel side of the `dsm` shadow method: the transmittance of a light at a point from that
+// light's deep shadow maps. The point's face and texel-centre coordinates come from the shared
+// light-face helpers (light_faces.h), its depth (distance from the light, or from an
+// orthographic map's near plane) less the receiver bias against self-shadowing (receiver_depth:
+// for a surface point a constant plus `slope_bias` texel sizes times its tangent to the light,
+// over the filter's reach; none for points in media and volume samples). Unfiltered: the nearest
+// texel's V'(z). Bilinear (Knecht eq. 4.18/4.19): the four texels around the point, V' of each
+// weighted bilinearly, so attenuation is filtered, not optical depth. Texels outside the map count
+// as lit; points outside a spot cone get nothing. The per-ray cursor keeps each (light, tap)'s last
+// node index for the coherent search.
+// Clustered lights (ShadowLight::clustered) multiply the visibilities of their cluster faces.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "core/hd.h"
+#include "cuda/buffer.h"
+#include "dsm/storage/dsm_reader.h"
+#include "renderer/light_faces.h"
+#include "renderer/shadow_receiver.h"
+
+namespace dv {
+
+inline constexpr int kDsmCursorLights = 8;  // lights with coherent-search state per ray
+
+struct DsmSource {
+  View<const LightView> lights;
+  View<const ShadowLight> light_faces;
+  View<const ShadowFace> faces;
+  DsmReader reader;
+  int resolution;
+  double bias;
+  double slope_bias;
+  bool bilinear;
+
+  struct Cursor {
+    uint32_t flags = 0;
+    int hint[kDsmCursorLights * 4];  // per (light, tap): node index, -1 for none yet
+    DV_HD Cursor() {
+      for (int& h : hint) h = -1;
+    }
+  };
+
+  DV_HD float texel_visibility(const ShadowFace& f, int x, int y, float z, int& hint) const {
+    if (x < 0 || y < 0 || x >= resolution || y >= resolution) return 1.0f;
+    return reader.visibility(f.offset + int64_t(y) * resolution + x, z, hint);
+  }
+
+  DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    const dvec3& p = r.point;
+    const LightView& l = lights[light];
+    if (outside_light_cone(l, p)) return 0.0;
+    if (light_faces[light].clustered) return clustered_transmittance(light_faces[light], r);
+    const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
+    FacePoint fp;
+    if (!project_to_face(f, resolution, p, fp)) return 1.0;
+    int scratch[4] = {-1, -1, -1, -1};
+    int* hint = light < kDsmCursorLights ? cursor.hint + 4 * light : scratch;
+    return face_visibility(f, fp, r, hint);
+  }
+
+  // Knecht eq. 3.12: the product of the visibilities of the light's cluster faces whose window
+  // holds the point (each holds only its cluster's objects); a face that misses it counts 1.
+  // No coherent search across clusters (each face starts its search afresh).
+  DV_HD double clustered_transmittance(const ShadowLight& sl, const ShadowReceiver& r) const {
+    const dvec3& p = r.point;
+    double t = 1.0;
+    for (int i = 0; i < sl.face_count; ++i) {
+      const ShadowFace& f = faces[sl.first_face + i];
+      FacePoint fp;
+      if (!project_to_face(f, resolution, p, fp)) continue;
+      if (!(fp.u >= -0.5 && fp.u < resolution - 0.5 && fp.v >= -0.5 && fp.v < resolution - 0.5))
+        continue;
+      int hint[4] = {-1, -1, -1, -1};
+      t *= face_visibility(f, fp, r, hint);
+    }
+    return t;
+  }
+
+  // V' of face f at the point fp of receiver r, nearest or bilinear; hint: 4 coherent-search
+  // slots.
+  DV_HD double face_visibility(const ShadowFace& f, const FacePoint& fp, const ShadowReceiver& r,
+                               int* hint) const {
+    const float z = float(receiver_depth(f, r, fp.depth, bias, slope_bias, bilinear ? 1.0 : 0.5));
+    if (!bilinear)
+      return texel_visibility(f, int(floor(fp.u + 0.5)), int(floor(fp.v + 0.5)), z, hint[0]);
+    const double fx = floor(fp.u), fy = floor(fp.v);
+    const int x = int(fx), y = int(fy);
+    const double wx = fp.u - fx, wy = fp.v - fy;
+    const double v00 = texel_visibility(f, x, y, z, hint[0]);
+    const double v10 = texel_visibility(f, x + 1, y, z, hint[1]);
+    const double v01 = texel_visibility(f, x, y + 1, z, hint[2]);
+    const double v11 = texel_visibility(f, x + 1, y + 1, z, hint[3]);
+    return (1.0 - wy) * ((1.0 - wx) * v00 + wx * v10) + wy * ((1.0 - wx) * v01 + wx * v11);
+  }
+};
+
+}  // namespace dv

@@ -1,0 +1,135 @@
+// Storage strategy `blocked` (see blocked_layout.h). Parameters: tile = T texels per side
+// (default 8), layers = most layers per texel (default 256, a multiple of 8), pool = blocks of
+// 8 layers x T^2 texels, sizing = counted | thesis (dsm/storage/pool_sizing.h). The pool:
+// `pool` when given; else counted (default) sums over the tiles the blocks each needs for its
+// deepest texel (at most layers / 8), and thesis reserves pool_per_tile (default 8) per tile. A
+// node beyond `layers` or with the pool exhausted ends the texel's function there (an overflow with
+// the error reached, reported). Compiled by nvcc when CUDA is on.
+#include <algorithm>
+#include <memory>
+
+#include "core/error.h"
+#include "cuda/ensure_buffer.h"
+#include "dsm/storage/blocked_device.h"
+#include "dsm/storage/dsm_storage.h"
+#include "dsm/storage/pool_sizing.h"
+
+namespace dv {
+
+namespace {
+
+void write_blocks(const DsmGenerationContext& c, const BlockedSink& prototype,
+                  View<int32_t> counts) {
+  const DsmGenerator g = c.generator;
+  const float eps = c.eps;
+  const View<DsmTexelRecord> records = c.records;
+  parallel_for(
+      c.backend, "dsm_blocked_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
+        DsmTexel t;
+        if (!g.texel_of_thread(i, t)) return;
+        BlockedSink sink = prototype;
+        sink.tile = sink.layout.tile_of(t.index);
+        sink.local = sink.layout.local_of(t.index);
+        const DsmTexelResult<BlockedSink> r = g.generate(t, eps, sink);
+        counts[t.index] = r.sink.count;
+        records[t.index] = r.record;
+      });
+}
+
+class BlockedStorage final : public DsmStorage {
+ public:
+  explicit BlockedStorage(const StrategyParams& p)
+      : tile_(p.integer("tile", 8)),
+        layers_(p.integer("layers", 256)),
+        pool_per_tile_(p.number("pool_per_tile", 8.0)),
+        pool_(p.integer("pool", 0)),
+        sizing_(read_pool_sizing(p)) {
+    if (tile_ < 1 || tile_ > 256) throw InputError("blocked tile", "must lie in [1, 256]");
+    if (layers_ < kBlockLayers || layers_ % kBlockLayers != 0 || layers_ > 65536)
+      throw InputError("blocked layers", "must be a multiple of 8 in [8, 65536]");
+    if (pool_ < 0 || !(pool_per_tile_ > 0.0)) throw InputError("blocked pool", "must be positive");
+  }
+  std::string name() const override { return "blocked"; }
+  nlohmann::json params() const override {
+    return {{"tile", tile_},
+            {"layers", layers_},
+            {"pool", pool_},
+            {"pool_per_tile", pool_per_tile_},
+            {"sizing", to_string(sizing_)}};
+  }
+
+  void generate(const DsmGenerationContext& c) override {
+    const DsmGenerator& g = c.generator;
+    const Memory memory = memory_of(c.backend);
+    const int res = g.resolution;
+    layout_ = {tile_, (res + tile_ - 1) / tile_, res, layers_ / kBlockLayers, int64_t(res) * res};
+    tiles_ = g.faces.size * int64_t(layout_.tiles_per_side) * layout_.tiles_per_side;
+    const int64_t block_entries = int64_t(kBlockLayers) * tile_ * tile_;
+    double wanted = pool_ > 0 ? double(pool_) : pool_per_tile_ * double(tiles_);
+    if (pool_ == 0 && sizing_ == PoolSizing::counted) {
+      wanted = 0.0;
+      for (int32_t deepest :
+           count_nodes_per_group(c, {NodeCountGroups::tile, true, layout_}, tiles_))
+        wanted += double(units_needed(deepest, kBlockLayers, layout_.blocks_per_tile));
+    }
+    capacity_ = int32_t(std::min(wanted, 2147483647.0));
+    ensure_buffer(indirection_, memory, tiles_ * layout_.blocks_per_tile, "dsm block indirection");
+    ensure_buffer(used_, memory, 1, "dsm blocks used");
+    ensure_buffer(pool_nodes_, memory, int64_t(capacity_) * block_entries, "dsm block pool");
+    ensure_buffer(counts_, memory, g.texel_count(), "dsm block layer counts");
+    const BlockedSink prototype{
+        layout_, indirection_.view(), used_.view(), pool_nodes_.view(), capacity_, 0, 0};
+    timed_pass(c, "write", [&] {
+      indirection_.fill_zero();
+      used_.fill_zero();
+      write_blocks(c, prototype, counts_.view());
+    });
+    taken_ = used_.to_vector()[0];
+  }
+
+  DsmReader reader() const override {
+    DsmReader r;
+    r.kind = DsmReaderKind::blocked;
+    r.blocked = {layout_, indirection_.const_view(), pool_nodes_.const_view(),
+                 counts_.const_view()};
+    return r;
+  }
+  int64_t bytes_allocated() const override {
+    return indirection_.bytes() + used_.bytes() + pool_nodes_.bytes() + counts_.bytes();
+  }
+  bool keeps_error_bound() const override { return true; }
+  int64_t bytes_per_node() const override { return sizeof(DsmNode); }
+  nlohmann::json own_figures() const override {
+    const int64_t allocated = std::min<int64_t>(taken_, capacity_);
+    const int64_t block_bytes = int64_t(kBlockLayers) * tile_ * tile_ * int64_t(sizeof(DsmNode));
+    return {{"tiles", tiles_},
+            {"pool_blocks", capacity_},
+            {"blocks_allocated", allocated},
+            {"pool_exhausted", taken_ > capacity_},
+            {"block_bytes", block_bytes},
+            {"blocks_per_tile", tiles_ ? double(allocated) / double(tiles_) : 0.0},
+            {"bytes_in_blocks", allocated * block_bytes}};
+  }
+
+ private:
+  int tile_, layers_;
+  double pool_per_tile_;
+  int32_t pool_;
+  PoolSizing sizing_;
+  int32_t capacity_ = 0;
+  BlockedLayout layout_{};
+  int64_t tiles_ = 0, taken_ = 0;
+  Buffer<int32_t> indirection_, used_, counts_;
+  Buffer<DsmNode> pool_nodes_;
+};
+
+}  // namespace
+
+void register_blocked_storage(Registry<DsmStorage>& registry) {
+  registry.add("blocked",
+               "Hadwiger 2006 3.4: tiles, blocks of 8 layers on demand, indirection per tile "
+               "(params: tile, layers, pool, pool_per_tile, sizing=counted|thesis)",
+               [](const StrategyParams& p) { return std::make_unique<BlockedStorage>(p); });
+}
+
+}  // namespace dv

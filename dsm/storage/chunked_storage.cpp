@@ -1,0 +1,184 @@
+// Storage strategy `chunked` (see chunked_layout.h). Parameters: alloc = thesis | aggregated
+// (default aggregated), chunk = L_C layers per chunk (default 64), block_chunks = C_B (default
+// 64), pool = C_max chunks, sizing = counted | thesis (dsm/storage/pool_sizing.h).
+// The pool: `pool` when given; else counted (default) sums over the 8x8 blocks the chunks each
+// needs for its nodes (at most C_B), and thesis reserves pool_per_block (default 32) per block.
+// `thesis` allocates as Knecht's
+// Algorithm 4.1 (threads of a block race, losers' chunks are wasted: measured, reported);
+// `aggregated` claims each chunk once with a pending state, so a block wastes at most the
+// unused tail of its last chunk. A refused node (block at C_B, or pool exhausted) ends the
+// texel's function there: counted as an overflow with the error reached, reported per
+// generation, never written out of bounds. Compiled by nvcc when CUDA is on.
+#include <algorithm>
+#include <memory>
+
+#include "core/error.h"
+#include "cuda/ensure_buffer.h"
+#include "dsm/storage/chunked_device.h"
+#include "dsm/storage/dsm_storage.h"
+#include "dsm/storage/pool_sizing.h"
+
+namespace dv {
+
+namespace {
+
+void write_chunks(const DsmGenerationContext& c, const ChunkPool& pool) {
+  const DsmGenerator g = c.generator;
+  const float eps = c.eps;
+  const View<DsmTexelRecord> records = c.records;
+  parallel_for(
+      c.backend, "dsm_chunked_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
+        DsmTexel t;
+        if (!g.texel_of_thread(i, t)) return;
+        const ChunkedSink sink{pool, g.block_of_thread(i), t.index};
+        records[t.index] = g.generate(t, eps, sink).record;
+      });
+}
+
+// Packs the allocated part of the pool into one entry per layer (the thesis's float4 texture).
+void relayout(Backend backend, const ChunkPool& pool, View<ChunkEntry> entries) {
+  parallel_for(
+      backend, "dsm_chunked_relayout", entries.size, DV_KERNEL_LAMBDA(int64_t e) {
+        entries[e] = {pool.depth[e], pool.visibility[e], pool.next_chunk[e], pool.next_layer[e]};
+      });
+}
+
+class ChunkedStorage final : public DsmStorage {
+ public:
+  explicit ChunkedStorage(const StrategyParams& p)
+      : alloc_(p.choice("alloc", "aggregated", {"aggregated", "thesis"})),
+        chunk_layers_(p.integer("chunk", 64)),
+        block_limit_(p.integer("block_chunks", 64)),
+        pool_per_block_(p.number("pool_per_block", 32.0)),
+        pool_(p.integer("pool", 0)),
+        sizing_(read_pool_sizing(p)) {
+    if (chunk_layers_ < 1 || chunk_layers_ > 1024)
+      throw InputError("chunked chunk", "must lie in [1, 1024]");
+    if (block_limit_ < 1 || block_limit_ > 65536)
+      throw InputError("chunked block_chunks", "must lie in [1, 65536]");
+    if (pool_ < 0 || !(pool_per_block_ > 0.0)) throw InputError("chunked pool", "must be positive");
+  }
+  std::string name() const override { return "chunked"; }
+  nlohmann::json params() const override {
+    return {{"alloc", alloc_},
+            {"chunk", chunk_layers_},
+            {"block_chunks", block_limit_},
+            {"pool", pool_},
+            {"pool_per_block", pool_per_block_},
+            {"sizing", to_string(sizing_)}};
+  }
+
+  void generate(const DsmGenerationContext& c) override {
+    blocks_ = c.generator.thread_count() / (kDsmBlockSide * kDsmBlockSide);
+    const bool counted = pool_ == 0 && sizing_ == PoolSizing::counted;
+    double wanted = pool_ > 0 ? double(pool_) : pool_per_block_ * double(blocks_);
+    if (counted) {
+      wanted = 0.0;
+      for (int32_t nodes :
+           count_nodes_per_group(c, {NodeCountGroups::generation_block, false}, blocks_))
+        wanted += double(units_needed(nodes, chunk_layers_, block_limit_));
+    }
+    // The racing allocation (alloc=thesis) loses chunks to the race, so a counted pool may run
+    // out: it then grows to what the race took and the maps are written again.
+    for (int attempt = 0;; ++attempt) {
+      write_pool(c, wanted);
+      if (!counted || taken_ <= capacity_ || attempt == 3) break;
+      wanted = double(taken_);
+    }
+  }
+
+  DsmReader reader() const override {
+    DsmReader r;
+    r.kind = DsmReaderKind::chunked;
+    r.chunked = {entries_.const_view(), first_.const_view(), chunk_layers_};
+    return r;
+  }
+  int64_t bytes_allocated() const override {
+    return depth_.bytes() + visibility_.bytes() + next_chunk_.bytes() + next_layer_.bytes() +
+           block_layers_.bytes() + block_chunks_.bytes() + counters_.bytes() + first_.bytes() +
+           entries_.bytes();
+  }
+  bool keeps_error_bound() const override { return true; }
+  int64_t bytes_per_node() const override { return sizeof(ChunkEntry); }
+  nlohmann::json own_figures() const override {
+    const int64_t allocated = std::min<int64_t>(taken_, capacity_);
+    return {
+        {"chunk_bytes", int64_t(chunk_layers_) * int64_t(sizeof(ChunkEntry))},
+        {"pool_chunks", capacity_},
+        {"chunks_allocated", allocated},
+        {"chunks_used", used_},
+        {"chunks_wasted", allocated - used_},
+        {"pool_exhausted", taken_ > capacity_},
+        {"refused_nodes", refused_},
+        {"blocks", blocks_},
+        {"used_chunks_per_block", blocks_ ? double(used_) / double(blocks_) : 0.0},
+        {"wasted_chunks_per_block", blocks_ ? double(allocated - used_) / double(blocks_) : 0.0},
+        {"lookup_bytes", entries_.bytes() + first_.bytes()}};
+  }
+
+ private:
+  // Writes every texel's nodes into a pool of `wanted` chunks (capped to 32-bit entry indices)
+  // and packs the allocated chunks.
+  void write_pool(const DsmGenerationContext& c, double wanted) {
+    const DsmGenerator& g = c.generator;
+    const Memory memory = memory_of(c.backend);
+    capacity_ = int32_t(std::min(wanted, double((int64_t(1) << 31) - 1) / chunk_layers_));
+    const int64_t pool_entries = int64_t(capacity_) * chunk_layers_;
+    ensure_buffer(depth_, memory, pool_entries, "dsm chunk depths");
+    ensure_buffer(visibility_, memory, pool_entries, "dsm chunk visibilities");
+    ensure_buffer(next_chunk_, memory, pool_entries, "dsm chunk next chunks");
+    ensure_buffer(next_layer_, memory, pool_entries, "dsm chunk next layers");
+    ensure_buffer(block_layers_, memory, blocks_, "dsm block layer counters");
+    ensure_buffer(block_chunks_, memory, blocks_ * block_limit_, "dsm block chunk table");
+    ensure_buffer(counters_, memory, 2, "dsm chunk counters");
+    ensure_buffer(first_, memory, g.texel_count(), "dsm chunk lookup table");
+    const ChunkPool pool{depth_.view(),         visibility_.view(),
+                         next_chunk_.view(),    next_layer_.view(),
+                         block_layers_.view(),  block_chunks_.view(),
+                         {counters_.data(), 1}, {counters_.data() + 1, 1},
+                         first_.view(),         chunk_layers_,
+                         block_limit_,          capacity_,
+                         alloc_ == "thesis"};
+    timed_pass(c, "write", [&] {
+      block_layers_.fill_zero();
+      block_chunks_.fill_zero();
+      counters_.fill_zero();
+      first_.fill_zero();
+      write_chunks(c, pool);
+    });
+    const std::vector<int32_t> counters = counters_.to_vector();
+    taken_ = counters[0];
+    refused_ = counters[1];
+    const int64_t allocated = std::min<int64_t>(taken_, capacity_);
+    timed_pass(c, "relayout", [&] {
+      ensure_buffer(entries_, memory, allocated * chunk_layers_, "dsm chunk texture");
+      relayout(c.backend, pool, entries_.view());
+    });
+    used_ = 0;
+    for (int32_t slot : block_chunks_.to_vector()) used_ += slot > 0;
+  }
+
+  std::string alloc_;
+  int32_t chunk_layers_, block_limit_;
+  double pool_per_block_;
+  int32_t pool_;
+  PoolSizing sizing_;
+  int32_t capacity_ = 0;
+  int64_t blocks_ = 0, taken_ = 0, refused_ = 0, used_ = 0;
+  Buffer<float> depth_, visibility_;
+  Buffer<int32_t> next_chunk_, next_layer_, block_layers_, block_chunks_, counters_;
+  Buffer<ChunkFirst> first_;
+  Buffer<ChunkEntry> entries_;
+};
+
+}  // namespace
+
+void register_chunked_storage(Registry<DsmStorage>& registry) {
+  registry.add("chunked",
+               "Knecht 2011 4.2.2: chunks from a global pool per 8x8 block, linked lists "
+               "(params: alloc=thesis|aggregated, chunk, block_chunks, pool, pool_per_block, "
+               "sizing=counted|thesis)",
+               [](const StrategyParams& p) { return std::make_unique<ChunkedStorage>(p); });
+}
+
+}  // namespace dv

@@ -1,0 +1,42 @@
+// The lookup side of every DSM storage strategy behind one small type that kernels receive by
+// value: a kind and the strategies' readers, dispatched with a switch (a uniform branch), so the
+// renderer's kernels are instantiated once for the `dsm` shadow source, not once per strategy.
+// A new storage adds its reader here. Host and device code.
+#pragma once
+
+#include <cstdint>
+
+#include "core/hd.h"
+#include "dsm/storage/blocked_device.h"
+#include "dsm/storage/chunked_device.h"
+#include "dsm/storage/compact_device.h"
+#include "dsm/storage/texture3d_device.h"
+
+namespace dv {
+
+enum class DsmReaderKind : uint8_t { compact, texture3d, chunked, blocked };
+
+struct DsmReader {
+  DsmReaderKind kind = DsmReaderKind::compact;
+  CompactReader compact{};
+  Texture3dReader texture3d{};
+  ChunkedReader chunked{};
+  BlockedReader blocked{};
+
+  // V'(z) of texel `texel`; `hint` carries coherent-search state between lookups of one ray
+  // (start it at -1).
+  DV_HD float visibility(int64_t texel, float z, int& hint) const {
+    switch (kind) {
+      case DsmReaderKind::texture3d:
+        return texture3d.visibility(texel, z, hint);
+      case DsmReaderKind::chunked:
+        return chunked.visibility(texel, z, hint);
+      case DsmReaderKind::blocked:
+        return blocked.visibility(texel, z, hint);
+      default:
+        return compact.visibility(texel, z, hint);
+    }
+  }
+};
+
+}  // namespace dv

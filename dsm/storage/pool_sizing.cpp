@@ -1,0 +1,42 @@
+// The counting pass of the storages (see pool_sizing.h). Compiled by nvcc when CUDA is on.
+#include "dsm/storage/pool_sizing.h"
+
+#include "core/atomic.h"
+
+namespace dv {
+
+PoolSizing read_pool_sizing(const StrategyParams& params) {
+  return params.choice("sizing", "counted", {"counted", "thesis"}) == "thesis"
+             ? PoolSizing::thesis
+             : PoolSizing::counted;
+}
+
+const char* to_string(PoolSizing sizing) {
+  return sizing == PoolSizing::thesis ? "thesis" : "counted";
+}
+
+std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
+                                           const NodeCountGroups& groups, int64_t group_count) {
+  Buffer<int32_t> buffer(memory_of(c.backend), group_count, "dsm node counts per group");
+  const View<int32_t> totals = buffer.view();
+  const DsmGenerator g = c.generator;
+  const float eps = c.eps;
+  const NodeCountGroups by = groups;
+  timed_pass(c, "count", [&] {
+    buffer.fill_zero();
+    parallel_for(
+        c.backend, "dsm_count_nodes", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
+          DsmTexel t;
+          if (!g.texel_of_thread(i, t)) return;
+          const int32_t nodes = g.generate(t, eps, CountingNodeSink{}).record.nodes;
+          int32_t* total = &totals[by.group_of(g, i, t.index)];
+          if (by.maximum)
+            atomic_max(total, nodes);
+          else
+            atomic_add(total, nodes);
+        });
+  });
+  return buffer.to_vector();
+}
+
+}  // namespace dv

@@ -1,0 +1,52 @@
+// How the pooled storages (texture3d, chunked, blocked) size their pools. `counted` (default):
+// a counting pass first (the compact storage's: every texel's function compressed into a sink
+// that only counts), reduced per group of texels that shares pool space (the whole atlas, a
+// generation block, a tile), and the pool sized to exactly what the maps need, never beyond the
+// strategy's limits (layers, chunks per block, an explicit pool), so those limits still
+// overflow and are reported. `thesis`: the fixed formulas of the papers (layers x texels,
+// chunks or blocks per tile), which reserve the same bytes whatever the scene.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/hd.h"
+#include "core/registry.h"
+#include "dsm/storage/blocked_device.h"
+#include "dsm/storage/dsm_storage.h"
+
+namespace dv {
+
+enum class PoolSizing { counted, thesis };
+
+// The `sizing` parameter (counted | thesis, default counted).
+PoolSizing read_pool_sizing(const StrategyParams& params);
+const char* to_string(PoolSizing sizing);
+
+// Which texels share a total in the counting pass, and how their node counts combine.
+struct NodeCountGroups {
+  enum Kind : int32_t { generation_block, tile, all } kind;
+  bool maximum;           // largest count of the group instead of the sum
+  BlockedLayout tiles{};  // for kind == tile
+
+  DV_HD int64_t group_of(const DsmGenerator& g, int64_t thread, int64_t texel) const {
+    if (kind == generation_block) return g.block_of_thread(thread);
+    if (kind == tile) return tiles.tile_of(texel);
+    return 0;
+  }
+};
+
+// The counting pass over every texel of c.generator (at c.eps), reduced per group: the totals
+// in host memory, `group_count` of them. Timed as pass "count".
+std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
+                                           const NodeCountGroups& groups, int64_t group_count);
+
+// Pool units (chunks, blocks) a group needs for `nodes` nodes at `per_unit` nodes a unit, at
+// most `limit` of them (more would be refused anyway).
+inline int64_t units_needed(int64_t nodes, int64_t per_unit, int64_t limit) {
+  const int64_t units = (nodes + per_unit - 1) / per_unit;
+  return units < limit ? units : limit;
+}
+
+}  // namespace dv

@@ -1,0 +1,18 @@
+// The DSM storage registry: every storage strategy registers here, once, on first use.
+#include "dsm/storage/dsm_storage.h"
+
+namespace dv {
+
+void register_compact_storage(Registry<DsmStorage>& registry);
+void register_texture3d_storage(Registry<DsmStorage>& registry);
+void register_chunked_storage(Registry<DsmStorage>& registry);
+void register_blocked_storage(Registry<DsmStorage>& registry);
+
+Registry<DsmStorage>& storage_registry() {
+  static Registry<DsmStorage> registry =
+      make_registry<DsmStorage>("storage", {register_compact_storage, register_texture3d_storage,
+                                            register_chunked_storage, register_blocked_storage});
+  return registry;
+}
+
+}  // namespace dv

@@ -1,0 +1,28 @@
+// The rasterizing renderer (Knecht 2011 §3.1, §4.1; Bornik 2012 §3): the scene is binned into
+// 8x8-tile lists by the tile rasterizer, then every pixel gathers its fragments from its tile,
+// sorts them by exact depth and walks them with the shading payload. The walk starts inside
+// the media that contain the eye; crossings between the eye and the near plane (clipped away
+// by the rasterizer) come from the BVH, so they toggle inside-ness but are never shaded.
+// CPU threads or CUDA from the same code; per-pass times and counters in RasterRenderResult.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "cuda/execute.h"
+#include "frame/reference_render.h"
+#include "renderer/raster/tile_raster.h"
+
+namespace dv {
+
+struct RasterRenderResult {
+  RenderResult render;       // image, walk counters, total milliseconds
+  RasterStats raster;        // triangles, clipping, tile entries, overflow
+  double raster_ms = 0.0;    // binning into tile lists
+  double fragment_ms = 0.0;  // per-pixel gather, sort, walk and shading
+  nlohmann::json stats() const;
+};
+
+RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
+                                 ShadowMethod& shadows, const dvec3& background);
+
+}  // namespace dv
