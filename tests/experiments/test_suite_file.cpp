@@ -70,6 +70,27 @@ TEST(SuiteFile, SweepIsTheCartesianProductLastKeyFastest) {
   EXPECT_EQ(distinct.size(), items.size());
 }
 
+// A strategy object's `scenes` runs it only on the scenes whose path contains one of the
+// parts (the seeds suite gives the 940k-triangle model a larger atlas than the others).
+TEST(SuiteFile, StrategyScenesRestrictWhereItRuns) {
+  const Suite s = parse_suite(R"({"suite": "x", "experiments": [{"name": "v", "kind": "voxelize",
+      "scene": ["m/quad.json", "m/cube.json", "m/buddha.json"],
+      "strategy": ["sat", {"name": "atlas", "params": {"atlas": 512}, "scenes": ["quad", "cube"]},
+                   {"name": "atlas", "params": {"atlas": 1024}, "scenes": "buddha"}]}]})",
+                              "scenes.json");
+  std::vector<std::string> runs;
+  for (const RunItem& item : expand_suite(s))
+    runs.push_back(item.scene + " " + item.strategy + " " + item.params_text());
+  EXPECT_EQ(runs,
+            (std::vector<std::string>{"m/quad.json sat ", "m/quad.json atlas atlas=512",
+                                      "m/cube.json sat ", "m/cube.json atlas atlas=512",
+                                      "m/buddha.json sat ", "m/buddha.json atlas atlas=1024"}));
+  EXPECT_THROW(parse_suite(R"({"suite": "x", "experiments": [{"name": "v", "kind": "voxelize",
+      "scene": "a.json", "strategy": [{"name": "sat", "scenes": [1]}]}]})",
+                           "bad.json"),
+               InputError);
+}
+
 TEST(SuiteFile, BadFilesNameTheFileAndTheProblem) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"{", "not valid JSON"},
