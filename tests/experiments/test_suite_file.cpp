@@ -153,6 +153,23 @@ TEST(SuiteFile, BuiltInSuitesLoadAndQuickIsAmongThem) {
       EXPECT_TRUE(e.pareto.is_object());
     }
   }
+  // A strategy limited to some scenes names a scene of its experiment (no typo runs nowhere),
+  // and the 940,544-triangle Buddha stand-in never gets a 512^2 atlas (262,144 texels: one per
+  // triangle does not fit; the committed run of 2026-12-01 had 20 failed rows from it).
+  for (const std::string& name : names)
+    for (const ExperimentSpec& e : load_suite(resolve_suite_path(name)).experiments)
+      for (const StrategySpec& st : e.strategies)
+        if (!st.scenes.empty())
+          EXPECT_TRUE(std::any_of(e.scenes.begin(), e.scenes.end(),
+                                  [&](const std::string& sc) { return st.runs_on(sc); }))
+              << name << " " << e.name << " " << st.name;
+  int buddha_atlas_items = 0;
+  for (const RunItem& item : expand_suite(load_suite(resolve_suite_path("seeds"))))
+    if (item.strategy.rfind("atlas", 0) == 0 && item.scene.find("buddha") != std::string::npos) {
+      ++buddha_atlas_items;
+      EXPECT_EQ(item.params.at("atlas"), "1024") << item.experiment_name;
+    }
+  EXPECT_EQ(buddha_atlas_items, 20);
   EXPECT_THROW(resolve_suite_path("no-such-suite"), InputError);
 }
 
