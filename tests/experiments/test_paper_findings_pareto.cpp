@@ -261,6 +261,24 @@ TEST_F(PaperFindings, SmokeFormMergesOverridesAndIsCheckedStrictly) {
   EXPECT_THROW(parse_suite(head + R"("pareto": {"error": "e"}}]})", "s.json"), InputError);
 }
 
+// Plots of experiments that did not run in a folder (--only, another shard) are left out
+// instead of failing the plot script (a log axis without positive values did).
+TEST_F(PaperFindings, PlotsSkipExperimentsNotRunHere) {
+  const std::string quad = test::source_dir() + "/scenes/seeds/buchacher-simple-quad.json";
+  const std::string suite = write("plots.json", R"({"suite": "plots", "repeat": 1, "experiments": [
+    {"name": "alpha", "kind": "voxelize", "scene": ")" +
+                                                    quad + R"(", "strategy": "sat",
+     "settings": {"res": "8x8x32"}, "plots": [{"type": "bar", "y": "voxelize_ms:median", "logx": true}]},
+    {"name": "beta", "kind": "voxelize", "scene": ")" +
+                                                    quad + R"(", "strategy": "sat",
+     "settings": {"res": "8x8x32"}, "plots": [{"type": "bar", "y": "filled", "logx": true}]}]})");
+  const SuiteOutcome r = run(suite, false, "beta");
+  ASSERT_EQ(r.exit_code, 0);
+  const std::string md = read(fs::path(r.folder) / "report.md");
+  EXPECT_EQ(md.find("the plot script failed"), std::string::npos) << md;
+  EXPECT_FALSE(fs::exists(fs::path(r.folder) / "plots" / "alpha_1.png"));
+}
+
 // The voxelize setting `bounds` places the grid as `deepvox voxelize --bounds`: the thesis's
 // box reproduces Buchacher's Compute count for the simple quad (968 voxels at 32 x 32 x 32,
 // experiments/suites/seeds-plan.md); the default bounding cube gives another count. The shadow
