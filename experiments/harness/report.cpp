@@ -152,7 +152,7 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
     md << "- cells: paper / ours (ours: the mean over our items matching `" +
               map.value("where", "") +
               "`, the row's and the column's selector; the paper "
-              "alone where nothing is mapped or measured)\n";
+              "alone where it prints nothing or nothing is mapped or measured)\n";
   md << "\n";
   std::vector<std::string> header;
   for (const auto& h : t.value("columns", Json::array())) header.push_back(cell(h));
@@ -169,7 +169,7 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
     std::vector<std::string> line;
     for (size_t k = 0; k < rows[i].size(); ++k) {
       std::string text = paper_cell(rows[i][k]);
-      if (beside && k >= labels) {
+      if (beside && k >= labels && !rows[i][k].is_null()) {
         const std::string ours = our_cell(map, i, k - labels, items);
         if (!ours.empty()) text += " / " + ours;
       }

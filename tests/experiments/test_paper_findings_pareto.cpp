@@ -183,7 +183,7 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
       "settings": {"width": 32, "height": 24, "probe_points": 20, "images": 0},
       "paper": ["tiny-table.json",
                 {"table": "tiny-table.json", "where": "strategy=dsm",
-                 "rows": [["", "bytes"], null, null, ["res=32", "stats.storage.max_layers"]],
+                 "rows": [["", "bytes"], null, ["", "bytes"], ["res=32", "stats.storage.max_layers"]],
                  "columns": [""]}],
       "findings": [{"claim": "no shadows are cheaper than a DSM",
                     "lower": ["strategy=none", "bytes"], "than": ["strategy=dsm", "bytes"]},
@@ -224,6 +224,7 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
             std::string::npos)
       << md;
   EXPECT_NE(md.find("| range | 2–3 |"), std::string::npos) << md;  // unmapped: the paper alone
+  EXPECT_NE(md.find("| none [ours: bytes] | – |"), std::string::npos) << md;  // paper: nothing
   // A map that does not fit the table is refused when the suite loads.
   EXPECT_THROW(parse_suite(R"({"suite": "m", "experiments": [{"name": "e", "kind": "shadow",
       "scene": "x.json", "strategy": "none",
