@@ -1,14 +1,16 @@
-// The rasterizing renderer's passes on the committed benchmark scenes (scenes/knecht-fig56.json
-// first: one spot light, two 128^3 volumes, eight polyhedra, 720x480, step 0.5 voxel): tile
-// binning and the fragment pass (gather, sort, walk, shade) timed separately with CUDA events
-// on the GPU, per shadow method. Knecht 2011 reports 43 ms without shadows on a GTX 480.
+// Google Benchmark cases over the suite's own frame measurement (experiments/harness/
+// shadow_measure.h, which the `seeds` experiment no-shadow-baseline runs too): the rasterizing
+// renderer on scenes/knecht-fig56.json (one spot light, two 128^3 volumes, six polyhedra,
+// 720x480, step 0.5 voxel), tile binning and the fragment pass (gather, sort, walk, shade) timed
+// separately with CUDA events on the GPU, per shadow method (the method generated once before).
+// Knecht 2011 reports 43 ms without shadows on a GTX 480.
 // Run: build/bin/bench_renderer --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
 #include <string>
 
 #include "cuda/device_memory.h"
-#include "frame/raster_render.h"
+#include "experiments/harness/shadow_measure.h"
 #include "load/scene_loader.h"
 #include "tests/support/paths.h"
 
@@ -22,15 +24,14 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
     return state.SkipWithError(why.c_str());
   const Scene scene = load_scene(test::source_dir() + "/scenes/" + scene_name);
   const SceneData data(scene, memory_of(backend));
-  auto method = shadow_registry().create(shadows);
-  render_raster(backend, data, scene.camera, *method, scene.background);  // warm-up, builds maps
+  const TimedGeneration g = timed_generation(shadows, {}, data, backend, scene.camera);
+  timed_frame(backend, data, scene.camera, *g.method, scene.background);  // warm-up
   double raster_ms = 0.0, fragment_ms = 0.0;
   for (auto _ : state) {
-    const RasterRenderResult r =
-        render_raster(backend, data, scene.camera, *method, scene.background);
-    state.SetIterationTime((r.raster_ms + r.fragment_ms) / 1e3);
-    raster_ms += r.raster_ms;
-    fragment_ms += r.fragment_ms;
+    const TimedFrame f = timed_frame(backend, data, scene.camera, *g.method, scene.background);
+    state.SetIterationTime(f.milliseconds / 1e3);
+    raster_ms += f.result.raster_ms;
+    fragment_ms += f.result.fragment_ms;
   }
   state.counters["raster_ms"] = raster_ms / double(state.iterations());
   state.counters["fragment_ms"] = fragment_ms / double(state.iterations());

@@ -56,11 +56,14 @@ def main(folder):
     for exp in suite["experiments"]:
         runs = [rows for (name, _), rows in sorted(items.items()) if name == exp["name"]]
         runs = [rows for rows in runs if not any(r["metric"] == "failed" for r in rows)]
+        if not runs:
+            continue  # not run in this folder (another shard, --only, interrupted)
         for n, spec in enumerate(exp.get("plots", [])):
             fig, ax = plt.subplots(figsize=(6.4, 3.6), dpi=110)
             if spec.get("type", "scatter") == "bar":
                 pairs = [(label(rows), metric_value(rows, spec["y"])) for rows in runs]
-                pairs = [(l, v) for l, (v, _) in pairs if v is not None and math.isfinite(v)]
+                pairs = [(l, v) for l, (v, _) in pairs if v is not None and math.isfinite(v)
+                         and (v > 0 or not spec.get("logx"))]
                 ax.barh([l for l, _ in pairs], [v for _, v in pairs])
                 unit = next((metric_value(r, spec["y"])[1] for r in runs), "")
                 ax.set_xlabel(spec["y"] + (" (" + unit + ")" if unit else ""))

@@ -103,8 +103,27 @@ void write_table(std::ostream& md, const std::vector<std::string>& header,
   md << "\n";
 }
 
-// A paper table file (docs/paper-tables.md) as printed, with both machines named.
-void write_paper_table(std::ostream& md, const std::string& file, const std::string& our_machine) {
+// Ours for one value cell of a mapped paper table: the mean of the row's column over the items
+// matching the map's `where`, the row's and the column's selectors; empty when unmapped or
+// nothing matches.
+std::string our_cell(const Json& map, size_t row, size_t column,
+                     const std::map<int, std::vector<const Row*>>& items) {
+  const Json& r = map["rows"][row];
+  const Json& c = map["columns"][column];
+  if (r.is_null() || c.is_null()) return "";
+  const std::string column_selector =
+      c.is_string() ? c.get<std::string>() : c[0].get<std::string>();
+  const std::string metric = c.is_array() ? c[1].get<std::string>() : r[1].get<std::string>();
+  const std::string selector =
+      map.value("where", "") + " " + r[0].get<std::string>() + " " + column_selector;
+  const SelectionMean m = selection_mean(selector, parse_column(metric), items);
+  return m.items ? format_value(m.mean) : "";
+}
+
+// A paper table file (docs/paper-tables.md) as printed, with both machines named; with a map
+// (suite-format.md) every mapped value cell shows "paper / ours".
+void write_paper_table(std::ostream& md, const std::string& file, const std::string& our_machine,
+                       const Json& map, const std::map<int, std::vector<const Row*>>& items) {
   Json t;
   try {
     t = parse_json_file(file);
@@ -122,13 +141,45 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
       md << " " << (key == "*" ? "every value" : key) << " = " << cell(unit) << ";";
     md << "\n";
   }
+  const size_t labels = size_t(t.value("label_columns", 1));
+  const Json& rows = t.value("rows", Json::array());
+  const size_t values = t.value("columns", Json::array()).size() - labels;
+  const bool beside =
+      !map.is_null() && map["rows"].size() == rows.size() && map["columns"].size() == values;
+  if (!map.is_null() && !beside)
+    md << "- the suite's map of this table does not fit its rows and columns: ours not shown\n";
+  if (beside)
+    md << "- cells: paper / ours (ours: the mean over our items matching `" +
+              map.value("where", "") +
+              "`, the row's and the column's selector; the paper "
+              "alone where it prints nothing or nothing is mapped or measured)\n";
   md << "\n";
   std::vector<std::string> header;
   for (const auto& h : t.value("columns", Json::array())) header.push_back(cell(h));
+  if (beside)
+    for (size_t c = 0; c < values; ++c)
+      if (const Json& m = map["columns"][c]; m.is_string() && !m.get<std::string>().empty())
+        header[labels + c] += " [" + m.get<std::string>() + "]";
+      else if (m.is_array())
+        header[labels + c] +=
+            " [" + (m[0].get<std::string>().empty() ? "" : m[0].get<std::string>() + " ") +
+            m[1].get<std::string>() + "]";
   std::vector<std::vector<std::string>> body;
-  for (const auto& r : t.value("rows", Json::array())) {
+  for (size_t i = 0; i < rows.size(); ++i) {
     std::vector<std::string> line;
-    for (const auto& v : r) line.push_back(paper_cell(v));
+    for (size_t k = 0; k < rows[i].size(); ++k) {
+      std::string text = paper_cell(rows[i][k]);
+      if (beside && k >= labels && !rows[i][k].is_null()) {
+        const std::string ours = our_cell(map, i, k - labels, items);
+        if (!ours.empty()) text += " / " + ours;
+      }
+      line.push_back(text);
+    }
+    if (beside && labels > 0 && !map["rows"][i].is_null()) {
+      const std::string selector = map["rows"][i][0].get<std::string>();
+      line[labels - 1] += " [ours: " + (selector.empty() ? "" : selector + " ") +
+                          map["rows"][i][1].get<std::string>() + "]";
+    }
     body.push_back(std::move(line));
   }
   if (!header.empty()) write_table(md, header, body);
@@ -145,12 +196,11 @@ void write_findings(std::ostream& md, const ExperimentSpec& e,
   std::vector<std::vector<std::string>> body;
   for (const FindingResult& f : results)
     body.push_back({f.claim, f.lower_text, f.lower_items ? format_value(f.lower) : "-", f.than_text,
-                    f.than_items ? format_value(f.than) : "-", f.verdict,
-                    f.why.empty() ? "-" : f.why});
-  write_table(
-      md,
-      {"claim", "ours (lower?)", "value", "than", "value", "verdict", "why (the suite's reading)"},
-      body);
+                    f.than_items ? format_value(f.than) : "-", f.verdict, f.explanation});
+  write_table(md,
+              {"claim", "ours (lower?)", "value", "than", "value", "verdict",
+               "why (from the data, then the suite's reading)"},
+              body);
 }
 
 std::vector<std::string> column_list(const Json& v) {
@@ -247,7 +297,9 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     }
     write_table(md, paper_header, paper_body);
   }
-  for (const std::string& file : e.paper_files) write_paper_table(md, file, our_machine);
+  for (size_t p = 0; p < e.paper_files.size(); ++p)
+    write_paper_table(md, e.paper_files[p], our_machine,
+                      p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items);
   write_findings(md, e, items);
   write_pareto(md, e, items);
   // Image strip: the reference, then each render with its difference below.

@@ -5,16 +5,17 @@
 // at the run's probe points against the exact oracle (|T' - T| max, mean, p99, split into
 // surface and medium points); image error against the reference render, and PNGs (the
 // render and its difference) for the report's image strip. `frame_ms` (median generation plus
-// median render) is the one time a Pareto front of error against time takes.
+// median render) is the one time a Pareto front of error against time takes. The timed
+// generation and frame are shadow_measure.h's, which bench_dsm and bench_renderer call too.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "cuda/pass_timer.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/scene_cache.h"
+#include "experiments/harness/shadow_measure.h"
 #include "experiments/harness/timing.h"
 #include "frame/raster_render.h"
 #include "io/image.h"
@@ -112,19 +113,17 @@ class ShadowDriver : public Driver {
     // Generation: a fresh method per repetition, the first one a warm-up.
     PassTimes generation;
     std::vector<double> generate_samples, render_samples;
-    std::unique_ptr<ShadowMethod> method;
+    TimedGeneration timed;
     for (int rep = 0; rep <= ctx.repeat; ++rep) {
-      method = shadow_registry().create(item.strategy, params);
-      PassTimer timer(ctx.backend);
-      method->prepare(data, ctx.backend, &camera);
-      const double ms = timer.stop();
+      timed = timed_generation(item.strategy, params, data, ctx.backend, camera);
       if (rep == 0) continue;
-      generation.add("generate", ms);
-      generate_samples.push_back(ms);
-      collect_stats(method->stats(), "generate", &generation, nullptr);
+      generation.add("generate", timed.milliseconds);
+      generate_samples.push_back(timed.milliseconds);
+      collect_stats(timed.stats, "generate", &generation, nullptr);
     }
     generation.emit(rows, "");
-    const nlohmann::json stats = method->stats();
+    ShadowMethod& method = *timed.method;
+    const nlohmann::json& stats = timed.stats;
     rows.add("bytes", "value", method_bytes(stats), "bytes");
     std::vector<std::pair<std::string, double>> figures;
     collect_stats(stats, "", nullptr, &figures);
@@ -134,10 +133,11 @@ class ShadowDriver : public Driver {
     PassTimes render;
     RasterRenderResult last;
     for (int rep = 0; rep <= ctx.repeat; ++rep) {
-      last = render_raster(ctx.backend, data, camera, *method, scene.background);
+      const TimedFrame frame = timed_frame(ctx.backend, data, camera, method, scene.background);
+      last = frame.result;
       if (rep == 0) continue;
-      render.add("render", last.raster_ms + last.fragment_ms);
-      render_samples.push_back(last.raster_ms + last.fragment_ms);
+      render.add("render", frame.milliseconds);
+      render_samples.push_back(frame.milliseconds);
       render.add("render.raster", last.raster_ms);
       render.add("render.fragment", last.fragment_ms);
     }
@@ -148,9 +148,9 @@ class ShadowDriver : public Driver {
              double(last.render.counters.overflow_pixels + last.render.counters.oracle_flag_pixels),
              "count");
 
-    probe_errors(item, ctx, s, *method, rows);
+    probe_errors(item, ctx, s, method, rows);
     image_errors(item, ctx, s, last.render.image, rows);
-    return {{"strategy", method->name()}, {"params", method->params()}};
+    return {{"strategy", method.name()}, {"params", method.params()}};
   }
 
  private:

@@ -51,7 +51,7 @@ SlurmScripts slurm_scripts(const SuiteOptions& o, const SlurmOptions& s, const s
   const std::string n = std::to_string(s.tasks);
   const fs::path dir = fs::absolute(folder);
   const std::string shards = (dir / "shards").string();
-  std::string costs = fixed_cost_source(o);
+  std::string costs = fixed_cost_source(o, suite);
   if (costs != "estimate") costs = fs::absolute(costs).string();
   std::string shard_command = quoted(exe);
   for (const std::string& a : shard_arguments(o, suite_path, 0, s.tasks, shards, costs))

@@ -49,19 +49,21 @@ std::map<std::string, std::string> value_map(JsonReader& r, const std::string& k
   return out;
 }
 
-// "name", or an array of "name" and {"name": ..., "params": {...}} items.
+// "name", or an array of "name" and {"name": ..., "params": {...}, "scenes": [...]} items.
 std::vector<StrategySpec> strategy_list(JsonReader& r) {
   const Json& v = r.raw("strategy");
   std::vector<StrategySpec> out;
-  if (v.is_string()) out.push_back({v.get<std::string>(), {}});
+  if (v.is_string()) out.push_back({v.get<std::string>(), {}, {}});
   for (size_t i = 0; v.is_array() && i < v.size(); ++i) {
     if (v[i].is_string()) {
-      out.push_back({v[i].get<std::string>(), {}});
+      out.push_back({v[i].get<std::string>(), {}, {}});
       continue;
     }
-    if (!v[i].is_object()) r.fail("strategy", "expected names or {\"name\", \"params\"} objects");
+    if (!v[i].is_object())
+      r.fail("strategy", "expected names or {\"name\", \"params\", \"scenes\"} objects");
     JsonReader item(v[i], r.file(), r.path() + "/strategy/" + std::to_string(i));
-    StrategySpec spec{item.string("name"), value_map(item, "params")};
+    StrategySpec spec{item.string("name"), value_map(item, "params"), {}};
+    if (item.has("scenes")) spec.scenes = one_or_many(item, "scenes");
     item.finish();
     out.push_back(std::move(spec));
   }
@@ -84,11 +86,41 @@ void check_findings(JsonReader& r, const Json& findings) {
         !f.contains("than"))
       r.fail(at, "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]}");
     for (const auto& [key, v] : f.items())
-      if (key != "claim" && key != "lower" && key != "than" && key != "why")
-        r.fail(at + "/" + key, "unknown key (known: claim, lower, than, why)");
+      if (key != "claim" && key != "lower" && key != "than" && key != "why" && key != "why_not")
+        r.fail(at + "/" + key, "unknown key (known: claim, lower, than, why, why_not)");
     check_finding_side(r, f["lower"], at + "/lower");
     check_finding_side(r, f["than"], at + "/than");
   }
+}
+
+// A paper table's mapping to our rows: {"table": FILE, "where": SELECTOR, "rows": [one
+// [SELECTOR, COLUMN] or null per paper row], "columns": [one SELECTOR, [SELECTOR, COLUMN] (its
+// column replaces the row's) or null per value column]}; the counts are checked against the
+// table when its file can be read here.
+Json check_paper_map(JsonReader& r, const Json& map, const std::string& table_file) {
+  r.string("where", "");
+  const Json& rows = r.raw("rows");
+  const Json& columns = r.raw("columns");
+  if (!rows.is_array()) r.fail("rows", "expected one [selector, column] or null per paper row");
+  for (size_t i = 0; i < rows.size(); ++i)
+    if (!rows[i].is_null()) check_finding_side(r, rows[i], "rows/" + std::to_string(i));
+  if (!columns.is_array()) r.fail("columns", "expected one selector or null per value column");
+  for (size_t i = 0; i < columns.size(); ++i)
+    if (columns[i].is_array())
+      check_finding_side(r, columns[i], "columns/" + std::to_string(i));
+    else if (!columns[i].is_null() && !columns[i].is_string())
+      r.fail("columns", "expected a selector, [selector, column] or null per value column");
+  r.finish();
+  if (!fs::is_regular_file(table_file)) return map;
+  const Json table = parse_json_file(table_file);
+  const size_t labels = size_t(table.value("label_columns", 1));
+  const size_t values = table.value("columns", Json::array()).size() - labels;
+  const size_t paper_rows = table.value("rows", Json::array()).size();
+  if (rows.size() != paper_rows || columns.size() != values)
+    r.fail("rows", "the table " + table_file + " has " + std::to_string(paper_rows) + " rows and " +
+                       std::to_string(values) + " value columns; the map gives " +
+                       std::to_string(rows.size()) + " and " + std::to_string(columns.size()));
+  return map;
 }
 
 void check_pareto(JsonReader& r, const Json& pareto) {
@@ -169,8 +201,20 @@ ExperimentSpec parse_experiment(JsonReader& r, const Json& object, const std::st
   if (r.has("paper")) {
     const Json& paper = r.raw("paper");
     if (paper.is_string() || paper.is_array()) {
-      for (const std::string& f : one_or_many(r, "paper"))
-        e.paper_files.push_back(resolve_data_file(f, file));
+      const Json list = paper.is_string() ? Json::array({paper}) : paper;
+      if (list.empty()) r.fail("paper", "expected paper table files");
+      for (size_t i = 0; i < list.size(); ++i) {
+        if (list[i].is_string()) {
+          e.paper_files.push_back(resolve_data_file(list[i].get<std::string>(), file));
+          e.paper_maps.push_back(nullptr);
+          continue;
+        }
+        if (!list[i].is_object())
+          r.fail("paper", "expected paper table files or {\"table\", \"rows\", \"columns\"}");
+        JsonReader map(list[i], r.file(), r.path() + "/paper/" + std::to_string(i));
+        e.paper_files.push_back(resolve_data_file(map.string("table"), file));
+        e.paper_maps.push_back(check_paper_map(map, list[i], e.paper_files.back()));
+      }
     } else {
       e.paper = paper;
       if (!e.paper.is_object() || !e.paper.contains("columns") || !e.paper.contains("rows") ||
@@ -278,7 +322,8 @@ std::vector<RunItem> expand_suite(const Suite& suite) {
     size_t points = 1;
     for (const auto& [key, values] : e.sweep) points *= values.size();
     for (size_t si = 0; si < e.scenes.size(); ++si)
-      for (const StrategySpec& strategy : e.strategies)
+      for (const StrategySpec& strategy : e.strategies) {
+        if (!strategy.runs_on(e.scenes[si])) continue;
         for (size_t p = 0; p < points; ++p) {
           RunItem item;
           item.index = int(items.size());
@@ -299,6 +344,7 @@ std::vector<RunItem> expand_suite(const Suite& suite) {
           }
           items.push_back(std::move(item));
         }
+      }
   }
   return items;
 }

@@ -16,10 +16,19 @@
 namespace dv {
 
 // A strategy of the experiment's family by registered name, with parameters of its own (merged
-// over the experiment's fixed parameters).
+// over the experiment's fixed parameters), run on the experiment's scenes whose path (as
+// written) contains one of `scenes`, or on every scene when `scenes` is empty.
 struct StrategySpec {
   std::string name;
   std::map<std::string, std::string> params;
+  std::vector<std::string> scenes;
+
+  bool runs_on(const std::string& scene) const {
+    if (scenes.empty()) return true;
+    for (const std::string& part : scenes)
+      if (scene.find(part) != std::string::npos) return true;
+    return false;
+  }
 };
 
 struct ExperimentSpec {
@@ -38,6 +47,9 @@ struct ExperimentSpec {
   // Paper table files (docs/paper-tables.md) printed under the measured table, resolved like
   // scenes; the report names the paper's machine and ours.
   std::vector<std::string> paper_files;
+  // Per paper file: null, or how its cells map to our rows ({"table", "where", "rows",
+  // "columns"}, docs/suite-format.md), so the report prints ours beside each paper value.
+  std::vector<nlohmann::json> paper_maps;
   nlohmann::json findings;  // optional claims decided by a declared comparison (findings.h)
   nlohmann::json pareto;    // optional {"error": [...], "cost": [...]}: fronts per scene
   nlohmann::json smoke;     // the experiment as `--smoke` runs it (overrides merged), or null

@@ -122,9 +122,8 @@ int worker_count(const std::string& gpus, const std::string& backend) {
   return n;
 }
 
-std::string fixed_cost_source(const SuiteOptions& o) {
+std::string fixed_cost_source(const SuiteOptions& o, const Suite& suite) {
   if (!o.costs.empty()) return o.costs;
-  const Suite suite = load_suite(resolve_suite_path(o.suite));
   return item_costs(filter_items(expand_suite(suite), o.only), suite, "", o.out).source;
 }
 
@@ -145,7 +144,7 @@ std::vector<std::string> shard_arguments(const SuiteOptions& o, const std::strin
 SuiteOutcome run_workers(const SuiteOptions& o, int count) {
   const std::string suite_path = fs::absolute(resolve_suite_path(o.suite)).string();
   const Suite suite = load_suite(suite_path);
-  const std::string costs = fixed_cost_source(o);
+  const std::string costs = fixed_cost_source(o, suite);
   const fs::path session =
       make_run_folder(o.out, suite.name, build_git_sha(), std::to_string(count) + "workers");
   const bool cpu = o.backend == "cpu";

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "experiments/harness/runner.h"
+#include "experiments/harness/suite_file.h"
 
 namespace dv {
 
@@ -21,8 +22,9 @@ std::vector<std::string> shard_arguments(const SuiteOptions& o, const std::strin
                                          int index, int count, const std::string& shards_out,
                                          const std::string& costs);
 
-// The cost source every shard must use: o.costs, or the one item_costs finds now.
-std::string fixed_cost_source(const SuiteOptions& o);
+// The cost source every shard must use: o.costs, or the one item_costs finds now for `suite`
+// (the suite file of o.suite, loaded once by the caller).
+std::string fixed_cost_source(const SuiteOptions& o, const Suite& suite);
 
 // Runs the workers and merges; the merged folder goes to o.out/<suite>/. Exit code of the
 // worst worker (0, 3 some failed, 130 interrupted); the outcome's folder is the merged one.

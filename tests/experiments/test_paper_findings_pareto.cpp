@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -82,6 +83,74 @@ TEST(Findings, MeansOfTheSelectedItemsDecide) {
   EXPECT_EQ(r[1].why, "it is not");
   EXPECT_EQ(r[2].verdict.rfind("undecided", 0), 0u) << r[2].verdict;
   EXPECT_EQ(r[2].than_items, 4);  // the empty selector matches every item
+  // The explanation: the data first; the suite's `why` only for a confirmed claim.
+  EXPECT_EQ(r[0].explanation, "first side lower by 2 (0.6x)");
+  EXPECT_EQ(r[1].explanation, "first side higher by 4 (5x); the cause is not explained here");
+}
+
+// A time column is explained by its timed passes (the deepest level the rows have, not their
+// sum) and by what lies outside them; `why` follows a confirmed claim, `why_not` a refuted one.
+TEST(Findings, ExplanationNamesThePassAndTheTimeOutsideThePasses) {
+  std::vector<Row> rows;
+  auto add = [&](int item, const std::string& params, const std::string& metric, double v) {
+    rows.push_back(row(item, "dsm", params, metric, v));
+  };
+  // chunked: 9 ms wall, passes 1 + 2 (sum 3); texture3d: 4 ms wall, passes 1 + 1 (sum 2).
+  add(0, "storage=chunked", "generate_ms", 9.0);
+  add(0, "storage=chunked", "generate.generation_ms", 3.0);
+  add(0, "storage=chunked", "generate.passes.raster_ms", 1.0);
+  add(0, "storage=chunked", "generate.passes.write_ms", 2.0);
+  add(1, "storage=texture3d", "generate_ms", 4.0);
+  add(1, "storage=texture3d", "generate.generation_ms", 2.0);
+  add(1, "storage=texture3d", "generate.passes.raster_ms", 1.0);
+  add(1, "storage=texture3d", "generate.passes.write_ms", 1.0);
+  std::map<int, std::vector<const Row*>> items;
+  for (const Row& r : rows) items[r.item].push_back(&r);
+  const auto findings = nlohmann::json::parse(R"([
+    {"claim": "chunked faster", "lower": ["storage=chunked", "generate_ms"],
+     "than": ["storage=texture3d", "generate_ms"], "why": "fewer layers",
+     "why_not": "the thesis pool is reserved first"},
+    {"claim": "texture3d faster", "lower": ["storage=texture3d", "generate_ms"],
+     "than": ["storage=chunked", "generate_ms"], "why": "contiguous layers"}])");
+  const std::vector<FindingResult> r = evaluate_findings(findings, items);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].verdict, "not confirmed");
+  EXPECT_EQ(r[0].explanation,
+            "first side higher by 5 (2.25x); largest pass difference generate.passes.write_ms "
+            "+1 ms; +4 ms lies outside the timed passes (allocation, host work, "
+            "synchronisation); the thesis pool is reserved first");
+  EXPECT_EQ(r[1].verdict, "confirmed");
+  EXPECT_EQ(r[1].explanation,
+            "first side lower by 5 (0.444x); largest pass difference generate.passes.write_ms "
+            "-1 ms; -4 ms lies outside the timed passes (allocation, host work, "
+            "synchronisation); reading: contiguous layers");
+}
+
+// A difference smaller than the repetitions' spread is called a tie, whatever the verdict.
+TEST(Findings, DifferenceWithinTheSpreadIsATie) {
+  std::vector<Row> rows;
+  auto add = [&](int item, const std::string& params, const std::string& stat, double v) {
+    Row r = row(item, "dsm", params, "render_ms", v);
+    r.stat = stat;
+    rows.push_back(r);
+  };
+  add(0, "storage=chunked", "median", 3.00);
+  add(0, "storage=chunked", "min", 2.9);
+  add(0, "storage=chunked", "max", 3.1);
+  add(1, "storage=texture3d", "median", 3.01);
+  add(1, "storage=texture3d", "min", 2.9);
+  add(1, "storage=texture3d", "max", 3.1);
+  std::map<int, std::vector<const Row*>> items;
+  for (const Row& r : rows) items[r.item].push_back(&r);
+  const auto findings = nlohmann::json::parse(R"([
+    {"claim": "chunked renders faster", "lower": ["storage=chunked", "render_ms:median"],
+     "than": ["storage=texture3d", "render_ms:median"]}])");
+  const std::vector<FindingResult> r = evaluate_findings(findings, items);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].verdict, "confirmed");
+  EXPECT_NE(r[0].explanation.find("within the repetitions' spread (+-0.1): a tie"),
+            std::string::npos)
+      << r[0].explanation;
 }
 
 class PaperFindings : public test::HarnessTest {
@@ -112,7 +181,10 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
                                                    scene + R"(",
       "strategy": ["none", {"name": "dsm", "params": {"res": 32}}],
       "settings": {"width": 32, "height": 24, "probe_points": 20, "images": 0},
-      "paper": "tiny-table.json",
+      "paper": ["tiny-table.json",
+                {"table": "tiny-table.json", "where": "strategy=dsm",
+                 "rows": [["", "bytes"], null, ["", "bytes"], ["res=32", "stats.storage.max_layers"]],
+                 "columns": [""]}],
       "findings": [{"claim": "no shadows are cheaper than a DSM",
                     "lower": ["strategy=none", "bytes"], "than": ["strategy=dsm", "bytes"]},
                    {"claim": "a DSM errs more than no shadows",
@@ -134,6 +206,33 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
   EXPECT_NE(md.find("| not confirmed |"), std::string::npos) << md;  // none errs more
   EXPECT_NE(md.find("Pareto front on `"), std::string::npos) << md;
   EXPECT_NE(md.find("probe_error_all:mean vs bytes (2 of 2 points)"), std::string::npos) << md;
+  // The mapped copy shows ours beside each mapped paper value: the DSM's bytes and max layers.
+  std::map<std::string, double> ours;
+  for (const Row& row : read_rows_csv(r.folder + "/rows.csv"))
+    if (row.strategy == "dsm") ours[row.metric] = row.value;
+  auto text = [](double v) {  // the report's integers
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return std::string(buf);
+  };
+  EXPECT_NE(md.find("- cells: paper / ours"), std::string::npos) << md;
+  EXPECT_NE(md.find("| DSM generation [ours: bytes] | 11 / " + text(ours["bytes"]) + " |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| digits [ours: res=32 stats.storage.max_layers] | 160.533 / " +
+                    text(ours["stats.storage.max_layers"]) + " |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| range | 2–3 |"), std::string::npos) << md;  // unmapped: the paper alone
+  EXPECT_NE(md.find("| none [ours: bytes] | – |"), std::string::npos) << md;  // paper: nothing
+  // A map that does not fit the table is refused when the suite loads.
+  EXPECT_THROW(parse_suite(R"({"suite": "m", "experiments": [{"name": "e", "kind": "shadow",
+      "scene": "x.json", "strategy": "none",
+      "paper": [{"table": ")" + dir_.string() +
+                               R"(/tiny-table.json", "rows": [null],
+                 "columns": [""]}]}]})",
+                           "m.json"),
+               InputError);
   // The table lies under ours: the measured table comes first.
   EXPECT_LT(md.find("| strategy | params |"), md.find("Paper: **Tiny"));
 }
@@ -161,6 +260,24 @@ TEST_F(PaperFindings, SmokeFormMergesOverridesAndIsCheckedStrictly) {
   EXPECT_THROW(parse_suite(head + R"("findings": [{"claim": "x", "lower": ["a"]}]}]})", "s.json"),
                InputError);
   EXPECT_THROW(parse_suite(head + R"("pareto": {"error": "e"}}]})", "s.json"), InputError);
+}
+
+// Plots of experiments that did not run in a folder (--only, another shard) are left out
+// instead of failing the plot script (a log axis without positive values did).
+TEST_F(PaperFindings, PlotsSkipExperimentsNotRunHere) {
+  const std::string quad = test::source_dir() + "/scenes/seeds/buchacher-simple-quad.json";
+  const std::string suite = write("plots.json", R"({"suite": "plots", "repeat": 1, "experiments": [
+    {"name": "alpha", "kind": "voxelize", "scene": ")" +
+                                                    quad + R"(", "strategy": "sat",
+     "settings": {"res": "8x8x32"}, "plots": [{"type": "bar", "y": "voxelize_ms:median", "logx": true}]},
+    {"name": "beta", "kind": "voxelize", "scene": ")" +
+                                                    quad + R"(", "strategy": "sat",
+     "settings": {"res": "8x8x32"}, "plots": [{"type": "bar", "y": "filled", "logx": true}]}]})");
+  const SuiteOutcome r = run(suite, false, "beta");
+  ASSERT_EQ(r.exit_code, 0);
+  const std::string md = read(fs::path(r.folder) / "report.md");
+  EXPECT_EQ(md.find("the plot script failed"), std::string::npos) << md;
+  EXPECT_FALSE(fs::exists(fs::path(r.folder) / "plots" / "alpha_1.png"));
 }
 
 // The voxelize setting `bounds` places the grid as `deepvox voxelize --bounds`: the thesis's

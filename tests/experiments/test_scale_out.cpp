@@ -18,6 +18,7 @@
 #include "experiments/harness/runner.h"
 #include "experiments/harness/shard_plan.h"
 #include "experiments/harness/slurm.h"
+#include "experiments/harness/workers.h"
 #include "tests/support/paths.h"
 #include "tests/support/scratch_dir.h"
 
@@ -181,6 +182,18 @@ TEST_F(ScaleOut, ShardsUseAPreviousRunsTimingsAndMergeRefusesMixedPlans) {
   EXPECT_FALSE(meta["merged_from"][0]["run"]["host"].get<std::string>().empty());
   EXPECT_NE(read(fs::path(merged) / "report.md").find("- scale-out: 2 CPU workers on 1 host"),
             std::string::npos);
+}
+
+// The workers' cost source comes from the suite the caller loaded (workers.cpp loads the file
+// once): the suite file may be gone by then, and an explicit --costs is passed on as is.
+TEST_F(ScaleOut, CostSourceUsesTheLoadedSuiteWithoutReadingTheFile) {
+  const Suite suite = load_suite(suite_);
+  SuiteOptions o;
+  o.suite = (dir_ / "no-such-suite.json").string();
+  o.out = (dir_ / "out").string();
+  EXPECT_EQ(fixed_cost_source(o, suite), "estimate");
+  o.costs = "earlier/run";
+  EXPECT_EQ(fixed_cost_source(o, suite), "earlier/run");
 }
 
 TEST_F(ScaleOut, SlurmScriptsRunTheArrayAndTheMergeAfterAny) {

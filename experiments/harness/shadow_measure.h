@@ -1,0 +1,42 @@
+// The shadow measurements themselves, shared by the suite's `shadow` driver (which repeats them
+// after a warm-up and writes rows) and the Google Benchmark programs bench_dsm and
+// bench_renderer (which let the benchmark library repeat them), so no measurement exists in
+// two copies: a generation is a fresh method prepared for a camera, timed around prepare; a
+// frame is the raster renderer's binning plus fragment pass with that method's shadows.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "frame/raster_render.h"
+#include "strategies/shadow/shadow_method.h"
+
+namespace dv {
+
+struct TimedGeneration {
+  std::unique_ptr<ShadowMethod> method;
+  double milliseconds = 0.0;  // PassTimer around prepare (synchronised on CUDA)
+  nlohmann::json stats;       // the method's stats after prepare (per-pass times, storage)
+  // The method's own sum of its timed passes ("generation_ms", CUDA events per pass); 0 for
+  // methods that report none.
+  double pass_milliseconds() const;
+};
+
+// A fresh method `strategy` with `params` from the shadow registry, prepared on `data` (in the
+// memory of `backend`) for `camera`.
+TimedGeneration timed_generation(const std::string& strategy, const StrategyParams& params,
+                                 const SceneData& data, Backend backend, const Camera& camera);
+
+struct TimedFrame {
+  RasterRenderResult result;
+  double milliseconds = 0.0;  // raster_ms + fragment_ms
+};
+
+// One frame of the raster renderer with `method`'s shadows (prepared already, or by the
+// renderer on its first frame).
+TimedFrame timed_frame(Backend backend, const SceneData& data, const Camera& camera,
+                       ShadowMethod& method, const dvec3& background);
+
+}  // namespace dv
