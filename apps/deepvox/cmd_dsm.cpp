@@ -11,6 +11,7 @@
 #include "core/text.h"
 #include "experiments/harness/run_metadata.h"
 #include "io/dsm_export.h"
+#include "io/image.h"
 #include "io/layer_heatmap.h"
 #include "io/output_path.h"
 #include "load/scene_loader.h"

@@ -9,7 +9,9 @@ namespace {
 class ReferenceShadows final : public ShadowMethod {
  public:
   std::string name() const override { return "reference"; }
-  nlohmann::json params() const override {
+  nlohmann::json params() const override { return nlohmann::json::object(); }
+  // The oracle's fixed accuracy (compile-time constants, not parameters).
+  nlohmann::json stats() const override {
     return {{"tolerance", kOracleTolerance},
             {"end_tolerance", kOracleEndTolerance},
             {"max_volume_crossings", kMaxVolumeCrossings}};

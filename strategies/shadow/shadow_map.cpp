@@ -95,7 +95,7 @@ class ShadowMapMethod final : public ShadowMethod {
   std::string name() const override { return "shadowmap"; }
   nlohmann::json params() const override {
     nlohmann::json j = params_.json();
-    j["focus"] = focus_;
+    j["focus"] = focus_ ? 1 : 0;
     return j;
   }
   nlohmann::json stats() const override {
