@@ -73,4 +73,12 @@ void register_gl_voxelizers(Registry<Voxelizer>& registry) {
                make_atlas);
 }
 
+void install_gl_voxelizers() {
+  static const bool installed = [] {
+    register_gl_voxelizers(gl_voxelizer_registry());
+    return true;
+  }();
+  (void)installed;
+}
+
 }  // namespace dv::gl

@@ -10,5 +10,7 @@
 namespace dv::gl {
 
 void register_gl_voxelizers(Registry<Voxelizer>& registry);
+// Registers them into gl_voxelizer_registry() once per program; later calls do nothing.
+void install_gl_voxelizers();
 
 }  // namespace dv::gl

@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   dv::remember_command_line(argc, argv);
 #if DEEPVOX_WITH_GL
-  dv::gl::register_gl_voxelizers(dv::gl_voxelizer_registry());  // voxelize --backend gl
+  dv::gl::install_gl_voxelizers();  // voxelize --backend gl
 #endif
   std::map<std::string, dv::cli::Runner> runners;
   runners["probe"] = dv::cli::add_probe(app);

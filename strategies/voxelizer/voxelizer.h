@@ -72,7 +72,7 @@ Registry<Voxelizer>& voxelizer_registry();
 // The OpenGL implementations of registered methods, under the same names (`deepvox voxelize
 // --backend gl`). GL is not a Backend (execute.h: kernels run on CPU threads or CUDA): these
 // voxelizers support Backend::cpu only, meaning that their grids come back in host memory.
-// Empty unless the program called gl::register_gl_voxelizers (gl/gl_voxelizers.h).
+// Empty unless the program called gl::install_gl_voxelizers (gl/gl_voxelizers.h).
 Registry<Voxelizer>& gl_voxelizer_registry();
 
 }  // namespace dv

@@ -134,13 +134,13 @@ TEST_F(GlAtlas, BadInputAndEmptySoup) {
   EXPECT_THROW(gl::voxelize_atlas_gl(ball, spec, 0), InputError);
   EXPECT_THROW(gl::voxelize_atlas_gl(ball, spec, kMaxAtlasSide + 1), InputError);
   EXPECT_THROW(gl::voxelize_atlas_gl(ball, spec, 8), InputError);  // 1280 triangles, 64 texels
-  gl::register_gl_voxelizers(gl_voxelizer_registry());
+  gl::install_gl_voxelizers();
   EXPECT_THROW(gl_voxelizer_registry().create("atlas", StrategyParams::parse({"atlas=0"})),
                InputError);
 }
 
 TEST_F(GlAtlas, VoxelizeCommandRunsItWithBackendGl) {
-  gl::register_gl_voxelizers(gl_voxelizer_registry());
+  gl::install_gl_voxelizers();
   VoxelizeJob job;
   job.input = test::source_dir() + "/assets/meshes/stanford-bunny-lowres.obj";
   job.method = "atlas";

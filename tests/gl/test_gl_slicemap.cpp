@@ -81,7 +81,7 @@ TEST_F(GlSlicemap, LimitsAndDegenerateInput) {
 }
 
 TEST_F(GlSlicemap, VoxelizeCommandRunsItWithBackendGl) {
-  gl::register_gl_voxelizers(gl_voxelizer_registry());
+  gl::install_gl_voxelizers();
   VoxelizeJob job;
   job.input = test::source_dir() + "/assets/meshes/stanford-bunny-lowres.obj";
   job.method = "slicemap";
