@@ -35,6 +35,8 @@ enum DsmTexelFlag : uint32_t {
   kDsmWalkOverflow = 2u,     // the walk hit kMaxHitsPerPixel or kMaxInsideObjects, or a
                              // pre-filtering sub-ray overflowed its node array
   kDsmRecompressed = 4u,     // stored with a larger eps than asked (texture3d's policy)
+  kDsmNodesMerged = 8u,      // a fixed-node storage (beer, avsm) kept fewer nodes than the
+                             // function has: V' is within the record's error bound only
 };
 
 struct DsmTexel {

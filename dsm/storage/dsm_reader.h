@@ -7,6 +7,8 @@
 #include <cstdint>
 
 #include "core/hd.h"
+#include "dsm/storage/avsm_device.h"
+#include "dsm/storage/beer_device.h"
 #include "dsm/storage/blocked_device.h"
 #include "dsm/storage/chunked_device.h"
 #include "dsm/storage/compact_device.h"
@@ -14,7 +16,7 @@
 
 namespace dv {
 
-enum class DsmReaderKind : uint8_t { compact, texture3d, chunked, blocked };
+enum class DsmReaderKind : uint8_t { compact, texture3d, chunked, blocked, beer, avsm };
 
 struct DsmReader {
   DsmReaderKind kind = DsmReaderKind::compact;
@@ -22,6 +24,8 @@ struct DsmReader {
   Texture3dReader texture3d{};
   ChunkedReader chunked{};
   BlockedReader blocked{};
+  BeerReader beer{};
+  AvsmReader avsm{};
 
   // V'(z) of texel `texel`; `hint` carries coherent-search state between lookups of one ray
   // (start it at -1).
@@ -33,6 +37,10 @@ struct DsmReader {
         return chunked.visibility(texel, z, hint);
       case DsmReaderKind::blocked:
         return blocked.visibility(texel, z, hint);
+      case DsmReaderKind::beer:
+        return beer.visibility(texel, z, hint);
+      case DsmReaderKind::avsm:
+        return avsm.visibility(texel, z, hint);
       default:
         return compact.visibility(texel, z, hint);
     }

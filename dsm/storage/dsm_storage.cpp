@@ -21,7 +21,7 @@ nlohmann::json dsm_figures(const DsmStorage& storage, const std::vector<DsmTexel
     max_layers = std::max<int64_t>(max_layers, r.stored);
     non_empty += r.stored > 0;
     max_error = std::max<double>(max_error, r.error);
-    if (r.flags & (kDsmStorageOverflow | kDsmRecompressed)) {
+    if (r.flags & (kDsmStorageOverflow | kDsmRecompressed | kDsmNodesMerged)) {
       ++overflowed;
       max_overflow_error = std::max<double>(max_overflow_error, r.error);
     }

@@ -1,4 +1,5 @@
-// Host side of the deep-shadow-map storage family (texture3d, chunked, blocked, compact). A
+// Host side of the deep-shadow-map storage family (texture3d, chunked, blocked, compact; beer and
+// avsm, the fixed-size approximations engines ship). A
 // storage strategy is a sink the generation walk writes nodes into as it goes (per texel: begin,
 // push node, end), with an optional counting pass before; its generation time includes these
 // writes, which is where the strategies differ. It then answers lookups through a DsmReader
@@ -76,8 +77,9 @@ class DsmStorage {
 Registry<DsmStorage>& storage_registry();
 
 // Figures shared by all strategies, from the host copy of the per-texel records: bytes allocated,
-// bytes holding nodes, nodes, mean and max layers per texel, overflowed texels and the largest
-// error they reached, recompressed texels, walk overflows.
+// bytes holding nodes, nodes, mean and max layers per texel, overflowed texels (with those a
+// fixed-node storage approximated) and the largest error they reached, recompressed texels,
+// walk overflows.
 nlohmann::json dsm_figures(const DsmStorage& storage, const std::vector<DsmTexelRecord>& records);
 
 }  // namespace dv

@@ -7,11 +7,13 @@ void register_compact_storage(Registry<DsmStorage>& registry);
 void register_texture3d_storage(Registry<DsmStorage>& registry);
 void register_chunked_storage(Registry<DsmStorage>& registry);
 void register_blocked_storage(Registry<DsmStorage>& registry);
+void register_beer_storage(Registry<DsmStorage>& registry);
+void register_avsm_storage(Registry<DsmStorage>& registry);
 
 Registry<DsmStorage>& storage_registry() {
-  static Registry<DsmStorage> registry =
-      make_registry<DsmStorage>("storage", {register_compact_storage, register_texture3d_storage,
-                                            register_chunked_storage, register_blocked_storage});
+  static Registry<DsmStorage> registry = make_registry<DsmStorage>(
+      "storage", {register_compact_storage, register_texture3d_storage, register_chunked_storage,
+                  register_blocked_storage, register_beer_storage, register_avsm_storage});
   return registry;
 }
 
