@@ -10,6 +10,7 @@
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
+#include "cuda/kernel_timing.h"
 #include "experiments/harness/run_metadata.h"
 #include "frame/raster_render.h"
 #include "frame/reference_render.h"
@@ -132,6 +133,7 @@ Runner add_render(CLI::App& app) {
         exit_code = 3;
       }
       stats["shadows"]["stats"] = method->stats();
+      if (kernel_timing_enabled()) stats["kernels"] = kernel_timings_json();
       if (!opt->stats.empty()) {  // rewrite after every frame: nothing computed is lost
         std::ofstream out(opt->stats);
         if (!out) throw InputError(opt->stats, "cannot write stats file");

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "cuda/execute.h"
+#include "cuda/kernel_timing.h"
 #include "io/binvox.h"
 #include "io/output_path.h"
 #include "load/scene_loader.h"
@@ -79,6 +80,7 @@ nlohmann::json run_voxelize_job(const VoxelizeJob& job, const nlohmann::json& me
                           {"total_ms", result.total_milliseconds()},
                           {"counters", result.counters}};
   if (!meta.empty()) stats["meta"] = meta;
+  if (kernel_timing_enabled()) stats["kernels"] = kernel_timings_json();
   if (job.compare_exact) {
     const ExactVoxelization exact = voxelize_exact(soup, spec, true);
     stats["exact"] = {{"ms", exact.milliseconds},

@@ -10,6 +10,7 @@
 #include "cuda/buffer.h"
 #include "cuda/device_memory.h"
 #include "cuda/execute.h"
+#include "cuda/kernel_timing.h"
 
 namespace dv {
 namespace {
@@ -98,6 +99,32 @@ TEST(Backends, CudaSmoke) {
   std::vector<float> v(4096, 2.5f);
   Buffer<float> d(Memory::device, v, "device buffer");
   EXPECT_EQ(d.to_vector(), v);
+}
+
+// Kernel timing on: every launch is counted under its name with the block size the occupancy
+// calculator chose (a multiple of the warp, at most 1024) and a positive time; off: nothing.
+TEST(Backends, KernelTimingCountsLaunchesByName) {
+  std::string why;
+  if (!cuda_device_available(&why)) GTEST_SKIP() << "kernel timing needs a GPU: " << why;
+  std::vector<int64_t> values;
+  unsigned long long visits = 0;
+  reset_kernel_timings();
+  set_kernel_timing(false);
+  square_plus_one(Backend::cuda, 1000, values, visits);
+  EXPECT_TRUE(kernel_timings().empty());
+  set_kernel_timing(true);
+  square_plus_one(Backend::cuda, 1 << 16, values, visits);
+  square_plus_one(Backend::cuda, 1 << 16, values, visits);
+  set_kernel_timing(false);
+  const std::vector<KernelTiming> timings = kernel_timings();
+  ASSERT_EQ(timings.size(), 1u);
+  EXPECT_EQ(timings[0].name, "square_plus_one");
+  EXPECT_EQ(timings[0].launches, 2);
+  EXPECT_GT(timings[0].milliseconds, 0.0);
+  EXPECT_EQ(timings[0].block_size % 32, 0);
+  EXPECT_GE(timings[0].block_size, 32);
+  EXPECT_LE(timings[0].block_size, 1024);
+  EXPECT_EQ(visits, 1ull << 16);
 }
 
 TEST(Backends, BackendNamesAndAvailability) {
