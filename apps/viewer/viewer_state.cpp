@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -252,7 +253,10 @@ bool ViewerState::update(bool coarse) {
 // |T' - T| at each pixel's visible surface point (viewer_error_view.h) as a colour map from
 // 0 to the frame's maximum, in place of the image.
 void ViewerState::render_error_view(const Camera& cam) {
+  const auto start = std::chrono::steady_clock::now();
   error_ = transmittance_error(backend_, *data_, cam, *method_);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   display_ = error_image(error_);
   if (legend_.width == 0) legend_ = error_legend_bar(128, 10);
   stats_["error_view"] = {{"kind", "mean over lights of |T - T_oracle| at the visible surface"},
@@ -260,7 +264,8 @@ void ViewerState::render_error_view(const Camera& cam) {
                           {"mean", error_.mean},
                           {"pixels", error_.pixels},
                           {"lights", error_.lights},
-                          {"oracle_flags", error_.oracle_flags}};
+                          {"oracle_flags", error_.oracle_flags},
+                          {"milliseconds", ms}};
 }
 
 // The layers per texel of the maps the method itself generated for the frame shown (built
