@@ -72,7 +72,7 @@ TEST(SuiteFile, SweepIsTheCartesianProductLastKeyFastest) {
 
 TEST(SuiteFile, BadFilesNameTheFileAndTheProblem) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"{", "not valid JSON"},
+      {"{", "malformed JSON"},
       {"[]", "one JSON object"},
       {R"({"experiments": []})", "suite"},
       {R"({"suite": "x", "experiments": []})", "at least one experiment"},
