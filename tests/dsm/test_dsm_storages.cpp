@@ -36,21 +36,8 @@ Generated generate(const Scene& scene, Backend backend, const std::string& stora
   return g;
 }
 
-// Visibility of every texel at a set of depths through the storage's reader, on the host.
 std::vector<float> sample_lookups(const Generated& g, Backend backend) {
-  const DsmSource source = g.maps->source();
-  const int64_t texels = int64_t(g.maps->records().size());
-  const int depths = 24;
-  Buffer<float> out(memory_of(backend), texels * depths, "lookups");
-  const View<float> o = out.view();
-  const double far = 2.0 * g.data->view().diagonal;
-  parallel_for(
-      backend, "test_dsm_lookups", texels * depths, DV_KERNEL_LAMBDA(int64_t i) {
-        int hint = -1;
-        const float z = float(far * double(i % depths) / depths);
-        o[i] = source.reader.visibility(i / depths, z, hint);
-      });
-  return out.to_vector();
+  return test::texel_lookups(*g.maps, *g.data, backend);
 }
 
 void expect_same_lookups(const Generated& a, const Generated& b, Backend backend) {
