@@ -1,21 +1,21 @@
 #!/usr/bin/env bash
 # Builds the `asan` preset (build-asan/: Debug -O1, CPU only, AddressSanitizer + UBSan, every
-# report fatal) and runs CPU tests under it: by default the hard cases (`-L hard`, which hold
-# the loaders' bad-input tests, the malformed-file corpus and the fuzz regression inputs) and
-# the loader and core suites (SANITIZE_LABELS, a ctest label regex; "." runs everything).
-# Extra arguments go to ctest. .ci/run calls it after scripts/test.sh.
+# report fatal) and runs CPU tests under it. SANITIZE_LABELS is a ctest label regex: by default
+# the loader suites (test_meshes: OBJ/OFF/PLY/STL, test_gltf: glTF/glb, test_volumes: raw
+# volumes and generators), which need only deepvox_core and deepvox_assets, so CI builds little;
+# SANITIZE_LABELS=hard adds the hard cases of every area (the bad-input corpus through the
+# CLI, the fuzz regression inputs; builds the whole library), "." runs everything. Extra
+# arguments go to ctest. .ci/run calls it after scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-labels=${SANITIZE_LABELS:-hard|test_meshes|test_gltf|test_volumes|test_core|test_fuzz_replay}
+labels=${SANITIZE_LABELS:-test_meshes|test_gltf|test_volumes}
 jobs=${DEEPVOX_JOBS:-$(nproc)}
 cmake --preset asan > /dev/null
-if [ "$labels" = "." ]; then
-  cmake --build build-asan -j "$jobs"
+if [ "$labels" = "test_meshes|test_gltf|test_volumes" ]; then
+  cmake --build build-asan -j "$jobs" --target test_meshes test_gltf test_volumes
 else
-  # Only the executables whose tests carry a selected label (plus deepvox for the CLI tests).
-  cmake --build build-asan -j "$jobs" --target deepvox test_hard test_cli test_meshes test_gltf \
-    test_volumes test_core test_fuzz_replay test_dsm test_raster test_oracle test_render test_voxel
+  cmake --build build-asan -j "$jobs"
 fi
 # Leaks are reported too; UBSan prints the stack and stops at the first report.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}
