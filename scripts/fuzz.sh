@@ -35,9 +35,9 @@ status=0
 for i in "${!targets[@]}"; do
   wait "${pids[$i]}" || status=1
   t=${targets[$i]}
-  runs=$(grep -ao '^#[0-9]*' "out/fuzz/$t/fuzz.log" | tail -n 1 | tr -d '#')
-  crashes=$(find "out/fuzz/$t" -maxdepth 1 -name 'crash-*' -o -maxdepth 1 -name 'leak-*' \
-    -o -maxdepth 1 -name 'timeout-*' -o -maxdepth 1 -name 'oom-*' | wc -l)
-  echo "fuzz_$t: ${seconds}s x $jobs, $runs inputs run, corpus $(ls "out/fuzz/$t/corpus" | wc -l) new, $crashes findings"
+  runs=$(grep -ao '^#[0-9]*' "out/fuzz/$t/fuzz.log" | tail -n 1 | tr -d '#' || true)
+  crashes=$(find "out/fuzz/$t" -maxdepth 1 \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' \
+    -o -name 'oom-*' \) | wc -l)
+  echo "fuzz_$t: ${seconds}s x $jobs, ${runs:-0} inputs run, corpus $(ls "out/fuzz/$t/corpus" | wc -l) new, $crashes findings"
 done
 exit $status
