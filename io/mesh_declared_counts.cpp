@@ -106,7 +106,8 @@ uint64_t read_unsigned(const char* p, int size, bool big_endian) {
   return v;
 }
 
-// PLY: the header's elements and properties, then every element walked through the data:
+// PLY: the header's elements and properties (each property after an element), then every
+// element walked through the data:
 // element counts and list lengths may not run past the end of the file.
 void check_ply(const std::string& path, const std::string& text) {
   std::istringstream in(text);
@@ -120,6 +121,9 @@ void check_ply(const std::string& path, const std::string& text) {
       break;
     }
     if (w.size() >= 2 && w[0] == "format") format = w[1];
+    // CGAL's reader adds a property to its last element without checking there is one.
+    if (!w.empty() && w[0] == "property" && elements.empty())
+      throw InputError(path, "a 'property' line comes before any 'element' line");
     if (w.size() >= 3 && w[0] == "element") elements.push_back({w[1], count_of(w[2]), {}});
     if (w.size() >= 3 && w[0] == "property" && !elements.empty()) {
       PlyProperty p;

@@ -9,7 +9,9 @@
 namespace dv {
 
 // Throws InputError(path, ...) naming the element, the declared count and what the file holds
-// when an OFF face or a PLY element or list declares more than the rest of the file can hold.
+// when an OFF face or a PLY element or list declares more than the rest of the file can hold,
+// or a PLY property comes before any element (CGAL's reader would index an empty list; found
+// by fuzz_mesh).
 // Other formats, binary OFF and well-formed files pass unchanged.
 void check_mesh_declared_counts(const std::string& path, const std::string& extension);
 
