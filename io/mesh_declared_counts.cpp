@@ -164,7 +164,10 @@ void check_ply(const std::string& path, const std::string& text) {
     return;
   }
   const bool big_endian = format == "binary_big_endian";
-  if (!big_endian && format != "binary_little_endian") return;
+  if (!big_endian && format != "binary_little_endian")  // CGAL's reader then guesses binary
+    throw InputError(path,
+                     "the PLY header names no known format (ascii, binary_little_endian, "
+                     "binary_big_endian)");
   size_t at = data_start;
   for (const PlyElement& e : elements) {
     if (e.count < 0 || e.properties.empty()) continue;
