@@ -132,6 +132,8 @@ void check_ply(const std::string& path, const std::string& text) {
       } else {
         p.item_size = ply_type_size(w[1]);
       }
+      if (p.item_size == 0 || (p.list && p.count_size == 0))  // CGAL's reader guesses on
+        throw InputError(path, "PLY property line '" + line + "' has an unknown type");
       elements.back().properties.push_back(p);
     }
   }
@@ -173,7 +175,6 @@ void check_ply(const std::string& path, const std::string& text) {
     if (e.count < 0 || e.properties.empty()) continue;
     for (long long i = 0; i < e.count; ++i)
       for (const PlyProperty& p : e.properties) {
-        if (p.item_size == 0 || (p.list && p.count_size == 0)) return;  // unknown type: CGAL
         if (!p.list) {
           if (p.item_size > (long long)(text.size() - at)) too_long(e, i, "its data");
           at += size_t(p.item_size);

@@ -11,7 +11,8 @@ namespace dv {
 // Throws InputError(path, ...) naming the element, the declared count and what the file holds
 // when an OFF face or a PLY element or list declares more than the rest of the file can hold,
 // a PLY property comes before any element (CGAL's reader would index an empty list) or the
-// header names no known format (CGAL's reader reads it as binary; both found by fuzz_mesh).
+// header names no known format or a property an unknown type (CGAL's reader reads on and
+// sizes lists from garbage; found by fuzz_mesh).
 // Other formats, binary OFF and well-formed files pass unchanged.
 void check_mesh_declared_counts(const std::string& path, const std::string& extension);
 
