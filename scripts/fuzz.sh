@@ -35,7 +35,7 @@ status=0
 for i in "${!targets[@]}"; do
   wait "${pids[$i]}" || status=1
   t=${targets[$i]}
-  runs=$(grep -ao '^#[0-9]*' "out/fuzz/$t/fuzz.log" | tail -n 1 | tr -d '#' || true)
+  runs=$(grep -ao '^#[0-9][0-9]*' "out/fuzz/$t/fuzz.log" | tail -n 1 | tr -d '#' || true)
   crashes=$(find "out/fuzz/$t" -maxdepth 1 \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' \
     -o -name 'oom-*' \) | wc -l)
   echo "fuzz_$t: ${seconds}s x $jobs, ${runs:-0} inputs run, corpus $(ls "out/fuzz/$t/corpus" | wc -l) new, $crashes findings"
