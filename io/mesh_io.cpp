@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "generators/mesh_topology.h"
+#include "io/mesh_declared_counts.h"
 
 namespace dv {
 namespace {
@@ -114,6 +115,7 @@ TriangleMesh load_mesh_file(const std::string& path) {
                                "' (supported: " + supported_list() + ")");
   }
   check_file_readable(path);
+  check_mesh_declared_counts(path, ext);
 
   std::vector<Point> points;
   std::vector<std::vector<size_t>> polygons;
