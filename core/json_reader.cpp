@@ -3,7 +3,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <vector>
 
 #include "core/error.h"
 
@@ -121,16 +123,31 @@ void JsonReader::finish() const {
   if (!unknown.empty()) throw InputError(where(), "unknown key(s) " + unknown);
 }
 
+Json parse_json_text(const std::string& text, const std::string& path) {
+  // The keys seen in each object being parsed: a key given twice is an error (the parser would
+  // keep the last one silently, like a typo falling back to a default).
+  std::vector<std::set<std::string>> open_objects;
+  const Json::parser_callback_t reject_duplicate_keys = [&](int, Json::parse_event_t event,
+                                                            Json& parsed) {
+    if (event == Json::parse_event_t::object_start) open_objects.emplace_back();
+    if (event == Json::parse_event_t::object_end) open_objects.pop_back();
+    if (event == Json::parse_event_t::key && !open_objects.back().insert(parsed).second)
+      throw InputError(path, "malformed JSON: key " + parsed.dump() + " given twice in one object");
+    return true;
+  };
+  try {
+    return Json::parse(text, reject_duplicate_keys);
+  } catch (const Json::exception& e) {  // syntax errors, numbers out of range
+    throw InputError(path, std::string("malformed JSON: ") + e.what());
+  }
+}
+
 Json parse_json_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open file");
   std::stringstream text;
   text << in.rdbuf();
-  try {
-    return Json::parse(text.str());
-  } catch (const Json::parse_error& e) {
-    throw InputError(path, std::string("malformed JSON: ") + e.what());
-  }
+  return parse_json_text(text.str(), path);
 }
 
 }  // namespace dv

@@ -54,7 +54,10 @@ class JsonReader {
   mutable std::set<std::string> read_;
 };
 
-// Parses a file as JSON; errors name the file and the line/column of the syntax error.
+// Parses JSON text read from `path`: errors (syntax, numbers out of range, a key given twice in
+// one object) are InputErrors naming the file and the line/column of a syntax error.
+Json parse_json_text(const std::string& text, const std::string& path);
+// Reads a file and parses it with parse_json_text.
 Json parse_json_file(const std::string& path);
 
 }  // namespace dv

@@ -83,11 +83,20 @@ struct DsmSource {
   DV_HD double face_visibility(const ShadowFace& f, const FacePoint& fp, const ShadowReceiver& r,
                                int* hint) const {
     const float z = float(receiver_depth(f, r, fp.depth, bias, slope_bias, bilinear ? 1.0 : 0.5));
-    if (!bilinear)
-      return texel_visibility(f, int(floor(fp.u + 0.5)), int(floor(fp.v + 0.5)), z, hint[0]);
-    const double fx = floor(fp.u), fy = floor(fp.v);
+    // A point beyond the face's texels is lit. One on them is looked up with its coordinates
+    // clamped to the texel centres (clamp to edge): a point on the face's outer edge (an omni
+    // seam, where face_of's tie picks this face) would otherwise round to the texel beyond it,
+    // and in the outer half of a border texel the bilinear filter would blend in that texel's
+    // lit value 1: light leaking along every omni seam and at the spot cone's edge. The edge
+    // takes 1e-6 texels of slack for the projection's rounding of points on a seam.
+    const double lo = -0.5 - 1e-6, hi = resolution - 0.5 + 1e-6;
+    if (!(fp.u >= lo && fp.u <= hi && fp.v >= lo && fp.v <= hi)) return 1.0;
+    const double u = clamp_value(fp.u, 0.0, resolution - 1.0);
+    const double v = clamp_value(fp.v, 0.0, resolution - 1.0);
+    if (!bilinear) return texel_visibility(f, int(floor(u + 0.5)), int(floor(v + 0.5)), z, hint[0]);
+    const double fx = floor(u), fy = floor(v);
     const int x = int(fx), y = int(fy);
-    const double wx = fp.u - fx, wy = fp.v - fy;
+    const double wx = u - fx, wy = v - fy;
     const double v00 = texel_visibility(f, x, y, z, hint[0]);
     const double v10 = texel_visibility(f, x + 1, y, z, hint[1]);
     const double v01 = texel_visibility(f, x, y + 1, z, hint[2]);

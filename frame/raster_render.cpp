@@ -86,6 +86,7 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   result.render.milliseconds = total.stop();
   result.render.image = Image(projection.width, projection.height);
   result.render.image.rgb = rgb.to_vector();
+  if (backend == Backend::cuda) result.device_rgb = std::move(rgb);
   result.render.counters = counters.to_vector()[0];
   return result;
 }

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cuda/buffer.h"
 #include "cuda/execute.h"
 #include "frame/reference_render.h"
 #include "renderer/raster/tile_raster.h"
@@ -19,6 +20,9 @@ struct RasterRenderResult {
   RasterStats raster;        // triangles, clipping, tile entries, overflow
   double raster_ms = 0.0;    // binning into tile lists
   double fragment_ms = 0.0;  // per-pixel gather, sort, walk and shading
+  // CUDA: the image still in device memory (linear rgb, as render.image.rgb), for display
+  // without a host round trip (the viewer's CUDA-GL interop); empty on the CPU.
+  Buffer<float> device_rgb;
   nlohmann::json stats() const;
 };
 

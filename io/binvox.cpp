@@ -119,6 +119,17 @@ BinvoxFile read_binvox(const std::string& path) {
   if (res.z % 32 != 0)
     throw InputError(path, "binvox z size " + std::to_string(res.z) +
                                " is not a multiple of 32 (the voxel grid packs 32 slices a word)");
+  // Each run of two bytes holds at most 255 voxels: a header declaring more voxels than the
+  // data can hold is rejected before the grid (up to 2 GiB) is allocated.
+  const int64_t total = int64_t(res.x) * res.y * res.z;
+  const std::streamoff data_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const int64_t data_bytes = int64_t(in.tellg() - data_start);
+  in.seekg(data_start);
+  if (data_bytes / 2 < (total + 254) / 255)
+    throw InputError(path, "binvox dims declare " + std::to_string(total) + " voxels, but " +
+                               std::to_string(data_bytes) + " bytes of runs hold at most " +
+                               std::to_string(data_bytes / 2 * 255));
   const double unit = file.scale / std::max({res.x, res.y, res.z});
   Aabb bounds;
   bounds.lo = file.translate;
@@ -126,7 +137,6 @@ BinvoxFile read_binvox(const std::string& path) {
   file.grid = VoxelGrid(make_box_grid(res, bounds, path), Memory::host);
 
   const VoxelGridView view = file.grid.view();
-  const int64_t total = int64_t(res.x) * res.y * res.z;
   int64_t index = 0;
   char pair[2];
   while (in.read(pair, 2)) {

@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
+#include "io/mesh_declared_counts.h"
 #include "scene/mesh_topology.h"
 
 namespace dv {
@@ -114,6 +115,7 @@ TriangleMesh load_mesh_file(const std::string& path) {
                                "' (supported: " + supported_list() + ")");
   }
   check_file_readable(path);
+  check_mesh_declared_counts(path, ext);
 
   std::vector<Point> points;
   std::vector<std::vector<size_t>> polygons;

@@ -1,25 +1,11 @@
 // Exposure and tone curves for 8-bit output (see tone_mapping.h).
 #include "io/tone_mapping.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
 
 namespace dv {
-
-double apply_tone_curve(ToneCurve curve, double x) {
-  x = std::max(x, 0.0);
-  switch (curve) {
-    case ToneCurve::none:
-      return x;
-    case ToneCurve::reinhard:
-      return x / (1.0 + x);
-    case ToneCurve::aces:
-      return std::clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-  }
-  return x;
-}
 
 ToneCurve parse_tone_curve(const std::string& name) {
   if (name == "none") return ToneCurve::none;

@@ -125,6 +125,10 @@ Model parse_model(const std::string& path) {
   }
   warn_lines(path, warn);
   warn_lines(path, err);
+  // glTF 2.0 only: a later major version may change what the same keys mean.
+  const std::string& version = model.asset.version;
+  if (version.substr(0, 2) != "2." && version != "2")
+    throw InputError(path, "glTF asset version '" + version + "', but only 2.x is read");
   return model;
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs on a GPU node from the repository root, with a CUDA build's bin/ carried along: the
-# CUDA smoke test, CPU/CUDA parity, the oracle, raster, render, voxel and DSM tests, renders of the
+# CUDA smoke test, CPU/CUDA parity, the oracle, raster, render, voxel and DSM tests, the hard
+# cases of issue 14 (test_hard: CUDA runs of the hard cases and determinism), renders of the
 # committed scenes on both backends, and the benchmarks. Logs and outputs are packed into
 # $OUT/gpu-check.tar.gz (the device tool returns few files); the summary goes to stdout.
 # Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]; SECTIONS="tests renders benches suites" (the
@@ -22,7 +23,7 @@ has() { [[ " $sections " == *" $1 "* ]]; }
 # Packs what exists so far: a run cut short by the device's time limit still returns its logs.
 pack() { mkdir -p "$out" && tar -czf "$out/gpu-check.tar.gz" -C "$work" .; }
 limit=${STEP_TIMEOUT:-240}  # seconds per test binary, benchmark or experiment
-has tests && for t in test_core test_render test_oracle test_raster test_voxel test_dsm; do
+has tests && for t in test_core test_render test_oracle test_raster test_voxel test_dsm test_hard; do
   [ -x "$build/bin/$t" ] || continue
   timeout "$limit" "$build/bin/$t" --gtest_output="json:$work/$t.json" > "$work/$t.log" 2>&1 ||
     status=1

@@ -2,7 +2,8 @@
 # Installs the Debian packages deepvox builds against, only those missing (Debian 12).
 # Needs root or sudo when something is missing; prints what it installs. openimageio-tools is
 # listed because Debian's OpenImageIOTargets.cmake checks that /usr/bin/iconvert exists: without
-# it the CMake configure step fails (libopenimageio-dev only recommends it).
+# it the CMake configure step fails (libopenimageio-dev only recommends it). clang and
+# libclang-rt-dev (libFuzzer, the sanitizer runtimes) build the fuzz targets (scripts/fuzz.sh).
 set -euo pipefail
 
 packages=(
@@ -13,6 +14,7 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0
   xvfb xauth libglx-mesa0
   python3-matplotlib
+  clang libclang-rt-dev
 )
 
 missing=()

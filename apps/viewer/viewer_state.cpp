@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "io/dsm_export.h"
 #include "io/layer_heatmap.h"
 #include "load/scene_loader.h"
+#include "renderer/raster/raster_projection.h"
 #include "scene/default_staging.h"
 #include "scene/scene_view.h"
 #include "strategies/shadow/shadow_method.h"
@@ -46,12 +48,6 @@ std::string float_text(float value) {
   return std::string(text, end);
 }
 
-// Black - red - yellow - white for t in [0, 1]: the error view's scale.
-dvec3 heat(double t) {
-  t = std::clamp(t, 0.0, 1.0) * 3.0;
-  return {std::min(t, 1.0), std::clamp(t - 1.0, 0.0, 1.0), std::clamp(t - 2.0, 0.0, 1.0)};
-}
-
 // A JSON value for the panel: numbers with 4 significant digits, strings unquoted.
 std::string short_text(const nlohmann::json& value) {
   if (value.is_string()) return value.get<std::string>();
@@ -59,10 +55,6 @@ std::string short_text(const nlohmann::json& value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value.get<double>());
   return text;
-}
-
-double luminance(const dvec3& c) {
-  return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
 
 std::vector<unsigned char> srgb_bytes(const Image& image) {
@@ -95,7 +87,7 @@ bool ViewerState::try_shadows(const cli::ShadowOptions& options) {
   try {
     method_ = cli::make_shadow_method(options);
     shadows_ = options;
-    dirty_ = heat_stale_ = true;
+    dirty_ = heat_stale_ = grid_stale_ = true;
     return true;
   } catch (const InputError& e) {
     message_ = e.what();
@@ -113,7 +105,7 @@ void ViewerState::set_backend(Backend backend) {
   data_ = std::make_unique<SceneData>(scene_, memory_of(backend));
   backend_ = backend;
   method_ = cli::make_shadow_method(shadows_);  // fresh maps for the new backend's memory
-  dirty_ = heat_stale_ = true;
+  dirty_ = heat_stale_ = grid_stale_ = true;
 }
 
 KeyAction ViewerState::key(const std::string& name) {
@@ -172,6 +164,9 @@ KeyAction ViewerState::key(const std::string& name) {
   } else if (name == "E") {
     error_view_ = !error_view_;
     dirty_ = true;
+  } else if (name == "G") {
+    grid_on_ = !grid_on_;
+    grid_stale_ = true;
   } else if (name == "P") {
     panel_ = !panel_;
   } else if (name == "F1") {
@@ -211,6 +206,7 @@ bool ViewerState::update(bool coarse) {
     heat_stale_ = false;
     build_heatmap();
   }
+  if (grid_on_ && grid_stale_ && !dirty_) build_voxel_points();  // grids of the frame shown
   if (!dirty_ && !(coarse_shown_ && !coarse)) return false;
   dirty_ = false;
   coarse_shown_ = coarse;
@@ -234,45 +230,42 @@ bool ViewerState::update(bool coarse) {
                                    std::min(x / step, cam.width - 1)) *
                                       3 +
                                   c];
+    device_image_ = Buffer<float>();
   } else {
     slow_ = rr.render.milliseconds > 100.0;
     image_ = std::move(rr.render.image);
+    device_image_ = std::move(rr.device_rgb);
   }
   display_ = apply_display_transform(image_, transform_);
-  if (error_view_ && !coarse) render_error_view();
+  error_ = TransmittanceError();
+  if (error_view_ && !coarse) render_error_view(cam);
   bytes_ = srgb_bytes(display_);
   ++renders_;
-  heat_stale_ = true;
+  heat_stale_ = grid_stale_ = true;  // the method may have built its maps and grids just now
   if (heatmap_on_) {
     heat_stale_ = false;
     build_heatmap();
   }
+  if (grid_on_) build_voxel_points();
   return true;
 }
 
-// Labelled "image difference vs reference": |luminance(method) - luminance(reference)| of the
-// displayed images per pixel, scaled to its maximum (not the per-sample |T' - T| of probe).
-void ViewerState::render_error_view() {
-  auto reference = shadow_registry().create("reference");
-  const Camera cam = moved_camera(camera_, move_);
-  const Image ref = apply_display_transform(
-      render_raster(backend_, *data_, cam, *reference, scene_.background).render.image, transform_);
-  double max_error = 0.0;
-  std::vector<double> error(size_t(ref.width) * ref.height);
-  for (int y = 0; y < ref.height; ++y)
-    for (int x = 0; x < ref.width; ++x) {
-      const double e = std::abs(luminance(glm::clamp(display_.at(x, y), 0.0, 1.0)) -
-                                luminance(glm::clamp(ref.at(x, y), 0.0, 1.0)));
-      error[size_t(y) * ref.width + x] = e;
-      max_error = std::max(max_error, e);
-    }
-  for (size_t i = 0; i < error.size(); ++i) {
-    const dvec3 c = heat(max_error > 0.0 ? error[i] / max_error : 0.0);
-    display_.rgb[i * 3] = float(c.x);
-    display_.rgb[i * 3 + 1] = float(c.y);
-    display_.rgb[i * 3 + 2] = float(c.z);
-  }
-  stats_["error_view"] = {{"kind", "image luminance difference vs reference"}, {"max", max_error}};
+// |T' - T| at each pixel's visible surface point (viewer_error_view.h) as a colour map from
+// 0 to the frame's maximum, in place of the image.
+void ViewerState::render_error_view(const Camera& cam) {
+  const auto start = std::chrono::steady_clock::now();
+  error_ = transmittance_error(backend_, *data_, cam, *method_);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  display_ = error_image(error_);
+  if (legend_.width == 0) legend_ = error_legend_bar(128, 10);
+  stats_["error_view"] = {{"kind", "mean over lights of |T - T_oracle| at the visible surface"},
+                          {"max", error_.max},
+                          {"mean", error_.mean},
+                          {"pixels", error_.pixels},
+                          {"lights", error_.lights},
+                          {"oracle_flags", error_.oracle_flags},
+                          {"milliseconds", ms}};
 }
 
 // The layers per texel of the maps the method itself generated for the frame shown (built
@@ -290,6 +283,37 @@ void ViewerState::build_heatmap() {
 
 const Image* ViewerState::heatmap() const {
   return heatmap_on_ && heatmap_.width > 0 ? &heatmap_ : nullptr;
+}
+
+// The set voxels of the grids the method built for the frame shown (none before its first
+// frame); the stats say how many.
+void ViewerState::build_voxel_points() {
+  grid_stale_ = false;
+  voxels_ = VoxelPoints();
+  ++voxel_version_;
+  const std::vector<VoxelGrid>* grids = method_->voxel_grids();
+  if (!grids) {
+    message_ = "voxel grid: " + method_->name() + " has no voxel grids";
+    return;
+  }
+  if (grids->empty()) message_ = "voxel grid: no translucent casters, the grids are empty";
+  for (const VoxelGrid& grid : *grids) add_set_voxels(grid, voxels_);
+}
+
+const VoxelPoints* ViewerState::voxel_points() const {
+  return grid_on_ && voxels_.grids > 0 ? &voxels_ : nullptr;
+}
+
+const TransmittanceError* ViewerState::error_view() const {
+  return error_view_ && error_.width > 0 ? &error_ : nullptr;
+}
+
+dmat4 ViewerState::world_to_clip() const {
+  return make_camera_projection(moved_camera(camera_, move_), data_->view().bounds).world_to_clip;
+}
+
+const float* ViewerState::device_display() const {
+  return device_image_.size() > 0 && !error_view() ? device_image_.data() : nullptr;
 }
 
 std::string ViewerState::panel_text() const {
@@ -316,9 +340,12 @@ std::string ViewerState::panel_text() const {
           if (in.value().is_number()) add(it.key() + "." + in.key() + " " + short_text(in.value()));
     }
     if (!line.empty()) text += "\n" + line;
-    if (stats_.contains("error_view"))
-      text += "\nerror view: |lum - lum(reference)|, black 0 .. white " +
-              short_text(stats_["error_view"]["max"]);
+    if (const TransmittanceError* e = error_view())
+      text += "\nerror view: mean over lights |T - T_oracle|  max " + short_text(e->max) +
+              "  mean " + short_text(e->mean) + "  (" + std::to_string(e->pixels) + " px)";
+    if (const VoxelPoints* v = voxel_points())
+      text += "\nvoxel grid: " + std::to_string(v->count()) + " set voxels in " +
+              std::to_string(v->grids) + " light grids";
   }
   if (!message_.empty()) text += "\n" + message_;
   return text;

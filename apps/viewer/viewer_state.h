@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/deepvox/shadow_options.h"
+#include "apps/viewer/viewer_error_view.h"
 #include "apps/viewer/viewer_script.h"
+#include "apps/viewer/viewer_voxel_overlay.h"
 #include "cuda/execute.h"
 #include "io/image.h"
 #include "io/tone_mapping.h"
@@ -62,12 +64,27 @@ class ViewerState {
   // PNG of `render` holds (view image), or the error view.
   const std::vector<unsigned char>& display_bytes() const { return bytes_; }
   const Image* heatmap() const;  // the dsm method's layer heat map when shown, else null
+  // The error view of the last full frame when shown (viewer_error_view.h), else null; its
+  // legend's colour bar (0 left, error->max right).
+  const TransmittanceError* error_view() const;
+  const Image& error_legend() const { return legend_; }
+  // The set voxels of the method's light grids when the overlay is on and it has grids, else
+  // null; `voxel_version` changes whenever they are rebuilt.
+  const VoxelPoints* voxel_points() const;
+  int voxel_version() const { return voxel_version_; }
+  // World -> clip of the current camera, as the rasterizer projects (raster_projection.h).
+  dmat4 world_to_clip() const;
+  // CUDA: the displayed image in device memory (linear rgb, before the display transform) when
+  // it is the last full render (not coarse, not the error view); else null.
+  const float* device_display() const;
   nlohmann::json stats() const { return stats_; }
   std::string panel_text() const;
   std::string render_command(const std::string& out) const;
   const std::string& message() const { return message_; }
   bool help_shown() const { return help_; }
   bool panel_shown() const { return panel_; }
+  Backend backend() const { return backend_; }
+  const DisplayTransform& display_transform() const { return transform_; }
   int width() const { return camera_.width; }
   int height() const { return camera_.height; }
 
@@ -79,8 +96,9 @@ class ViewerState {
  private:
   bool try_shadows(const cli::ShadowOptions& options);
   void set_backend(Backend backend);
-  void render_error_view();
+  void render_error_view(const Camera& cam);
   void build_heatmap();
+  void build_voxel_points();
 
   ViewerSetup setup_;
   Scene scene_;
@@ -92,8 +110,12 @@ class ViewerState {
   cli::ShadowOptions shadows_;
   std::unique_ptr<ShadowMethod> method_;
   bool dirty_ = true, coarse_shown_ = false, slow_ = false, heat_stale_ = true, heatmap_on_ = false,
-       error_view_ = false, help_ = false, panel_ = true;
-  Image image_, display_, heatmap_;
+       error_view_ = false, help_ = false, panel_ = true, grid_on_ = false, grid_stale_ = true;
+  Image image_, display_, heatmap_, legend_;
+  TransmittanceError error_;
+  VoxelPoints voxels_;
+  int voxel_version_ = 0;
+  Buffer<float> device_image_;
   std::vector<unsigned char> bytes_;
   nlohmann::json stats_;
   std::string message_;

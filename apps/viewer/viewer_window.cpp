@@ -1,6 +1,8 @@
 // The viewer's window loop (see viewer.h): GLFW for the window and input, an OpenGL 4.5 core
-// context, the image uploaded with glTexSubImage2D and drawn by a full-screen triangle, the
-// heat map in a corner and the panel's text (stb_easy_font quads) on top.
+// context, the image handed to a texture by the backend's image sink (image_sink.h: upload on
+// the CPU, CUDA-GL interop on CUDA) and drawn by a full-screen triangle; on top the voxel grid
+// overlay (GL points projected with the camera), the heat map in a corner, the error view's
+// legend and the panel's text (stb_easy_font quads).
 #include "apps/viewer/viewer.h"
 
 #define GLFW_INCLUDE_NONE
@@ -13,6 +15,7 @@
 #include <cstdio>
 #include <deque>
 
+#include "apps/viewer/image_sink.h"
 #include "apps/viewer/viewer_keys.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -52,6 +55,21 @@ const char* kTextFragment = R"(#version 450 core
 uniform vec4 ink;
 out vec4 colour;
 void main() { colour = ink; })";
+// Voxel centres in world space, projected like the rasterizer (raster_projection.h); cyan
+// nearest the light to magenta farthest.
+const char* kVoxelVertex = R"(#version 450 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in float depth;
+uniform mat4 world_to_clip;
+out vec3 tint;
+void main() {
+  tint = mix(vec3(0.0, 1.0, 1.0), vec3(1.0, 0.0, 1.0), depth);
+  gl_Position = world_to_clip * vec4(position, 1.0);
+})";
+const char* kVoxelFragment = R"(#version 450 core
+in vec3 tint;
+out vec4 colour;
+void main() { colour = vec4(tint, 1.0); })";
 
 std::string glfw_key_name(int key) {
   switch (key) {
@@ -151,6 +169,16 @@ class Window {
     glfwSetScrollCallback(window_, on_scroll);
     image_program_ = gl::link_program(kTriangleVertex, kImageFragment);
     text_program_ = gl::link_program(kTextVertex, kTextFragment);
+    voxel_program_ = gl::link_program(kVoxelVertex, kVoxelFragment);
+    glCreateVertexArrays(1, &voxel_vao_);
+    glCreateBuffers(2, voxel_buffers_);
+    glVertexArrayVertexBuffer(voxel_vao_, 0, voxel_buffers_[0], 0, 3 * sizeof(float));
+    glVertexArrayVertexBuffer(voxel_vao_, 1, voxel_buffers_[1], 0, sizeof(float));
+    for (GLuint a : {0u, 1u}) {
+      glEnableVertexArrayAttrib(voxel_vao_, a);
+      glVertexArrayAttribFormat(voxel_vao_, a, a == 0 ? 3 : 1, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(voxel_vao_, a, a);
+    }
     glCreateVertexArrays(1, &empty_vao_);
     glCreateVertexArrays(1, &text_vao_);
     glCreateBuffers(1, &text_buffer_);
@@ -161,8 +189,13 @@ class Window {
     gl::check_gl("view: GL setup");
   }
   ~Window() {
-    glDeleteTextures(2, textures_);
+    sink_.reset();
+    heat_.reset();
+    legend_.reset();
     glDeleteBuffers(1, &text_buffer_);
+    glDeleteBuffers(2, voxel_buffers_);
+    glDeleteVertexArrays(1, &voxel_vao_);
+    glDeleteProgram(voxel_program_);
     glDeleteVertexArrays(1, &empty_vao_);
     glDeleteVertexArrays(1, &text_vao_);
     glDeleteProgram(image_program_);
@@ -173,30 +206,51 @@ class Window {
   GLFWwindow* handle() const { return window_; }
   Input& input() { return input_; }
 
-  // Texture `slot` (0: image, 1: heat map) holds `bytes` (sRGB, 3 per pixel, rows from the top).
-  void upload(int slot, int width, int height, const unsigned char* bytes) {
-    if (sizes_[slot][0] != width || sizes_[slot][1] != height) {
-      if (textures_[slot]) glDeleteTextures(1, &textures_[slot]);
-      glCreateTextures(GL_TEXTURE_2D, 1, &textures_[slot]);
-      glTextureStorage2D(textures_[slot], 1, GL_RGB8, width, height);
-      glTextureParameteri(textures_[slot], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTextureParameteri(textures_[slot], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      sizes_[slot][0] = width;
-      sizes_[slot][1] = height;
+  // The image through the sink for `backend` (a new sink when the backend changed).
+  void present(Backend backend, const SinkFrame& frame) {
+    if (!sink_ || sink_backend_ != backend) {
+      sink_ = make_image_sink(backend);
+      sink_backend_ = backend;
     }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(textures_[slot], 0, 0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, bytes);
+    sink_->present(frame);
+  }
+  const char* image_path() const { return sink_ ? sink_->last_path() : "none"; }
+  unsigned image_texture() const { return sink_ ? sink_->texture() : 0; }
+  // Overlay textures: the heat map and the error legend, from linear images.
+  unsigned upload_heat(const Image& image) { return upload_linear(heat_, image); }
+  unsigned upload_legend(const Image& image) { return upload_linear(legend_, image); }
+
+  // The voxel points, uploaded again when their version changes.
+  void draw_voxels(const VoxelPoints& points, int version, const dmat4& world_to_clip) {
+    if (version != voxel_version_) {
+      glNamedBufferData(voxel_buffers_[0], GLsizeiptr(points.positions.size() * sizeof(float)),
+                        points.positions.data(), GL_STATIC_DRAW);
+      glNamedBufferData(voxel_buffers_[1], GLsizeiptr(points.depths.size() * sizeof(float)),
+                        points.depths.data(), GL_STATIC_DRAW);
+      voxel_version_ = version;
+    }
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window_, &fw, &fh);
+    glViewport(0, 0, fw, fh);
+    float m[16];
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m[c * 4 + r] = float(world_to_clip[c][r]);
+    glUseProgram(voxel_program_);
+    glUniformMatrix4fv(glGetUniformLocation(voxel_program_, "world_to_clip"), 1, GL_FALSE, m);
+    glPointSize(2.0f);
+    glBindVertexArray(voxel_vao_);
+    glDrawArrays(GL_POINTS, 0, GLsizei(points.count()));
   }
 
-  // Texture `slot` over the pixel rectangle (x, y, w, h) of the window, y from the top.
-  void draw_texture(int slot, int x, int y, int w, int h) {
+  // `texture` over the pixel rectangle (x, y, w, h) of the window, y from the top.
+  void draw_texture(unsigned texture, int x, int y, int w, int h) {
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window_, &fw, &fh);
     glViewport(0, 0, fw, fh);
     glUseProgram(image_program_);
     glUniform4f(glGetUniformLocation(image_program_, "rect"), 2.0f * x / fw - 1.0f,
                 1.0f - 2.0f * (y + h) / fh, 2.0f * (x + w) / fw - 1.0f, 1.0f - 2.0f * y / fh);
-    glBindTextureUnit(0, textures_[slot]);
+    glBindTextureUnit(0, texture);
     glBindVertexArray(empty_vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
@@ -244,29 +298,62 @@ class Window {
   }
 
  private:
+  unsigned upload_linear(std::unique_ptr<ImageTexture>& texture, const Image& image) {
+    std::vector<unsigned char> bytes(image.rgb.size());
+    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(image.rgb[i]);
+    if (!texture) texture = std::make_unique<ImageTexture>();
+    upload_bytes(*texture, image.width, image.height, bytes.data());
+    return texture->id();
+  }
+
   GLFWwindow* window_ = nullptr;
   Input input_;
   GLuint image_program_ = 0, text_program_ = 0, empty_vao_ = 0, text_vao_ = 0, text_buffer_ = 0;
-  GLuint textures_[2] = {0, 0};
-  int sizes_[2][2] = {{0, 0}, {0, 0}};
+  GLuint voxel_program_ = 0, voxel_vao_ = 0, voxel_buffers_[2] = {0, 0};
+  int voxel_version_ = -1;
+  std::unique_ptr<ImageSink> sink_;
+  Backend sink_backend_ = Backend::cpu;
+  std::unique_ptr<ImageTexture> heat_, legend_;
 };
 
-// Draws the frame into the back buffer: image, heat map (bottom-left, at most a third of the
-// window), then the help or else the panel text.
+std::string scale_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+// The error view's legend, bottom right: its colour bar over 0 .. max with three numbers.
+void draw_error_legend(Window& window, const ViewerState& state, const TransmittanceError& e) {
+  const Image& bar = state.error_legend();
+  const int w = std::min(bar.width, state.width() - 8), h = bar.height;
+  const int x = state.width() - w - 4, y = state.height() - h - 16;
+  window.draw_text("|T - T_oracle|", x, y - 12);
+  window.draw_texture(window.upload_legend(bar), x, y, w, h);
+  const std::string mid = scale_number(0.5 * e.max), max = scale_number(e.max);
+  window.draw_text("0", x, y + h + 2);
+  window.draw_text(mid, x + w / 2 - 3 * int(mid.size()), y + h + 2);
+  window.draw_text(max, x + w - 6 * int(max.size()), y + h + 2);
+}
+
+// Draws the frame into the back buffer: image, voxel points, heat map (bottom-left, at most a
+// third of the window), the error legend, then the help or else the panel text.
 void draw(Window& window, const ViewerState& state) {
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
-  window.draw_texture(0, 0, 0, state.width(), state.height());
+  window.draw_texture(window.image_texture(), 0, 0, state.width(), state.height());
+  if (const VoxelPoints* points = state.voxel_points())
+    window.draw_voxels(*points, state.voxel_version(), state.world_to_clip());
   if (const Image* heat = state.heatmap()) {
     const double scale =
         std::min({1.0, state.width() / 3.0 / heat->width, state.height() / 3.0 / heat->height});
     const int w = std::max(1, int(heat->width * scale)), h = std::max(1, int(heat->height * scale));
-    window.draw_texture(1, 0, state.height() - h, w, h);
+    window.draw_texture(window.upload_heat(*heat), 0, state.height() - h, w, h);
   }
+  if (const TransmittanceError* e = state.error_view()) draw_error_legend(window, state, *e);
   if (state.help_shown())  // in the panel's place
     window.draw_text(keys_help(), 4, 4);
   else if (state.panel_shown())
-    window.draw_text(state.panel_text(), 4, 4);
+    window.draw_text(state.panel_text() + "\nimage to GL: " + window.image_path(), 4, 4);
   gl::check_gl("view: draw");
 }
 
@@ -322,14 +409,15 @@ int run_viewer(const ViewerRun& run) {
     state.update(interactive && state.slow() && glfwGetTime() - last_input < 0.3);
     if (state.renders() != shown) {  // also when a save rendered it earlier this frame
       shown = state.renders();
-      window.upload(0, state.width(), state.height(), state.display_bytes().data());
+      SinkFrame frame;
+      frame.width = state.width();
+      frame.height = state.height();
+      frame.bytes = state.display_bytes().data();
+      frame.device_rgb = state.device_display();
+      frame.transform = state.display_transform();
+      window.present(state.backend(), frame);
       glfwSetWindowTitle(window.handle(),
                          ("deepvox view: " + state.render_command("x.png")).c_str());
-    }
-    if (const Image* heat = state.heatmap()) {
-      std::vector<unsigned char> bytes(heat->rgb.size());
-      for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(heat->rgb[i]);
-      window.upload(1, heat->width, heat->height, bytes.data());
     }
     draw(window, state);
     for (const std::string& path : shots) state.write_screenshot(path);

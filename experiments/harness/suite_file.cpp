@@ -270,12 +270,7 @@ std::string fnv1a_hex(const std::string& bytes) {
 }
 
 Suite parse_suite(const std::string& text, const std::string& path) {
-  Json doc;
-  try {
-    doc = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    throw InputError(path, std::string("not valid JSON: ") + e.what());
-  }
+  const Json doc = parse_json_text(text, path);
   if (!doc.is_object()) throw InputError(path, "a suite file holds one JSON object");
   JsonReader r(doc, path, "");
   Suite s;

@@ -33,14 +33,14 @@ void probe_points(Backend backend, const SceneView& s, const Source& source, int
 }  // namespace
 
 ProbeResults probe_transmittance(Backend backend, const SceneData& scene, ShadowMethod& method,
-                                 const std::vector<dvec3>& points) {
+                                 const std::vector<dvec3>& points, const Camera* camera) {
   const Memory memory = memory_of(backend);
   if (scene.memory() != memory)
     throw Error("probe_transmittance: scene data is in the wrong memory");
   const int lights = int(scene.view().lights.size);
   Buffer<dvec3> pts(memory, points, "probe points");
   Buffer<ProbeAnswer> out(memory, int64_t(points.size()) * lights, "probe results");
-  const ShadowSourceVariant source = method.prepare(scene, backend, nullptr);
+  const ShadowSourceVariant source = method.prepare(scene, backend, camera);
   const auto start = std::chrono::steady_clock::now();
   const SceneView& view = scene.view();
   std::visit(

@@ -19,8 +19,9 @@ struct ProbeResults {
   double milliseconds = 0.0;  // the query kernel alone
 };
 
-// `scene` must live in the memory of `backend` (host for cpu, device for cuda).
+// `scene` must live in the memory of `backend` (host for cpu, device for cuda). `camera`:
+// what the method prepares for (ShadowMethod::prepare: focused maps), null as `deepvox probe`.
 ProbeResults probe_transmittance(Backend backend, const SceneData& scene, ShadowMethod& method,
-                                 const std::vector<dvec3>& points);
+                                 const std::vector<dvec3>& points, const Camera* camera = nullptr);
 
 }  // namespace dv

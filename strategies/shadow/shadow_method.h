@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@
 namespace dv {
 
 class DeepShadowMaps;
+class VoxelGrid;
 
 class ShadowMethod {
  public:
@@ -31,6 +33,9 @@ class ShadowMethod {
   // The deep shadow maps the last prepare generated or kept, for inspection (heat maps); null
   // for methods without them and before the first prepare.
   virtual const DeepShadowMaps* deep_shadow_maps() const { return nullptr; }
+  // The voxel grids the last prepare built (one per light face, in face order), for inspection
+  // (the viewer's grid overlay); null for methods without them and before the first prepare.
+  virtual const std::vector<VoxelGrid>* voxel_grids() const { return nullptr; }
 };
 
 Registry<ShadowMethod>& shadow_registry();

@@ -70,6 +70,9 @@ class TransmittanceSlicemap final : public ShadowMethod {
     ++prepare_calls_;
     return source_;
   }
+  const std::vector<VoxelGrid>* voxel_grids() const override {
+    return builds_ > 0 ? &face_grids_ : nullptr;
+  }
 
  private:
   void build(const SceneData& scene, Backend backend) {
@@ -109,17 +112,19 @@ class TransmittanceSlicemap final : public ShadowMethod {
     voxelizer_counters_ = nlohmann::json::array();
     voxelize_ms_ = 0.0;
     set_voxels_ = 0;
+    face_grids_.clear();
     if (c.soup.triangle_count() > 0)
       for (size_t f = 0; f < layout.faces.size(); ++f) {
         const GridSpec spec = make_light_grid(layout.faces[f], params_.res, slices_,
                                               c.soup.bounds(), std::string(kName) + " grid");
-        const VoxelizeResult r = voxelizer_->voxelize(run_on, c.soup, spec);
+        VoxelizeResult r = voxelizer_->voxelize(run_on, c.soup, spec);
         for (const VoxelizePass& p : r.passes) passes[p.name] += p.milliseconds;
         voxelize_ms_ += r.total_milliseconds();
         voxelizer_counters_.push_back(r.counters);
         const std::vector<uint32_t> face_words = r.grid.words();
         words.insert(words.end(), face_words.begin(), face_words.end());
         transforms.push_back(grid_transform(spec));
+        face_grids_.push_back(std::move(r.grid));
       }
     for (uint32_t w : words) set_voxels_ += VoxelGridView::bit_count(w);
     voxelizer_passes_ = nlohmann::json::array();
@@ -135,6 +140,7 @@ class TransmittanceSlicemap final : public ShadowMethod {
   DepthMaps opaque_;
   Buffer<GridTransform> grids_;
   Buffer<uint32_t> words_;
+  std::vector<VoxelGrid> face_grids_;  // the voxelizer's grids, kept for inspection
   Buffer<double> attenuation_;
   TransmittanceSlicemapSource source_{};
   const SceneData* prepared_for_ = nullptr;

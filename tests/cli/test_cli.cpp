@@ -16,6 +16,7 @@
 #include "io/layer_heatmap.h"
 #include "load/scene_loader.h"
 #include "oracle/transmittance.h"
+#include "tests/cli/cli_run.h"
 #include "tests/gltf/gltf_builder.h"
 
 #if DEEPVOX_FULL_BINARY
@@ -26,21 +27,6 @@ namespace dv {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CommandResult {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
-
-CommandResult run(const std::string& args) {
-  const std::string cmd = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
-}
 
 class Cli : public ::testing::Test {
  protected:

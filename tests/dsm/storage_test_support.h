@@ -35,23 +35,9 @@ inline Generated generate(const Scene& scene, Backend backend, const std::string
   return g;
 }
 
-inline constexpr int kLookupDepths = 24;
-
-// V' of every texel at kLookupDepths depths from 0 to twice the scene diagonal, texel-major.
+// V' of every texel at kLookupDepths depths, texel-major (texel_lookups).
 inline std::vector<float> sample_lookups(const Generated& g, Backend backend) {
-  const DsmSource source = g.maps->source();
-  const int64_t texels = int64_t(g.maps->records().size());
-  const int depths = kLookupDepths;
-  Buffer<float> out(memory_of(backend), texels * depths, "lookups");
-  const View<float> o = out.view();
-  const double far = 2.0 * g.data->view().diagonal;
-  parallel_for(
-      backend, "test_dsm_lookups", texels * depths, DV_KERNEL_LAMBDA(int64_t i) {
-        int hint = -1;
-        const float z = float(far * double(i % depths) / depths);
-        o[i] = source.reader.visibility(i / depths, z, hint);
-      });
-  return out.to_vector();
+  return texel_lookups(*g.maps, *g.data, backend);
 }
 
 // Every lookup of a and b agrees within 1e-6.

@@ -93,7 +93,7 @@ TEST(SuiteFile, StrategyScenesRestrictWhereItRuns) {
 
 TEST(SuiteFile, BadFilesNameTheFileAndTheProblem) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"{", "not valid JSON"},
+      {"{", "malformed JSON"},
       {"[]", "one JSON object"},
       {R"({"experiments": []})", "suite"},
       {R"({"suite": "x", "experiments": []})", "at least one experiment"},

@@ -6,41 +6,25 @@
 // `xvfb-run -a` when there is no DISPLAY; skips only when xvfb-run is not installed.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "load/scene_loader.h"
+#include "renderer/camera_rays.h"
+#include "tests/viewer/viewer_test_support.h"
 
 namespace dv {
 namespace {
 
 namespace fs = std::filesystem;
+using test::kDeepvox;
+using test::read_file;
+using Result = test::ShellResult;
+using test::shell;
 
-struct Result {
-  int exit_code;
-  std::string output;
-};
-
-Result shell(const std::string& cmd) {
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), out};
-}
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-const std::string kDeepvox = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox";
 const std::string kScene = std::string(DEEPVOX_SOURCE_DIR) + "/scenes/translucent-boxes.json";
 
 class ViewerXvfb : public ::testing::Test {
@@ -148,6 +132,54 @@ TEST_F(ViewerXvfb, FramesAndScreenshotWithoutScript) {
                 .exit_code,
             0);
   EXPECT_TRUE(read_file(out) == read_file(dir_ / "s.png"));
+}
+
+// The error view (E) and the voxel grid overlay (G) change the window, never the rendered image;
+// the error view's maximum and mean (in the stats S saves) equal `deepvox probe`'s.
+TEST_F(ViewerXvfb, OverlaysChangeTheWindowAndErrorViewEqualsProbe) {
+  const std::string size = " --width 96 --height 64";
+  const std::string dsm = " --shadows dsm --dsm-res 64";
+  const std::string slicemap = " --shadows transmittance-slicemap --param res=64";
+  const auto run = [&](const std::string& method, const std::string& keys,
+                       const std::string& name) {
+    std::ofstream(dir_ / (name + ".txt")) << keys;
+    const Result r = view(kScene + " --backend cpu" + method + size + " --script " + name +
+                          ".txt --save-prefix " + name + " --screenshot " + name +
+                          "_image.png --screenshot-window " + name + "_window.png");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+  };
+  run(dsm, "0 key P\n1 key S\n", "dsm_plain");
+  run(dsm, "0 key P\n0 key E\n1 key S\n", "dsm_error");
+  run(slicemap, "0 key P\n1 key S\n", "slicemap_plain");
+  run(slicemap, "0 key P\n0 key G\n1 key S\n", "slicemap_grid");
+  EXPECT_FALSE(read_file(dir_ / "dsm_error_window.png") ==
+               read_file(dir_ / "dsm_plain_window.png"));
+  EXPECT_FALSE(read_file(dir_ / "slicemap_grid_window.png") ==
+               read_file(dir_ / "slicemap_plain_window.png"));
+  // Without overlays the window is the image; the overlays leave the image alone.
+  EXPECT_TRUE(read_file(dir_ / "dsm_plain_window.png") == read_file(dir_ / "dsm_plain_image.png"));
+  EXPECT_TRUE(read_file(dir_ / "dsm_error_image.png") == read_file(dir_ / "dsm_plain_image.png"));
+  EXPECT_TRUE(read_file(dir_ / "slicemap_grid_image.png") ==
+              read_file(dir_ / "slicemap_plain_image.png"));
+
+  const nlohmann::json stats = nlohmann::json::parse(read_file(dir_ / "dsm_error_000.json"));
+  ASSERT_TRUE(stats.contains("error_view")) << stats.dump();
+  const double max = stats["error_view"]["max"], mean = stats["error_view"]["mean"];
+  EXPECT_GT(max, 0.0);
+  Scene scene = load_scene(kScene);
+  scene.camera.width = 96;
+  scene.camera.height = 64;
+  const test::IndependentError ref =
+      test::independent_error(kScene, scene, scene.camera, dsm, dir_);
+  ASSERT_TRUE(ref.failure.empty()) << ref.failure;
+  EXPECT_NEAR(max, ref.max, 1e-9);
+  EXPECT_NEAR(mean, ref.mean, 1e-9);
+  EXPECT_EQ(stats["error_view"]["pixels"].get<int64_t>(), ref.pixels);
+  std::printf("error view under Xvfb, dsm res 64, 96x64: max %.6g mean %.6g (probe: %.6g %.6g)\n",
+              max, mean, ref.max, ref.mean);
+
+  const nlohmann::json grid = nlohmann::json::parse(read_file(dir_ / "slicemap_grid_000.json"));
+  EXPECT_GT(grid["shadows"]["stats"]["set_voxels"].get<int64_t>(), 0);
 }
 
 }  // namespace

@@ -1,0 +1,38 @@
+// The display transform and sRGB encoding of io/ (exposure, tone curve, then srgb_byte) as
+// host/device code, so that the viewer's CUDA path turns the renderer's device image into the
+// window's bytes on the GPU and gets exactly the bytes of `render`'s PNG. srgb_byte uses
+// pow and lround, which differ between the host and device math libraries; here the byte is
+// found instead by comparing the value with 255 thresholds computed once on the host with
+// srgb_byte itself (threshold b: the smallest float that srgb_byte maps above b), so the
+// device performs no transcendental in this discrete decision.
+#pragma once
+
+#include "core/hd.h"
+#include "io/tone_mapping.h"
+
+namespace dv::viewer {
+
+struct DisplayEncoding {
+  double scale = 1.0;  // 2^exposure
+  ToneCurve curve = ToneCurve::none;
+  bool identity = true;     // DisplayTransform::identity(): the linear value goes straight in
+  float thresholds[255]{};  // ascending
+
+  // The byte a PNG of `render` holds for the linear channel value `linear` (not NaN).
+  DV_HD unsigned char byte(float linear) const {
+    const float v = identity ? linear : float(apply_tone_curve(curve, double(linear) * scale));
+    int lo = 0, hi = 255;  // the count of thresholds <= v lies in [lo, hi]
+    while (lo < hi) {
+      const int mid = (lo + hi) / 2;
+      if (thresholds[mid] <= v)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    return static_cast<unsigned char>(lo);
+  }
+};
+
+DisplayEncoding make_display_encoding(const DisplayTransform& transform);
+
+}  // namespace dv::viewer

@@ -1,0 +1,200 @@
+// OFF and PLY declared counts against the file's contents (see mesh_declared_counts.h).
+#include "io/mesh_declared_counts.h"
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "core/error.h"
+
+namespace dv {
+namespace {
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> split_words(const std::string& line) {
+  std::vector<std::string> words;
+  std::istringstream in(line.substr(0, line.find('#')));
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+// A count as a non-negative integer, or -1 when the word is not one.
+long long count_of(const std::string& word) {
+  if (word.empty() || word.size() > 18) return -1;
+  for (char c : word)
+    if (c < '0' || c > '9') return -1;
+  return std::stoll(word);
+}
+
+// ASCII OFF: "[C|N|ST|4|n]OFF", the counts (on the header line or the next), vertex lines,
+// then face lines "k i1 .. ik [colour]"; k may not exceed the numbers left in the file.
+void check_off(const std::string& path, const std::string& text) {
+  std::vector<std::vector<std::string>> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> words = split_words(line);
+    if (!words.empty()) lines.push_back(std::move(words));
+  }
+  if (lines.empty() || lines[0][0].size() < 3 ||
+      lines[0][0].compare(lines[0][0].size() - 3, 3, "OFF") != 0)
+    return;  // not OFF: CGAL's reader names the problem
+  std::vector<std::string> counts(lines[0].begin() + 1, lines[0].end());
+  size_t next = 1;
+  if (!counts.empty() && counts[0] == "BINARY") return;
+  if (counts.empty() && lines.size() > 1) counts = lines[next++];
+  if (counts.size() < 2) return;
+  const long long vertices = count_of(counts[0]), faces = count_of(counts[1]);
+  if (vertices < 0 || faces < 0) return;
+  long long words_left = 0;  // numbers after the counts
+  for (size_t i = next; i < lines.size(); ++i) words_left += (long long)lines[i].size();
+  if (vertices > words_left / 3 || faces > words_left - 3 * vertices)
+    throw InputError(path, "the header declares " + std::to_string(vertices) + " vertices and " +
+                               std::to_string(faces) + " faces, but the file holds only " +
+                               std::to_string(words_left) + " numbers after it");
+  // One vertex per line (the usual layout): then the face lines follow them.
+  if ((long long)(lines.size() - next) < vertices + faces) return;
+  for (long long v = 0; v < vertices; ++v) {
+    words_left -= (long long)lines[next + size_t(v)].size();
+    if (lines[next + size_t(v)].size() < 3) return;
+  }
+  for (long long f = 0; f < faces; ++f) {
+    const std::vector<std::string>& face = lines[next + size_t(vertices + f)];
+    const long long corners = count_of(face[0]);
+    if (corners > words_left - 1)
+      throw InputError(path, "face " + std::to_string(f) + " declares " + face[0] +
+                                 " corners, more than the numbers left in the file");
+    words_left -= (long long)face.size();
+  }
+}
+
+struct PlyProperty {
+  bool list = false;
+  int count_size = 0, item_size = 0;  // bytes (binary); for scalars item_size only
+};
+struct PlyElement {
+  std::string name;
+  long long count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+int ply_type_size(const std::string& type) {
+  static const char* const one[] = {"char", "uchar", "int8", "uint8"};
+  static const char* const two[] = {"short", "ushort", "int16", "uint16"};
+  static const char* const four[] = {"int", "uint", "int32", "uint32", "float", "float32"};
+  for (const char* t : one)
+    if (type == t) return 1;
+  for (const char* t : two)
+    if (type == t) return 2;
+  for (const char* t : four)
+    if (type == t) return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+uint64_t read_unsigned(const char* p, int size, bool big_endian) {
+  uint64_t v = 0;
+  for (int i = 0; i < size; ++i)
+    v |= uint64_t(uint8_t(p[big_endian ? size - 1 - i : i])) << (8 * i);
+  return v;
+}
+
+// PLY: the header's elements and properties (each property after an element), then every
+// element walked through the data:
+// element counts and list lengths may not run past the end of the file.
+void check_ply(const std::string& path, const std::string& text) {
+  std::istringstream in(text);
+  std::string line, format;
+  std::vector<PlyElement> elements;
+  size_t data_start = std::string::npos;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> w = split_words(line);
+    if (!w.empty() && w[0] == "end_header") {
+      data_start = size_t(in.tellg());
+      break;
+    }
+    if (w.size() >= 2 && w[0] == "format") format = w[1];
+    // CGAL's reader adds a property to its last element without checking there is one.
+    if (!w.empty() && w[0] == "property" && elements.empty())
+      throw InputError(path, "a 'property' line comes before any 'element' line");
+    if (w.size() >= 3 && w[0] == "element") elements.push_back({w[1], count_of(w[2]), {}});
+    if (w.size() >= 3 && w[0] == "property" && !elements.empty()) {
+      PlyProperty p;
+      if (w[1] == "list" && w.size() >= 5) {
+        p.list = true, p.count_size = ply_type_size(w[2]), p.item_size = ply_type_size(w[3]);
+      } else {
+        p.item_size = ply_type_size(w[1]);
+      }
+      if (p.item_size == 0 || (p.list && p.count_size == 0))  // CGAL's reader guesses on
+        throw InputError(path, "PLY property line '" + line + "' has an unknown type");
+      elements.back().properties.push_back(p);
+    }
+  }
+  if (data_start == std::string::npos || data_start > text.size()) return;  // CGAL says why
+  const auto too_long = [&](const PlyElement& e, long long i, const std::string& what) {
+    throw InputError(path, "element '" + e.name + "' " + std::to_string(i) + " of " +
+                               std::to_string(e.count) + ": " + what +
+                               " runs past the end of the file");
+  };
+  if (format == "ascii") {
+    std::istringstream data(text.substr(data_start));
+    std::vector<std::string> words;
+    for (std::string w; data >> w;) words.push_back(w);
+    size_t at = 0;
+    for (const PlyElement& e : elements) {
+      if (e.count < 0 || e.properties.empty()) continue;
+      for (long long i = 0; i < e.count; ++i)
+        for (const PlyProperty& p : e.properties) {
+          if (at >= words.size()) too_long(e, i, "its data");
+          if (!p.list) {
+            ++at;
+            continue;
+          }
+          const long long n = count_of(words[at++]);
+          if (n < 0) return;  // not a count: CGAL names the problem
+          if (n > (long long)(words.size() - at)) too_long(e, i, "a list of " + std::to_string(n));
+          at += size_t(n);
+        }
+    }
+    return;
+  }
+  const bool big_endian = format == "binary_big_endian";
+  if (!big_endian && format != "binary_little_endian")  // CGAL's reader then guesses binary
+    throw InputError(path,
+                     "the PLY header names no known format (ascii, binary_little_endian, "
+                     "binary_big_endian)");
+  size_t at = data_start;
+  for (const PlyElement& e : elements) {
+    if (e.count < 0 || e.properties.empty()) continue;
+    for (long long i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        if (!p.list) {
+          if (p.item_size > (long long)(text.size() - at)) too_long(e, i, "its data");
+          at += size_t(p.item_size);
+          continue;
+        }
+        if (p.count_size > (long long)(text.size() - at)) too_long(e, i, "its data");
+        const uint64_t n = read_unsigned(text.data() + at, p.count_size, big_endian);
+        at += size_t(p.count_size);
+        if (n > (text.size() - at) / size_t(p.item_size))
+          too_long(e, i, "a list of " + std::to_string(n));
+        at += size_t(n) * size_t(p.item_size);
+      }
+  }
+}
+
+}  // namespace
+
+void check_mesh_declared_counts(const std::string& path, const std::string& extension) {
+  if (extension == ".off") check_off(path, read_bytes(path));
+  if (extension == ".ply") check_ply(path, read_bytes(path));
+}
+
+}  // namespace dv

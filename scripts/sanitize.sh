@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Builds the `asan` preset (build-asan/: Debug -O1, CPU only, AddressSanitizer + UBSan, every
+# report fatal) and runs CPU tests under it. SANITIZE_LABELS is a ctest label regex: by default
+# the loader suites (test_meshes: OBJ/OFF/PLY/STL, test_gltf: glTF/glb, test_volumes: raw
+# volumes and generators), which need the libraries up to deepvox_load (no tests of the rest);
+# SANITIZE_LABELS=hard adds the hard cases of every area (the bad-input corpus through the
+# CLI, the fuzz regression inputs; builds the whole library), "." runs everything. Extra
+# arguments go to ctest. .ci/run calls it after scripts/test.sh.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+labels=${SANITIZE_LABELS:-test_meshes|test_gltf|test_volumes}
+jobs=${DEEPVOX_JOBS:-$(nproc)}
+cmake --preset asan > /dev/null
+if [ "$labels" = "test_meshes|test_gltf|test_volumes" ]; then
+  cmake --build build-asan -j "$jobs" --target test_meshes test_gltf test_volumes
+else
+  cmake --build build-asan -j "$jobs"
+fi
+# Leaks are reported too; UBSan prints the stack and stops at the first report.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+ctest --test-dir build-asan --output-on-failure -j "$jobs" -L "$labels" "$@"
