@@ -33,6 +33,10 @@ struct DsmSettings {
   double bias = -1.0;       // world units; < 0: 1e-4 of the scene diagonal
   double slope_bias = 3.0;
   ClusterSettings clusters;  // max_clusters > 1: clustered maps (light_clusters.h)
+  int light = -1;            // >= 0: maps of this light only, whose source answers it as light 0
+
+  // The `dsm` shadow method's parameters (strategies/shadow/dsm_shadows.cpp lists them).
+  static DsmSettings read(const StrategyParams& p);
 };
 
 class DeepShadowMaps {

@@ -25,6 +25,7 @@ struct DsmGenerationOptions {
   int table_bins = 64;         // density bins per axis of those tables
   float table_eps = 0.005f;    // their compression bound per step
   double step_scale = 1.0;     // multiplies the volumes' steps (accuracy studies)
+  int light = -1;              // >= 0: only this light's faces (mapped_lights, light_faces.h)
 };
 
 class DsmGeneration {
