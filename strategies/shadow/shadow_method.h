@@ -31,6 +31,9 @@ class ShadowMethod {
   // The deep shadow maps the last prepare generated or kept, for inspection (heat maps); null
   // for methods without them and before the first prepare.
   virtual const DeepShadowMaps* deep_shadow_maps() const { return nullptr; }
+  // The last prepare's plan (the `auto` method: per light the method, maps and passes skipped,
+  // effect_planner.h); null for methods that do not plan.
+  virtual nlohmann::json plan() const { return nullptr; }
 };
 
 Registry<ShadowMethod>& shadow_registry();
@@ -41,5 +44,6 @@ void register_reference_shadows(Registry<ShadowMethod>& registry);
 void register_shadow_maps(Registry<ShadowMethod>& registry);
 void register_dsm_shadows(Registry<ShadowMethod>& registry);
 void register_transmittance_slicemap(Registry<ShadowMethod>& registry);
+void register_auto_shadows(Registry<ShadowMethod>& registry);
 
 }  // namespace dv
