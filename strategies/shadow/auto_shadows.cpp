@@ -132,6 +132,9 @@ class AutoShadows final : public ShadowMethod {
                                       "are unchanged"
                                     : why;
       j["builds"] = slot.builds;
+      j["clustered"] = slot.deep && slot.deep->clusters();
+      j["filter"] =
+          dsm_.bilinear ? (p.method == PlannedMethod::dsm ? "bilinear" : "pcf 2") : "none";
       const View<const LightView> light_view{s.lights.data + l, 1};
       if (p.method == PlannedMethod::shadowmap) {
         ShadowMapSource src = slot.depth.source(s, depth_);
@@ -150,7 +153,9 @@ class AutoShadows final : public ShadowMethod {
     plan_ = Buffer<PlannedLight>(memory, plan, "planned lights");
     depth_sources_ = Buffer<ShadowMapSource>(memory, depth_sources, "planned depth maps");
     deep_sources_ = Buffer<DsmSource>(memory, deep_sources, "planned deep maps");
-    plan_json_ = {{"prepare", prepare_calls_++}, {"lights", frame_lights}};
+    plan_json_ = {{"prepare", prepare_calls_++},
+                  {"volume_objects", volume_objects(scene)},
+                  {"lights", frame_lights}};
     return PlannedShadowSource{s.lights, plan_.const_view(), depth_sources_.const_view(),
                                deep_sources_.const_view()};
   }

@@ -158,8 +158,17 @@ LightPlan plan_light(const SceneData& scene, int light) {
   return p;
 }
 
+int volume_objects(const SceneData& scene) {
+  int n = 0;
+  for (const ObjectView& o : scene.host_objects()) n += o.interior == InteriorKind::volume;
+  return n;
+}
+
 std::string explain_plan(const nlohmann::json& frame) {
-  std::string out;
+  const int volumes = frame.value("volume_objects", 0);
+  std::string out = volumes == 0 ? "camera rays: no volume in the scene, no volume sampling\n"
+                                 : "camera rays: volume sampling only inside the " +
+                                       count_of(volumes, "volume object") + "\n";
   for (const nlohmann::json& l : frame.at("lights")) {
     out += "light " + std::to_string(l.at("light").get<int>()) + " (" +
            l.at("type").get<std::string>() + "): " + l.at("method").get<std::string>() + ", " +

@@ -54,6 +54,10 @@ bool omni_face_reaches(const LightView& light, int face, const Aabb& box);
 LightReach light_reach(const SceneData& scene, int light);
 LightPlan plan_light(const SceneData& scene, int light);
 
+// Objects with a volume interior: the camera's walk samples volumes only inside them (the plan
+// reports it; with none, no camera segment is sampled).
+int volume_objects(const SceneData& scene);
+
 // The plan of one frame (the `auto` method's stats "frames" entry) in plain words, one line per
 // light: what `--explain` prints.
 std::string explain_plan(const nlohmann::json& frame);

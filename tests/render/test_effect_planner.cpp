@@ -249,6 +249,8 @@ TEST(EffectPlanner, ExplainStatesEachDecision) {
             std::string::npos)
       << text;
   EXPECT_NE(text.find("1 of 6 cube faces"), std::string::npos) << text;
+  EXPECT_EQ(text.find("camera rays: volume sampling only inside the 1 volume object\n"), 0u)
+      << text;
 }
 
 }  // namespace
