@@ -44,8 +44,9 @@ class DeepShadowMaps {
   // Creates the storage strategy (unknown names and parameters throw InputError).
   explicit DeepShadowMaps(DsmSettings settings);
 
-  // Generates every light's maps for `scene`, which lives in the memory of `backend`: the
-  // standard faces, or with clusters the faces of plan_clusters(scene, camera).
+  // Generates every light's maps (settings().light >= 0: that light's alone) for `scene`, which
+  // lives in the memory of `backend`: the standard faces, or with clusters the faces of
+  // plan_clusters(scene, camera).
   void generate(const SceneData& scene, Backend backend, const Camera* camera = nullptr);
 
   // The clustered layout these settings give for `scene` (settings().clusters.max_clusters > 1)

@@ -30,9 +30,9 @@ struct DsmGenerationOptions {
 
 class DsmGeneration {
  public:
-  // Rasterizes every face of every light; throws if a tile list overflows. With `clusters` the
-  // faces are the clusters' (at clusters->resolution, each seeing only its cluster's objects)
-  // instead of every light's standard faces at options.resolution.
+  // Rasterizes every face of every light (options.light >= 0: of that light alone); throws if a
+  // tile list overflows. With `clusters` the faces are the clusters' (at clusters->resolution,
+  // each seeing only its cluster's objects) instead of the standard faces at options.resolution.
   DsmGeneration(const SceneData& scene, Backend backend, const DsmGenerationOptions& options,
                 const ClusteredLayout* clusters = nullptr);
 
