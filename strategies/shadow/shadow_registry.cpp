@@ -11,6 +11,7 @@ Registry<ShadowMethod>& shadow_registry() {
     register_shadow_maps(r);
     register_dsm_shadows(r);
     register_transmittance_slicemap(r);
+    register_auto_shadows(r);
     return r;
   }();
   return registry;

@@ -15,6 +15,7 @@
 #include "oracle/transmittance.h"
 #include "scene/scene_view.h"
 #include "strategies/shadow/dsm_source.h"
+#include "strategies/shadow/planned_shadow_source.h"
 #include "strategies/shadow/shadow_map_source.h"
 #include "strategies/shadow/shadow_receiver.h"
 #include "strategies/shadow/transmittance_slicemap_source.h"
@@ -42,7 +43,8 @@ struct ReferenceShadowSource {
   }
 };
 
-using ShadowSourceVariant = std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource,
-                                         DsmSource, TransmittanceSlicemapSource>;
+using ShadowSourceVariant =
+    std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource, DsmSource,
+                 TransmittanceSlicemapSource, PlannedShadowSource>;
 
 }  // namespace dv
