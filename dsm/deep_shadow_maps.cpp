@@ -23,24 +23,45 @@ DeepShadowMaps::DeepShadowMaps(DsmSettings settings) : settings_(std::move(setti
   storage_ = storage_registry().create(settings_.storage, settings_.storage_params);
 }
 
+DsmSettings DsmSettings::read(const StrategyParams& p) {
+  DsmSettings s;
+  s.storage = p.string("storage", s.storage);
+  s.storage_params = p.prefixed("storage");
+  s.resolution = p.integer("res", s.resolution);
+  s.eps = float(p.number("eps", s.eps));
+  s.bilinear = p.choice("filter", "none", {"none", "bilinear"}) == "bilinear";
+  s.bias = p.number("bias", s.bias);
+  s.slope_bias = p.number("slope", s.slope_bias);
+  s.subrays = p.integer("subrays", s.subrays);
+  s.precompressed = p.choice("volume", "midpoint", {"midpoint", "table"}) == "table";
+  s.table_bins = p.integer("table_bins", s.table_bins);
+  s.step_scale = p.number("step_scale", s.step_scale);
+  s.clusters.max_clusters = p.integer("clusters", s.clusters.max_clusters);
+  s.clusters.d0 = p.number("cluster_d0", s.clusters.d0);
+  s.clusters.lispsm = p.choice("lispsm", "0", {"0", "1"}) == "1";
+  s.clusters.hysteresis = p.number("cluster_hysteresis", s.clusters.hysteresis);
+  return s;
+}
+
 ClusteredLayout DeepShadowMaps::plan_clusters(const SceneData& scene, const Camera* camera) const {
   const SceneView& s = scene.view();
   const ClusterSettings& c = settings_.clusters;
-  return clustered_light_map_layout(scene.host_lights(), scene.host_object_bounds(),
-                                    light_distances(scene.host_lights(), scene.host_object_bounds(),
-                                                    s.bounds, s.diagonal, c, camera),
-                                    c, settings_.resolution);
+  const std::vector<LightView> lights = mapped_lights(scene.host_lights(), settings_.light);
+  return clustered_light_map_layout(
+      lights, scene.host_object_bounds(),
+      light_distances(lights, scene.host_object_bounds(), s.bounds, s.diagonal, c, camera), c,
+      settings_.resolution);
 }
 
 bool DeepShadowMaps::clustering_holds(const SceneData& scene, const Camera* camera) const {
   if (!clustered_) return true;
   const SceneView& s = scene.view();
-  const std::vector<ObjectDistances> now =
-      light_distances(scene.host_lights(), scene.host_object_bounds(), s.bounds, s.diagonal,
-                      settings_.clusters, camera);
+  const std::vector<LightView> lights = mapped_lights(scene.host_lights(), settings_.light);
+  const std::vector<ObjectDistances> now = light_distances(
+      lights, scene.host_object_bounds(), s.bounds, s.diagonal, settings_.clusters, camera);
   return dv::clustering_holds(clusters_, now, settings_.clusters) ||
-         clustered_light_map_layout(scene.host_lights(), scene.host_object_bounds(), now,
-                                    settings_.clusters, settings_.resolution)
+         clustered_light_map_layout(lights, scene.host_object_bounds(), now, settings_.clusters,
+                                    settings_.resolution)
                  .signature == clusters_.signature;
 }
 
@@ -60,6 +81,7 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
     options.precompressed = settings_.precompressed;
     options.table_bins = settings_.table_bins;
     options.step_scale = settings_.step_scale;
+    options.light = settings_.light;
     generation_ =
         std::make_unique<DsmGeneration>(scene, backend, options, clustered_ ? &clusters_ : nullptr);
     passes_.push_back({"raster", timer.stop()});
@@ -71,7 +93,9 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
   host_records_ = records_.to_vector();
   figures_ = dsm_figures(*storage_, host_records_);
   const SceneView& s = scene.view();
-  source_ = DsmSource{s.lights,
+  const View<const LightView> lights =
+      settings_.light < 0 ? s.lights : View<const LightView>{s.lights.data + settings_.light, 1};
+  source_ = DsmSource{lights,
                       generation_->lights(),
                       generation_->faces(),
                       storage_->reader(),

@@ -33,6 +33,10 @@ struct DsmSettings {
   double bias = -1.0;       // world units; < 0: 1e-4 of the scene diagonal
   double slope_bias = 3.0;
   ClusterSettings clusters;  // max_clusters > 1: clustered maps (light_clusters.h)
+  int light = -1;            // >= 0: maps of this light only, whose source answers it as light 0
+
+  // The `dsm` shadow method's parameters (strategies/shadow/dsm_shadows.cpp lists them).
+  static DsmSettings read(const StrategyParams& p);
 };
 
 class DeepShadowMaps {
@@ -40,8 +44,9 @@ class DeepShadowMaps {
   // Creates the storage strategy (unknown names and parameters throw InputError).
   explicit DeepShadowMaps(DsmSettings settings);
 
-  // Generates every light's maps for `scene`, which lives in the memory of `backend`: the
-  // standard faces, or with clusters the faces of plan_clusters(scene, camera).
+  // Generates every light's maps (settings().light >= 0: that light's alone) for `scene`, which
+  // lives in the memory of `backend`: the standard faces, or with clusters the faces of
+  // plan_clusters(scene, camera).
   void generate(const SceneData& scene, Backend backend, const Camera* camera = nullptr);
 
   // The clustered layout these settings give for `scene` (settings().clusters.max_clusters > 1)

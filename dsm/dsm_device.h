@@ -48,6 +48,14 @@ struct DsmSource {
   }
 
   DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    int scratch[4] = {-1, -1, -1, -1};
+    return hinted_transmittance(r, light,
+                                light < kDsmCursorLights ? cursor.hint + 4 * light : scratch);
+  }
+
+  // transmittance() with the caller's four coherent-search slots for this light (the planner's
+  // per-light sources keep them in their own cursor, planned_shadow_source.h).
+  DV_HD double hinted_transmittance(const ShadowReceiver& r, int light, int* hint) const {
     const dvec3& p = r.point;
     const LightView& l = lights[light];
     if (outside_light_cone(l, p)) return 0.0;
@@ -55,8 +63,6 @@ struct DsmSource {
     const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
     FacePoint fp;
     if (!project_to_face(f, resolution, p, fp)) return 1.0;
-    int scratch[4] = {-1, -1, -1, -1};
-    int* hint = light < kDsmCursorLights ? cursor.hint + 4 * light : scratch;
     return face_visibility(f, fp, r, hint);
   }
 

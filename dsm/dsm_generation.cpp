@@ -29,7 +29,8 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
   const int res = clusters ? clusters->resolution : options.resolution;
   const SceneView& s = scene.view();
   layout_ = clusters ? clusters->layout
-                     : light_map_layout(scene.host_lights(), s.bounds, s.diagonal, res);
+                     : light_map_layout(mapped_lights(scene.host_lights(), options.light), s.bounds,
+                                        s.diagonal, res);
   const Memory memory = memory_of(backend);
   if (clusters) {
     object_masks_ = Buffer<uint32_t>(memory, clusters->object_masks, "dsm cluster object masks");

@@ -25,13 +25,14 @@ struct DsmGenerationOptions {
   int table_bins = 64;         // density bins per axis of those tables
   float table_eps = 0.005f;    // their compression bound per step
   double step_scale = 1.0;     // multiplies the volumes' steps (accuracy studies)
+  int light = -1;              // >= 0: only this light's faces (mapped_lights, light_faces.h)
 };
 
 class DsmGeneration {
  public:
-  // Rasterizes every face of every light; throws if a tile list overflows. With `clusters` the
-  // faces are the clusters' (at clusters->resolution, each seeing only its cluster's objects)
-  // instead of every light's standard faces at options.resolution.
+  // Rasterizes every face of every light (options.light >= 0: of that light alone); throws if a
+  // tile list overflows. With `clusters` the faces are the clusters' (at clusters->resolution,
+  // each seeing only its cluster's objects) instead of the standard faces at options.resolution.
   DsmGeneration(const SceneData& scene, Backend backend, const DsmGenerationOptions& options,
                 const ClusteredLayout* clusters = nullptr);
 

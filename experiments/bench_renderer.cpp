@@ -7,6 +7,7 @@
 // Run: build/bin/bench_renderer --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <string>
 
 #include "cuda/device_memory.h"
@@ -51,6 +52,72 @@ BENCHMARK_CAPTURE(raster_render, fig56_reference_cuda, "knecht-fig56.json", "ref
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 BENCHMARK_CAPTURE(raster_render, fig56_none_cpu, "knecht-fig56.json", "none", Backend::cpu)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+
+// The effect planner's saving (scenes/knecht-planner.json: the Knecht-like scene's volumes and
+// translucent objects under its spot light, plus four spot lights that reach only opaque
+// objects and one that reaches nothing): `auto` against `dsm` for every light. "first" times a
+// frame with a fresh method (maps built: what an edited scene or a new light costs), "steady" a
+// frame with the maps cached. Wall clock around the whole frame (map builds included).
+// Run: build/bin/bench_renderer --benchmark_filter=planner
+void planned_frame(benchmark::State& state, const char* shadows, const char* params,
+                   bool fresh_maps, Backend backend) {
+  std::string why;
+  if (backend == Backend::cuda && !cuda_device_available(&why))
+    return state.SkipWithError(why.c_str());
+  const Scene scene = load_scene(test::source_dir() + "/scenes/knecht-planner.json");
+  const SceneData data(scene, memory_of(backend));
+  const auto make = [&] {
+    return shadow_registry().create(shadows, StrategyParams::parse({params}));
+  };
+  auto method = make();
+  render_raster(backend, data, scene.camera, *method, scene.background);  // warm-up
+  for (auto _ : state) {
+    if (fresh_maps) method = make();
+    const auto start = std::chrono::steady_clock::now();
+    render_raster(backend, data, scene.camera, *method, scene.background);
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  state.counters["maps_built"] = method->stats().value("maps_built", 0);
+  int deep = 0, depth = 0;  // lights with a deep map, with a depth map (auto's plan)
+  const nlohmann::json plan = method->plan();
+  for (const nlohmann::json& l : plan.is_null() ? nlohmann::json::array() : plan["lights"]) {
+    deep += l["method"] == "dsm";
+    depth += l["method"] == "shadowmap";
+  }
+  state.counters["deep_map_lights"] = plan.is_null() ? double(data.host_lights().size()) : deep;
+  state.counters["depth_map_lights"] = depth;
+  state.SetLabel(backend == Backend::cuda ? cuda_device_name() : "cpu");
+}
+
+BENCHMARK_CAPTURE(planned_frame, planner_first_auto_cuda, "auto", "res=1024", true, Backend::cuda)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(planned_frame, planner_first_dsm_cuda, "dsm", "res=1024", true, Backend::cuda)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(planned_frame, planner_steady_auto_cuda, "auto", "res=1024", false, Backend::cuda)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(planned_frame, planner_steady_dsm_cuda, "dsm", "res=1024", false, Backend::cuda)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(planned_frame, planner_first_auto_cpu, "auto", "res=256", true, Backend::cpu)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+BENCHMARK_CAPTURE(planned_frame, planner_first_dsm_cpu, "dsm", "res=256", true, Backend::cpu)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+BENCHMARK_CAPTURE(planned_frame, planner_steady_auto_cpu, "auto", "res=256", false, Backend::cpu)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+BENCHMARK_CAPTURE(planned_frame, planner_steady_dsm_cpu, "dsm", "res=256", false, Backend::cpu)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);

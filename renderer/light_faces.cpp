@@ -51,4 +51,9 @@ LightMapLayout light_map_layout(const std::vector<LightView>& lights, const Aabb
   return layout;
 }
 
+std::vector<LightView> mapped_lights(const std::vector<LightView>& lights, int light) {
+  if (light < 0) return lights;
+  return {lights.at(size_t(light))};
+}
+
 }  // namespace dv

@@ -119,4 +119,8 @@ struct LightMapLayout {
 LightMapLayout light_map_layout(const std::vector<LightView>& lights, const Aabb& bounds,
                                 double diagonal, int res);
 
+// The lights a set of maps is made for: all of `lights` (light < 0), or only lights[light] (the
+// planner's per-light maps, whose lookups then answer it as light 0).
+std::vector<LightView> mapped_lights(const std::vector<LightView>& lights, int light);
+
 }  // namespace dv

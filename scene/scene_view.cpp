@@ -1,10 +1,11 @@
 // Flattening of a Scene into world-space arrays plus a BVH (see scene_view.h).
 #include "scene/scene_view.h"
 
-#include "scene/volume_sampling.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "core/content_hash.h"
+#include "scene/volume_sampling.h"
 
 namespace dv {
 
@@ -104,6 +105,28 @@ ObjectView make_object_view(const Scene& scene, const Object& obj,
   return o;
 }
 
+// What an object contributes to images and shadows, hashed: its world-space mesh, its kernel
+// record (without offsets into the shared arrays, which move when other objects change), its
+// transfer function and its volume's densities.
+uint64_t object_content_hash(const Scene& scene, const Object& obj, const ObjectView& o) {
+  ContentHash h;
+  const TriangleMesh& mesh = scene.meshes[obj.mesh];
+  h.add(obj.transform).add(uint64_t(mesh.positions.size())).add(uint64_t(mesh.triangles.size()));
+  for (const dvec3& p : mesh.positions) h.add(p);
+  h.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(u32vec3));
+  h.add(o.color).add(o.ambient).add(o.diffuse).add(o.specular).add(o.shininess);
+  h.add(o.alpha).add(o.transmission).add(o.interior).add(o.sigma).add(o.sigma_rgb).add(o.step);
+  h.add(o.world_to_grid);
+  for (const TransferPoint& t : obj.interior.transfer.points)
+    h.add(t.density).add(t.color).add(t.sigma);
+  if (o.volume >= 0) {
+    const VolumeGrid& g = scene.volumes[size_t(o.volume)];
+    h.add(g.dims.x).add(g.dims.y).add(g.dims.z);
+    h.bytes(g.density.data(), g.density.size() * sizeof(float));
+  }
+  return h.value();
+}
+
 }  // namespace
 
 SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& options)
@@ -155,6 +178,9 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
   }
   std::vector<LightView> lights;
   for (const Light& l : scene.lights) lights.push_back(make_light_view(l));
+  host_objects_ = objects;
+  for (size_t oi = 0; oi < scene.objects.size(); ++oi)
+    host_object_hashes_.push_back(object_content_hash(scene, scene.objects[oi], objects[oi]));
 
   vertices_ = Buffer<dvec3>(memory, vertices, "scene vertices");
   triangles_ = Buffer<u32vec3>(memory, sorted_tris, "scene triangles");

@@ -86,6 +86,11 @@ class SceneData {
   const std::vector<LightView>& host_lights() const { return host_lights_; }
   // World bounds of each object's triangles, in scene order (host-side planning: clusters).
   const std::vector<Aabb>& host_object_bounds() const { return host_object_bounds_; }
+  // Each object's kernel record in host memory (the effect planner reads materials from it).
+  const std::vector<ObjectView>& host_objects() const { return host_objects_; }
+  // A content hash per object: its world-space triangles, material, interior, transfer function
+  // and volume densities. Equal hashes: the object casts the same shadows (planner caches).
+  const std::vector<uint64_t>& host_object_hashes() const { return host_object_hashes_; }
 
  private:
   Memory memory_;
@@ -102,6 +107,8 @@ class SceneData {
   std::vector<uint32_t> order_;
   std::vector<LightView> host_lights_;
   std::vector<Aabb> host_object_bounds_;
+  std::vector<ObjectView> host_objects_;
+  std::vector<uint64_t> host_object_hashes_;
   int bvh_depth_ = 0;
   SceneView view_{};
 };

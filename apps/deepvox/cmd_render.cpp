@@ -120,6 +120,8 @@ Runner add_render(CLI::App& app) {
       const std::string path = frame_path(opt->out, f, opt->frames);
       write_image(path, r.image, display);
       frame["image"] = path;
+      if (const nlohmann::json plan = method->plan(); !plan.is_null()) frame["plan"] = plan;
+      explain_shadows(opt->shadows, *method, "frame " + std::to_string(f));
       stats["frames"].push_back(frame);
       log_info("render: frame " + std::to_string(f) + " " + std::to_string(r.image.width) + "x" +
                std::to_string(r.image.height) + " " + opt->renderer + " on " + to_string(backend) +

@@ -1,12 +1,19 @@
 // add_shadow_options / make_shadow_method (see shadow_options.h).
 #include "apps/deepvox/shadow_options.h"
 
+#include <iostream>
 #include "dsm/storage/dsm_storage.h"
+#include "strategies/shadow/effect_planner.h"
 
 namespace dv::cli {
 
 void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
-  cmd->add_option("--shadows", o.name, "shadow method (see `deepvox list`)")->capture_default_str();
+  cmd->add_option("--shadows", o.name,
+                  "shadow method (see `deepvox list`); auto: per light what its casters need, "
+                  "a named method: that method for every light")
+      ->capture_default_str();
+  cmd->add_flag("--explain", o.explain,
+                "print the shadow planner's decisions (auto: per light method, maps, skips)");
   cmd->add_option("--param", o.params, "shadow-method parameter key=value (repeatable)");
   std::string storages;
   for (const std::string& name : storage_registry().names())
@@ -33,6 +40,22 @@ std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& o) {
   if (!o.filter.empty()) params.push_back("filter=" + o.filter);
   if (!o.voxelizer.empty()) params.push_back("voxelizer=" + o.voxelizer);
   return shadow_registry().create(o.name, StrategyParams::parse(params));
+}
+
+}  // namespace dv::cli
+
+namespace dv::cli {
+
+void explain_shadows(const ShadowOptions& o, const ShadowMethod& method, const std::string& label) {
+  if (!o.explain) return;
+  const nlohmann::json plan = method.plan();
+  std::cout << label << ": ";
+  if (plan.is_null())
+    std::cout << "shadow method " << method.name()
+              << " was named, so it runs for every light (no plan)\n";
+  else
+    std::cout << "shadow plan\n" << explain_plan(plan);
+  std::cout << std::flush;
 }
 
 }  // namespace dv::cli

@@ -1,7 +1,8 @@
 // The shadow-method options `render` and `probe` share: --shadows NAME, --param key=value, and
 // the deep-shadow-map shortcuts --storage, --dsm-res, --eps, --filter (the dsm method's
 // storage, res, eps and filter parameters; any other method rejects them as unknown) and
-// --voxelizer (the transmittance-slicemap method's voxelizer parameter).
+// --voxelizer (the transmittance-slicemap method's voxelizer parameter). The default method is
+// `auto` (the effect planner); --explain prints its decisions.
 #pragma once
 
 #include <memory>
@@ -16,15 +17,20 @@
 namespace dv::cli {
 
 struct ShadowOptions {
-  std::string name = "reference";
+  std::string name = "auto";
   std::vector<std::string> params;
   std::string storage, filter, voxelizer;
   // Given or not; the values are checked once, by the method that reads them.
   std::optional<int> dsm_res;
   std::optional<double> eps;
+  bool explain = false;  // --explain: print the planner's decisions
 };
 
 void add_shadow_options(CLI::App* cmd, ShadowOptions& options);
 std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& options);
+// With --explain, prints the method's last plan in plain words to stdout (headed `label`); a
+// method that does not plan says so.
+void explain_shadows(const ShadowOptions& options, const ShadowMethod& method,
+                     const std::string& label);
 
 }  // namespace dv::cli

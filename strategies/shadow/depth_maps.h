@@ -4,7 +4,9 @@
 // Implemented in shadow_map.cpp, which launches the depth kernel.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -47,9 +49,11 @@ struct DepthMaps {
   ShadowMapSource source(const SceneView& s, const DepthMapParams& params) const;
 };
 
-// Renders every face of `layout` (res x res texels each). Throws Error when the rasterizer's
+// Renders every face of `layout` (res x res texels each), or with `rendered` only the faces i
+// with rendered[i] != 0, the others left empty (+inf: lit). Throws Error when the rasterizer's
 // tile lists overflow.
 DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapLayout& layout,
-                            int res, DepthCasters casters);
+                            int res, DepthCasters casters,
+                            const std::vector<uint8_t>* rendered = nullptr);
 
 }  // namespace dv

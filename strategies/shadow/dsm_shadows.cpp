@@ -20,26 +20,6 @@ namespace dv {
 
 namespace {
 
-DsmSettings dsm_settings(const StrategyParams& p) {
-  DsmSettings s;
-  s.storage = p.string("storage", s.storage);
-  s.storage_params = p.prefixed("storage");
-  s.resolution = p.integer("res", s.resolution);
-  s.eps = float(p.number("eps", s.eps));
-  s.bilinear = p.choice("filter", "none", {"none", "bilinear"}) == "bilinear";
-  s.bias = p.number("bias", s.bias);
-  s.slope_bias = p.number("slope", s.slope_bias);
-  s.subrays = p.integer("subrays", s.subrays);
-  s.precompressed = p.choice("volume", "midpoint", {"midpoint", "table"}) == "table";
-  s.table_bins = p.integer("table_bins", s.table_bins);
-  s.step_scale = p.number("step_scale", s.step_scale);
-  s.clusters.max_clusters = p.integer("clusters", s.clusters.max_clusters);
-  s.clusters.d0 = p.number("cluster_d0", s.clusters.d0);
-  s.clusters.lispsm = p.choice("lispsm", "0", {"0", "1"}) == "1";
-  s.clusters.hysteresis = p.number("cluster_hysteresis", s.clusters.hysteresis);
-  return s;
-}
-
 // Per light: its clusters' objects and faces (window in the light's face, texels).
 nlohmann::json cluster_stats(const ClusteredLayout& c) {
   nlohmann::json lights = nlohmann::json::array();
@@ -66,7 +46,7 @@ nlohmann::json cluster_stats(const ClusteredLayout& c) {
 
 class DsmShadows final : public ShadowMethod {
  public:
-  explicit DsmShadows(const StrategyParams& p) : maps_(dsm_settings(p)) {}
+  explicit DsmShadows(const StrategyParams& p) : maps_(DsmSettings::read(p)) {}
   std::string name() const override { return "dsm"; }
   const DeepShadowMaps* deep_shadow_maps() const override {
     return maps_.generations() > 0 ? &maps_ : nullptr;

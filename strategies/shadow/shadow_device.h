@@ -16,6 +16,7 @@
 #include "oracle/transmittance.h"
 #include "renderer/shadow_receiver.h"
 #include "scene/scene_view.h"
+#include "strategies/shadow/planned_shadow_device.h"
 #include "strategies/shadow/shadow_map_device.h"
 #include "strategies/shadow/transmittance_slicemap_device.h"
 
@@ -42,7 +43,8 @@ struct ReferenceShadowSource {
   }
 };
 
-using ShadowSourceVariant = std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource,
-                                         DsmSource, TransmittanceSlicemapSource>;
+using ShadowSourceVariant =
+    std::variant<NoShadowSource, ReferenceShadowSource, ShadowMapSource, DsmSource,
+                 TransmittanceSlicemapSource, PlannedShadowSource>;
 
 }  // namespace dv

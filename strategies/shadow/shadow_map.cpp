@@ -88,6 +88,14 @@ void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& fa
       });
 }
 
+// An empty face: no caster anywhere, every texel +inf.
+void clear_depth_face(Backend backend, const ShadowFace& face, View<float> depths) {
+  const int res = face.projection.width;
+  parallel_for(
+      backend, "shadow_map_clear", int64_t(res) * res,
+      DV_KERNEL_LAMBDA(int64_t i) { depths[face.offset + i] = INFINITY; });
+}
+
 class ShadowMapMethod final : public ShadowMethod {
  public:
   explicit ShadowMapMethod(const StrategyParams& p)
@@ -180,13 +188,17 @@ ShadowMapSource DepthMaps::source(const SceneView& s, const DepthMapParams& para
 }
 
 DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapLayout& layout,
-                            int res, DepthCasters casters) {
+                            int res, DepthCasters casters, const std::vector<uint8_t>* rendered) {
   const Memory memory = memory_of(backend);
   DepthMaps maps;
   maps.res = res;
   maps.depths = Buffer<float>(memory, layout.texel_count(), "shadow map depths");
-  for (const ShadowFace& f : layout.faces)
-    render_depth_face(backend, s, f, casters, maps.depths.view());
+  for (size_t i = 0; i < layout.faces.size(); ++i) {
+    if (rendered && !(*rendered)[i])
+      clear_depth_face(backend, layout.faces[i], maps.depths.view());
+    else
+      render_depth_face(backend, s, layout.faces[i], casters, maps.depths.view());
+  }
   maps.faces = Buffer<ShadowFace>(memory, layout.faces, "shadow map faces");
   maps.lights = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");
   return maps;

@@ -36,6 +36,9 @@ class ShadowMethod {
   // The voxel grids the last prepare built (one per light face, in face order), for inspection
   // (the viewer's grid overlay); null for methods without them and before the first prepare.
   virtual const std::vector<VoxelGrid>* voxel_grids() const { return nullptr; }
+  // The last prepare's plan (the `auto` method: per light the method, maps and passes skipped,
+  // effect_planner.h); null for methods that do not plan.
+  virtual nlohmann::json plan() const { return nullptr; }
 };
 
 Registry<ShadowMethod>& shadow_registry();

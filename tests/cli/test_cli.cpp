@@ -81,7 +81,7 @@ TEST_F(Cli, ProbeMatchesTheOracle) {
   const std::string scene = write("scene.json", kSmallScene);
   write("points.csv", "x,y,z\n0,0,0\n0.1,0.6,0.05\n1.5,0,1.5\n0,-1,0\n");
   const CommandResult r = run("probe " + scene + " --points " + path("points.csv") + " --out " +
-                              path("t.csv") + " --backend cpu");
+                              path("t.csv") + " --backend cpu --shadows reference");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream in(path("t.csv"));
   std::string header;
@@ -109,8 +109,9 @@ TEST_F(Cli, ProbeMatchesTheOracle) {
 
 TEST_F(Cli, RenderWritesImagesAndStats) {
   const std::string scene = write("scene.json", kSmallScene);
-  const CommandResult r = run("render " + scene + " --backend cpu --out " + path("img.png") +
-                              " --stats " + path("s.json") + " --frames 2 --orbit 30");
+  const CommandResult r =
+      run("render " + scene + " --backend cpu --out " + path("img.png") + " --stats " +
+          path("s.json") + " --frames 2 --orbit 30 --dsm-res 128");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(path("img_0000.png")));
   EXPECT_TRUE(fs::exists(path("img_0001.png")));
@@ -120,15 +121,38 @@ TEST_F(Cli, RenderWritesImagesAndStats) {
   EXPECT_GT(stats["frames"][0]["hits"].get<long long>(), 0);
   EXPECT_EQ(stats["frames"][0]["overflow_pixels"].get<long long>(), 0);
   EXPECT_EQ(stats["meta"]["backend"], "cpu");
-  EXPECT_EQ(stats["shadows"]["name"], "reference");
+  EXPECT_EQ(stats["shadows"]["name"], "auto");  // the default: the effect planner
+  EXPECT_EQ(stats["frames"][1]["plan"]["lights"][0]["map"], "reused");
   const CommandResult info = run("info " + scene + " --json");
   ASSERT_EQ(info.exit_code, 0) << info.output;
   EXPECT_EQ(nlohmann::json::parse(info.output)["triangles"].get<int>(), 24);
 }
 
+TEST_F(Cli, AutoShadowsAreTheDefaultAndExplainTheirPlan) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const CommandResult planned =
+      run("render " + scene + " --backend cpu --dsm-res 64 --out " + path("a.png") + " --explain");
+  ASSERT_EQ(planned.exit_code, 0) << planned.output;
+  EXPECT_NE(planned.output.find("frame 0: shadow plan\ncamera rays: no volume in the scene, no "
+                                "volume sampling\nlight 0 (omni): dsm, it reaches 1 "
+                                "constant medium but no volume"),
+            std::string::npos)
+      << planned.output;
+  EXPECT_NE(planned.output.find("map built (no map yet)"), std::string::npos) << planned.output;
+  write("points.csv", "x,y,z\n0,0,0\n");
+  const CommandResult forced =
+      run("probe " + scene + " --points " + path("points.csv") + " --out " + path("t.csv") +
+          " --shadows dsm --dsm-res 64 --explain");
+  ASSERT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_NE(forced.output.find("shadow method dsm was named, so it runs for every light"),
+            std::string::npos)
+      << forced.output;
+}
+
 TEST_F(Cli, RenderViewMovesTheCameraAndRejectsBadMoves) {
   const std::string scene = write("scene.json", kSmallScene);
-  const std::string common = "render " + scene + " --backend cpu --width 32 --height 24";
+  const std::string common =
+      "render " + scene + " --backend cpu --width 32 --height 24 --dsm-res 128";
   ASSERT_EQ(run(common + " --out " + path("plain.png")).exit_code, 0);
   ASSERT_EQ(run(common + " --out " + path("still.png") + " --view 0,0,1,0,0").exit_code, 0);
   ASSERT_EQ(run(common + " --out " + path("moved.png") + " --view 20,-5,0.8,0.1,0").exit_code, 0);
@@ -246,7 +270,8 @@ std::vector<float> exr_pixels(const std::string& file) {
 
 TEST_F(Cli, ExposureAndToneCurveChangePngsOnlyAndGroundAddsAPlane) {
   const std::string scene = write("scene.json", kSmallScene);
-  const std::string base = "render " + scene + " --backend cpu --width 32 --height 24 --out ";
+  const std::string base =
+      "render " + scene + " --backend cpu --width 32 --height 24 --dsm-res 128 --out ";
   const std::string look = " --exposure 1.5 --tonemap aces";
   ASSERT_EQ(run(base + path("plain.png")).exit_code, 0);
   const CommandResult r = run(base + path("look.png") + look + " --stats " + path("s.json"));

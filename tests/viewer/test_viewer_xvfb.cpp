@@ -61,8 +61,9 @@ TEST_F(ViewerXvfb, ScriptedRunEqualsRender) {
          "3 key M\n3 key M\n3 key M\n"  // dsm -> none -> reference -> shadowmap
          "3 key S\n"                    // _001: shadowmap
          "3 screenshot shadowmap.png\n"
-         "4 key M\n4 key M\n4 key M\n4 key M\n"  // -> reference
-         "4 key S\n"                             // _002: reference
+         "4 key M\n4 key M\n4 key M\n4 key M\n4 key M\n"  // -> t-slicemap, auto, dsm, none,
+                                                          // reference
+         "4 key S\n"                                      // _002: reference
          "4 screenshot reference.png\n"
          "5 key H\n5 key P\n";  // overlays off for the window shot
   const std::string size = " --width 96 --height 64";
