@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include "experiments/harness/driver.h"
 #include "experiments/harness/error_summary.h"
@@ -133,8 +134,8 @@ class ShadowDriver : public Driver {
     PassTimes render;
     RasterRenderResult last;
     for (int rep = 0; rep <= ctx.repeat; ++rep) {
-      const TimedFrame frame = timed_frame(ctx.backend, data, camera, method, scene.background);
-      last = frame.result;
+      TimedFrame frame = timed_frame(ctx.backend, data, camera, method, scene.background);
+      last = std::move(frame.result);
       if (rep == 0) continue;
       render.add("render", frame.milliseconds);
       render_samples.push_back(frame.milliseconds);
