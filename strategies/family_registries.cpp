@@ -11,6 +11,8 @@ Registry<DsmStorage>& storage_registry() {
     register_texture3d_storage(r);
     register_chunked_storage(r);
     register_blocked_storage(r);
+    register_moments_storage(r);
+    register_fourier_storage(r);
     return r;
   }();
   return registry;

@@ -10,11 +10,13 @@
 #include "strategies/storage/blocked_layout.h"
 #include "strategies/storage/chunked_layout.h"
 #include "strategies/storage/compact_layout.h"
+#include "strategies/storage/fourier_layout.h"
+#include "strategies/storage/moments_layout.h"
 #include "strategies/storage/texture3d_layout.h"
 
 namespace dv {
 
-enum class DsmReaderKind : uint8_t { compact, texture3d, chunked, blocked };
+enum class DsmReaderKind : uint8_t { compact, texture3d, chunked, blocked, moments, fourier };
 
 struct DsmReader {
   DsmReaderKind kind = DsmReaderKind::compact;
@@ -22,6 +24,8 @@ struct DsmReader {
   Texture3dReader texture3d{};
   ChunkedReader chunked{};
   BlockedReader blocked{};
+  MomentsReader moments{};
+  FourierReader fourier{};
 
   // V'(z) of texel `texel`; `hint` carries coherent-search state between lookups of one ray
   // (start it at -1).
@@ -33,6 +37,10 @@ struct DsmReader {
         return chunked.visibility(texel, z, hint);
       case DsmReaderKind::blocked:
         return blocked.visibility(texel, z, hint);
+      case DsmReaderKind::moments:
+        return moments.visibility(texel, z, hint);
+      case DsmReaderKind::fourier:
+        return fourier.visibility(texel, z, hint);
       default:
         return compact.visibility(texel, z, hint);
     }

@@ -1,4 +1,5 @@
-// Host side of the deep-shadow-map storage family (texture3d, chunked, blocked, compact). A
+// Host side of the deep-shadow-map storage family (texture3d, chunked, blocked, compact, and the
+// basis-function storages moments and fourier, which fold each texel's nodes into coefficients). A
 // storage strategy is a sink the generation walk writes nodes into as it goes (per texel: begin,
 // push node, end), with an optional counting pass before; its generation time includes these
 // writes, which is where the strategies differ. It then answers lookups through a DsmReader
@@ -75,6 +76,8 @@ void register_compact_storage(Registry<DsmStorage>& registry);
 void register_texture3d_storage(Registry<DsmStorage>& registry);
 void register_chunked_storage(Registry<DsmStorage>& registry);
 void register_blocked_storage(Registry<DsmStorage>& registry);
+void register_moments_storage(Registry<DsmStorage>& registry);
+void register_fourier_storage(Registry<DsmStorage>& registry);
 
 // Figures shared by all strategies, from the host copy of the per-texel records: bytes allocated,
 // bytes holding nodes, nodes, mean and max layers per texel, overflowed texels and the largest

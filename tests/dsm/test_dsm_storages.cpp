@@ -13,44 +13,17 @@
 #include "dsm/deep_shadow_maps.h"
 #include "strategies/shadow/probe.h"
 #include "tests/dsm/dsm_test_support.h"
+#include "tests/dsm/storage_test_support.h"
 
 namespace dv {
 namespace {
 
-struct Generated {
-  std::unique_ptr<SceneData> data;
-  std::unique_ptr<DeepShadowMaps> maps;
-};
+using Generated = test::GeneratedMaps;
+using test::sample_lookups;
 
 Generated generate(const Scene& scene, Backend backend, const std::string& storage,
                    const std::vector<std::string>& params = {}, float eps = 0.02f, int res = 32) {
-  DsmSettings s;
-  s.storage = storage;
-  s.storage_params = StrategyParams::parse(params);
-  s.resolution = res;
-  s.eps = eps;
-  Generated g;
-  g.data = std::make_unique<SceneData>(scene, memory_of(backend));
-  g.maps = std::make_unique<DeepShadowMaps>(s);
-  g.maps->generate(*g.data, backend);
-  return g;
-}
-
-// Visibility of every texel at a set of depths through the storage's reader, on the host.
-std::vector<float> sample_lookups(const Generated& g, Backend backend) {
-  const DsmSource source = g.maps->source();
-  const int64_t texels = int64_t(g.maps->records().size());
-  const int depths = 24;
-  Buffer<float> out(memory_of(backend), texels * depths, "lookups");
-  const View<float> o = out.view();
-  const double far = 2.0 * g.data->view().diagonal;
-  parallel_for(
-      backend, "test_dsm_lookups", texels * depths, DV_KERNEL_LAMBDA(int64_t i) {
-        int hint = -1;
-        const float z = float(far * double(i % depths) / depths);
-        o[i] = source.reader.visibility(i / depths, z, hint);
-      });
-  return out.to_vector();
+  return test::generate_maps(scene, backend, storage, params, eps, res);
 }
 
 void expect_same_lookups(const Generated& a, const Generated& b, Backend backend) {
@@ -132,7 +105,7 @@ TEST(StorageOverflow, Texture3dRecompressesWithLargerEps) {
   const std::vector<float> b = sample_lookups(few, Backend::cpu);
   const std::vector<DsmTexelRecord>& records = few.maps->records();
   for (size_t i = 0; i < a.size(); ++i)
-    ASSERT_LE(std::abs(a[i] - b[i]), records[i / 24].error + 0.001f + 1e-5f) << i;
+    ASSERT_LE(std::abs(a[i] - b[i]), records[i / test::kSampledDepths].error + 0.001f + 1e-5f) << i;
 }
 
 TEST(StorageOverflow, ChunkedPoolExhaustionIsReported) {
