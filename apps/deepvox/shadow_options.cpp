@@ -7,7 +7,7 @@ void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
   cmd->add_option("--shadows", o.name, "shadow method (see `deepvox list`)")->capture_default_str();
   cmd->add_option("--param", o.params, "shadow-method parameter key=value (repeatable)");
   cmd->add_option("--storage", o.storage,
-                  "dsm: storage strategy (compact, texture3d, chunked, blocked)");
+                  "dsm: storage strategy (compact, texture3d, chunked, blocked, moments, fourier)");
   cmd->add_option("--dsm-res", o.dsm_res, "dsm: texels per side of each map")
       ->check(CLI::Range(1, 65536));
   cmd->add_option("--eps", o.eps, "dsm: error bound of the compressed visibility functions")
