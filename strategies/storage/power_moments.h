@@ -12,9 +12,10 @@
 // to the moments: between the Chebyshev-Markov-Krein lower (0) and upper (1) bounds.
 // Safeguards beyond the bias: pivots of the factorisation at least kMomentPivotFloor, support
 // points kept within kMomentRootBound and apart from u by kMomentRootSeparation, the fraction
-// clamped to [0, 1]. Roots come from the quadratic formula (degree 2) or bisection between the
-// derivative's roots (degree 3): only + - * / and sqrt, so CPU and CUDA take the same
-// decisions from the same stored moments. Host and device code; double precision.
+// clamped to [0, 1] (a NaN, which only input far outside the moment space could still give,
+// becomes `overestimation`). Roots come from the quadratic formula (degree 2) or bisection between
+// the derivative's roots (degree 3): only + - * / and sqrt, so CPU and CUDA take the same decisions
+// from the same stored moments. Host and device code; double precision.
 #pragma once
 
 #include "core/hd.h"
