@@ -3,15 +3,17 @@
 // K frequencies, a_k = 2 int sigma cos(2 pi k u) du, b_k = 2 int sigma sin(2 pi k u) du, and a
 // lookup reconstructs the integral in closed form,
 //   tau(u) = total u + sum_k (a_k sin(2 pi k u) + b_k (1 - cos(2 pi k u))) / (2 pi k),
-// with total = a_0 / 2 = tau(1) exact. The texel's nodes span u in [kFourierMargin,
+// with total = a_0 / 2 = tau(1) (the optical depth in the series: the texel's total less its
+// last step, optical_depth_basis.h). The texel's nodes span u in [kFourierMargin,
 // 1 - kFourierMargin], so that a surface at the first node does not wrap round to the end of
 // the periodic series. Truncation rings (Gibbs): tau overshoots a step by up to ~9% of it on
 // both sides, may dip below 0 before the first surface and exceed the total before the last,
 // and smears a step over ~1/K of the range; tau is clamped at 0 (transmittance in [0, 1]).
-// Per texel kTexelRangeFloats + 1 + 2K floats, texel t's at t * stride: z_first, z_last,
-// total, a_1, b_1, .., a_K, b_K. Pieces of mass are projected exactly (uniform density over a
-// segment: the mean of cos/sin over it is cos/sin at its middle times sinc of its half-width).
-// Harmonics by the angle-addition recurrence from one sin/cos pair. Host and device code.
+// Per texel kTexelHeaderFloats + 1 + 2K floats, texel t's at t * stride: z_first, z_last, the
+// texel's total optical depth, the series' total, a_1, b_1, .., a_K, b_K. Pieces of mass are
+// projected exactly (uniform density over a segment: the mean of cos/sin over it is cos/sin at its
+// middle times sinc of its half-width). Harmonics by the angle-addition recurrence from one sin/cos
+// pair. Host and device code.
 #pragma once
 
 #include <cstdint>
@@ -27,7 +29,7 @@ inline constexpr double kFourierMargin = 0.1;
 inline constexpr double kTwoPi = 6.283185307179586477;
 
 DV_HD inline int fourier_stride(int frequencies) {
-  return kTexelRangeFloats + 1 + 2 * frequencies;
+  return kTexelHeaderFloats + 1 + 2 * frequencies;
 }
 
 // u of depth z in a texel whose nodes span [first, last].
@@ -55,6 +57,7 @@ struct FourierSink {
   OpticalDepthPieces pieces;
 
   DV_HD bool emit(float z, float v) {
+    pieces.last_z = texel[1];
     pieces.push(z, v, *this);
     return true;
   }
@@ -73,7 +76,8 @@ struct FourierSink {
     }
   }
   DV_HD void write() const {
-    for (int k = 0; k <= 2 * frequencies; ++k) texel[kTexelRangeFloats + k] = float(sums[k]);
+    texel[2] = float(pieces.tau);
+    for (int k = 0; k <= 2 * frequencies; ++k) texel[kTexelHeaderFloats + k] = float(sums[k]);
   }
 };
 
@@ -95,12 +99,12 @@ struct FourierReader {
 
   DV_HD float visibility(int64_t t, float z, int&) const {
     const float* texel = data.data + t * fourier_stride(frequencies);
-    const float* coefficients = texel + kTexelRangeFloats;
+    const float* coefficients = texel + kTexelHeaderFloats;
     switch (range_part(texel, z)) {
       case RangePart::before:
         return 1.0f;
       case RangePart::after:
-        return float(exp(-double(coefficients[0])));
+        return float(exp(-double(texel[2])));
       default:
         break;
     }

@@ -4,8 +4,8 @@
 // clamping). A DSM storage, not a shadow method: its input is exactly the DSM generation walk's
 // per-texel visibility function (the sink interface of dsm_storage.h), and faces, clusters,
 // receiver bias and filtering are the dsm method's. Passes: `range` (first and last node
-// depth), `write` (a second walk projecting the nodes). Bytes per texel: 4 * (3 + 2K): 44
-// (K = 4), 76 (K = 8), 140 (K = 16). Parameter: frequencies (K, 1..32, default 8). The answer
+// depth), `write` (a second walk projecting the nodes). Bytes per texel: 4 * (4 + 2K): 48
+// (K = 4), 80 (K = 8), 144 (K = 16). Parameter: frequencies (K, 1..32, default 8). The answer
 // does not respect eps: truncation error and ringing remain. Compiled by nvcc when CUDA is on.
 #include <memory>
 

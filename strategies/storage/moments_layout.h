@@ -1,8 +1,9 @@
 // Kernel side of the `moments` storage (strategies/storage/power_moments.h for the method): per
-// texel kTexelRangeFloats + 1 + n floats, texel t's at t * stride: z_first, z_last, b_0 (total
-// optical depth), b_1..b_n (normalised power moments of depth mapped to [-1, 1] over the
-// texel's range). The sink folds the texel's nodes into the moments in double precision and
-// writes floats when the texel ends. Host and device code.
+// texel kTexelHeaderFloats + 1 + n floats, texel t's at t * stride: z_first, z_last, the total
+// optical depth, b_0 (the optical depth in the moments: the total less the last step), b_1..b_n
+// (normalised power moments of depth mapped to [-1, 1] over the texel's range). The sink folds
+// the texel's nodes into the moments in double precision and writes floats when the texel ends.
+// Host and device code.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +16,7 @@
 namespace dv {
 
 DV_HD inline int moments_stride(int moments) {
-  return kTexelRangeFloats + 1 + moments;
+  return kTexelHeaderFloats + 1 + moments;
 }
 
 struct PowerMomentSink {
@@ -29,6 +30,7 @@ struct PowerMomentSink {
     return span > 0.0 ? -1.0 + 2.0 * ((double(z) - double(texel[0])) / span) : -1.0;
   }
   DV_HD bool emit(float z, float v) {
+    pieces.last_z = texel[1];
     pieces.push(z, v, *this);
     return true;
   }
@@ -36,9 +38,10 @@ struct PowerMomentSink {
     add_power_moments(sums, moments, depth_u(z0), depth_u(z1), mass);
   }
   DV_HD void write() const {
-    texel[kTexelRangeFloats] = float(sums[0]);
+    texel[2] = float(pieces.tau);
+    texel[kTexelHeaderFloats] = float(sums[0]);
     for (int k = 1; k <= moments; ++k)
-      texel[kTexelRangeFloats + k] = sums[0] > 0.0 ? float(sums[k] / sums[0]) : 0.0f;
+      texel[kTexelHeaderFloats + k] = sums[0] > 0.0 ? float(sums[k] / sums[0]) : 0.0f;
   }
 };
 
@@ -50,20 +53,21 @@ struct MomentsReader {
 
   DV_HD float visibility(int64_t t, float z, int&) const {
     const float* texel = data.data + t * moments_stride(moments);
-    const double total = texel[kTexelRangeFloats];
     switch (range_part(texel, z)) {
       case RangePart::before:
         return 1.0f;
       case RangePart::after:
-        return float(exp(-total));
+        return float(exp(-double(texel[2])));
       default:
         break;
     }
+    const double mass = texel[kTexelHeaderFloats];
+    if (!(mass > 0.0)) return 1.0f;
     double b[kMaxPowerMoments + 1];
-    for (int k = 1; k <= moments; ++k) b[k] = texel[kTexelRangeFloats + k];
+    for (int k = 1; k <= moments; ++k) b[k] = texel[kTexelHeaderFloats + k];
     const double span = double(texel[1]) - double(texel[0]);
     const double u = -1.0 + 2.0 * ((double(z) - double(texel[0])) / span);
-    return float(exp(-total * moment_fraction_in_front(b, moments, u, bias, overestimation)));
+    return float(exp(-mass * moment_fraction_in_front(b, moments, u, bias, overestimation)));
   }
 };
 

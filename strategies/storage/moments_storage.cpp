@@ -6,7 +6,7 @@
 // dsm_storage.h), and everything around the texel (faces, clusters, receiver bias, bilinear
 // filter) is the dsm method's; only what a texel keeps and how it answers differs. Passes:
 // `range` (first and last node depth), `write` (a second walk folding the nodes into moments).
-// Bytes per texel: 4 * (3 + n): 28 (n = 4), 36 (n = 6). Parameters: moments (4 | 6, default
+// Bytes per texel: 4 * (4 + n): 32 (n = 4), 40 (n = 6). Parameters: moments (4 | 6, default
 // 4), bias (moment bias alpha; default 5e-7 for 4, 5e-6 for 6 moments, the paper's 32-bit
 // values), overestimation (the weight at the query depth between the lower (0) and upper (1)
 // bound, default 0.25 as in the paper). The answer is biased: a bound blended between the
