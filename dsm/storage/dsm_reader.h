@@ -12,11 +12,22 @@
 #include "dsm/storage/blocked_device.h"
 #include "dsm/storage/chunked_device.h"
 #include "dsm/storage/compact_device.h"
+#include "dsm/storage/fourier_device.h"
+#include "dsm/storage/moments_device.h"
 #include "dsm/storage/texture3d_device.h"
 
 namespace dv {
 
-enum class DsmReaderKind : uint8_t { compact, texture3d, chunked, blocked, beer, avsm };
+enum class DsmReaderKind : uint8_t {
+  compact,
+  texture3d,
+  chunked,
+  blocked,
+  beer,
+  avsm,
+  moments,
+  fourier
+};
 
 struct DsmReader {
   DsmReaderKind kind = DsmReaderKind::compact;
@@ -26,6 +37,8 @@ struct DsmReader {
   BlockedReader blocked{};
   BeerReader beer{};
   AvsmReader avsm{};
+  MomentsReader moments{};
+  FourierReader fourier{};
 
   // V'(z) of texel `texel`; `hint` carries coherent-search state between lookups of one ray
   // (start it at -1).
@@ -41,6 +54,10 @@ struct DsmReader {
         return beer.visibility(texel, z, hint);
       case DsmReaderKind::avsm:
         return avsm.visibility(texel, z, hint);
+      case DsmReaderKind::moments:
+        return moments.visibility(texel, z, hint);
+      case DsmReaderKind::fourier:
+        return fourier.visibility(texel, z, hint);
       default:
         return compact.visibility(texel, z, hint);
     }

@@ -9,6 +9,9 @@
 // per scene and backend, never per camera. A voxelizer that cannot run on the backend (exact on
 // CUDA) runs on the CPU and its grids are copied; conservative voxelizers (exact, sat) reject
 // perspective faces (spot and omni lights) with an InputError (voxel_grid.h).
+// Occupancy maps (Sintorn & Assarsson 2009) read such a bit grid per texel the same way; they
+// add a fragment count per slab of slices and slices over each texel's own depth range, which
+// this method does not have, so `occupancy` is not registered as an alias of it.
 #include <map>
 #include <memory>
 #include <vector>

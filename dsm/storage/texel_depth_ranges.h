@@ -1,0 +1,13 @@
+// The `range` pass of the basis-function storages (moments, fourier; optical_depth_basis.h):
+// one generation walk per texel that writes the depths of its first and last node into the
+// first two floats of its record (texel t's record at t * stride). Compiled by nvcc when CUDA
+// is on (texel_depth_ranges.cpp).
+#pragma once
+
+#include "dsm/storage/dsm_storage.h"
+
+namespace dv {
+
+void write_texel_depth_ranges(const DsmGenerationContext& c, View<float> data, int stride);
+
+}  // namespace dv
