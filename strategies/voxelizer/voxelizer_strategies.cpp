@@ -1,5 +1,6 @@
-// The registered voxelizers `exact`, `sat`, `slicemap` (no parameters), `atlas` and
-// `atlas-compute` (parameter atlas: texels per atlas side), the (empty) registry of GL
+// The registered voxelizers `exact`, `slicemap` (no parameters), `sat` (parameter small: work
+// items of a triangle voxelized by one thread), `atlas` and `atlas-compute` (parameter atlas:
+// texels per atlas side), the (empty) registry of GL
 // implementations, and the pass bookkeeping of VoxelizeResult.
 #include <chrono>
 #include <memory>
@@ -47,15 +48,22 @@ class ExactVoxelizer : public Voxelizer {
 
 class SatVoxelizer : public Voxelizer {
  public:
+  explicit SatVoxelizer(const StrategyParams& params)
+      : small_items_(params.integer("small", int(kSatSmallItems))) {
+    validate_sat_small_items(small_items_);
+  }
   std::string name() const override { return "sat"; }
-  nlohmann::json params() const override { return nlohmann::json::object(); }
+  nlohmann::json params() const override { return {{"small", small_items_}}; }
   bool supports(Backend backend) const override {
     return backend == Backend::cpu || kBuiltWithCuda;
   }
   VoxelizeResult voxelize(Backend backend, const TriangleSoup& soup,
                           const GridSpec& spec) override {
-    return voxelize_sat(backend, soup, spec);
+    return voxelize_sat(backend, soup, spec, small_items_);
   }
+
+ private:
+  int64_t small_items_;
 };
 
 class SlicemapVoxelizer : public Voxelizer {
@@ -113,8 +121,9 @@ void register_exact_voxelizer(Registry<Voxelizer>& registry) {
 void register_sat_voxelizer(Registry<Voxelizer>& registry) {
   registry.add("sat",
                "conservative surface voxelization, plane + 2D edge tests (Schwarz & Seidel "
-               "2010), CPU and CUDA",
-               [](const StrategyParams&) { return std::make_unique<SatVoxelizer>(); });
+               "2010), CPU and CUDA; param small=work items (voxel columns) of a triangle "
+               "voxelized by one thread, larger ones split",
+               [](const StrategyParams& p) { return std::make_unique<SatVoxelizer>(p); });
 }
 
 void register_slicemap_voxelizer(Registry<Voxelizer>& registry) {
