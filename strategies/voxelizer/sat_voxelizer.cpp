@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/atomic.h"
+#include "core/parallel.h"
 #include "core/pass_timer.h"
 #include "strategies/voxelizer/sat_kernels.h"
 #include "strategies/voxelizer/work_items.h"
@@ -31,8 +32,11 @@ namespace dv {
 
 namespace {
 
-// Threads of the large pass: enough to fill the GPU, few enough that an empty list costs little.
-constexpr int64_t kSatLargeThreads = int64_t(1) << 16;
+// Threads of the large pass: enough to fill the GPU, few enough that an empty list costs little
+// (on CPU threads, a few loops per worker).
+int64_t sat_large_threads(Backend backend) {
+  return backend == Backend::cuda ? int64_t(1) << 16 : int64_t(cpu_thread_count()) * 64;
+}
 
 // counters[kSmallItems]: work items of the small triangles; [kDegenerate]: degenerate triangles
 // with work; [kFirstList + b]: the packed count of batch b's large list.
@@ -135,15 +139,16 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
   {
     PassTimer timer(backend);
     const View<const dvec3> in = corners.const_view();
+    const int64_t threads = sat_large_threads(backend);
     for (int64_t b = 0; b < batches; ++b) {
       const PackedWorkList list = list_of(b);
       parallel_for(
-          backend, "sat_large", kSatLargeThreads, DV_KERNEL_LAMBDA(int64_t i) {
+          backend, "sat_large", threads, DV_KERNEL_LAMBDA(int64_t i) {
             const int64_t items = list.items();
             const View<const int64_t> first = list.firsts();
             int64_t owner = -1;
             SatTriangle t;
-            for (int64_t k = i; k < items; k += kSatLargeThreads) {
+            for (int64_t k = i; k < items; k += threads) {
               const int64_t e = work_item_owner(first, first.size, k);
               if (e != owner) {
                 owner = e;
