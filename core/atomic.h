@@ -9,6 +9,10 @@
 #if !DV_IN_DEVICE_CODE
 #include <atomic>
 #endif
+#if defined(__CUDACC__)
+#include <cooperative_groups.h>
+#include <cooperative_groups/reduce.h>
+#endif
 
 namespace dv {
 
@@ -85,6 +89,34 @@ DV_HD T atomic_exchange(T* address, T value) {
   return atomicExch(address, value);
 #else
   return std::atomic_ref<T>(*address).exchange(value, std::memory_order_acq_rel);
+#endif
+}
+
+// atomic_add / atomic_max from many threads onto few hot addresses: on the device the active
+// lanes of a warp that target the same address combine their values first and one of them
+// does the atomic (one per warp and address instead of one per thread); on the host they are
+// the plain atomics. The add skips a zero sum.
+template <class T>
+DV_HD void atomic_add_combined(T* address, T value) {
+#if DV_IN_DEVICE_CODE
+  namespace cg = cooperative_groups;
+  const cg::coalesced_group peers = cg::labeled_partition(cg::coalesced_threads(), address);
+  const T sum = cg::reduce(peers, value, cg::plus<T>());
+  if (peers.thread_rank() == 0 && sum != T(0)) atomicAdd(address, sum);
+#else
+  if (value != T(0)) atomic_add(address, value);
+#endif
+}
+
+template <class T>
+DV_HD void atomic_max_combined(T* address, T value) {
+#if DV_IN_DEVICE_CODE
+  namespace cg = cooperative_groups;
+  const cg::coalesced_group peers = cg::labeled_partition(cg::coalesced_threads(), address);
+  const T most = cg::reduce(peers, value, cg::greater<T>());
+  if (peers.thread_rank() == 0) atomicMax(address, most);
+#else
+  atomic_max(address, value);
 #endif
 }
 

@@ -55,11 +55,9 @@ std::optional<double> pass_floor_bytes(const std::string& method, const std::str
   const double set = 4.0 * double(in.set_words);
   const double texture = sizeof(dvec4) * double(in.atlas_texels);
   if (pass == "clear") return 4.0 * double(in.grid_words);
-  if (method == "sat") {
-    if (pass == "setup") return 2.0 * corners + offsets;  // corners in and out, counts out
-    if (pass == "scan") return 2.0 * offsets;
-    if (pass == "voxelize") return corners + offsets + set;
-  }
+  // sat: the small pass reads every corner and sets (nearly) every word; the large pass's
+  // bytes depend on how many triangles are large, which the floor inputs do not hold.
+  if (method == "sat" && pass == "small") return corners + set;
   if (method == "slicemap" && pass == "setup") return 2.0 * corners + 12.0 * t;  // + indices
   if (method == "slicemap" && pass == "slices") return corners + set;
   if (method == "atlas" && pass == "atlas_update") return corners + texture;

@@ -3,9 +3,11 @@
 // (58,784 triangles) and three times (235,136) at 512^3 and 1024^3, the 12-triangle
 // axis-aligned cube at 1024^3, two triangles covering a 512^2 x 32 grid against a thousand
 // one-voxel triangles. slicemap, atlas and atlas-compute (default 1024^2 atlas): the bunny at
-// 512x512x32 and 512^3. Reported time = the kernel work after the upload (sat: setup + scan +
-// voxelize, as cuda_voxelizer reports its "voxelization GPU time"; the atlas's host-side packing
-// is excluded and reported as pack_ms, its atlas update as atlas_update_ms). The bandwidth floor
+// 512x512x32 and 512^3. Reported time = the kernel work after the upload (sat: small + large,
+// as cuda_voxelizer reports its "voxelization GPU time"; the atlas's host-side packing
+// is excluded and reported as pack_ms, its atlas update as atlas_update_ms); with_clear_ms adds
+// the grid clear (the goal counts it). sat_small/*: the same with the `small` parameter
+// (footprint limit of a triangle voxelized by one thread) swept, to tune it. The bandwidth floor
 // (bandwidth_floor.h): copy_GBps is the device-to-device copy bandwidth measured once in the
 // run; per modelled pass, PASS_floor_ms = its fewest bytes over that bandwidth, and for passes
 // over 100 us PASS_floor_x = PASS_ms / PASS_floor_ms (goal: at most 3).
@@ -15,6 +17,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cuda/device_memory.h"
 #include "experiments/bandwidth_floor.h"
@@ -46,7 +49,7 @@ TriangleSoup bench_mesh(const std::string& name) {
 }
 
 void run_voxelizer(benchmark::State& state, const char* method, const char* mesh, int res_xy,
-                   int res_z) {
+                   int res_z, const std::vector<std::string>& params = {}) {
   std::string why;
   if (!cuda_device_available(&why)) return state.SkipWithError(why.c_str());
   const TriangleSoup soup = bench_mesh(mesh);
@@ -57,18 +60,24 @@ void run_voxelizer(benchmark::State& state, const char* method, const char* mesh
                           : Aabb{dvec3(0.0), dvec3(1.0)};
   const GridSpec spec = make_box_grid({res_xy, res_xy, res_z}, bounds, "bench");
   static const double bytes_per_ms = measure_copy_bandwidth();
-  auto voxelizer = voxelizer_registry().create(method);
+  auto voxelizer = voxelizer_registry().create(method, StrategyParams::parse(params));
   VoxelizeResult r = voxelizer->voxelize(Backend::cuda, soup, spec);  // warm-up
   std::map<std::string, double> sums;
+  double with_clear = 0.0;
   for (auto _ : state) {
     r = voxelizer->voxelize(Backend::cuda, soup, spec);
     double work = 0.0;
     for (const auto& p : r.passes) {
       sums[p.name] += p.milliseconds;
       if (p.name != "clear" && p.name != "upload" && p.name != "pack") work += p.milliseconds;
+      if (p.name == "clear") with_clear += p.milliseconds;
     }
+    with_clear += work;
     state.SetIterationTime(work / 1e3);
   }
+  state.counters["with_clear_ms"] = with_clear / double(state.iterations());
+  for (const auto& [name, value] : r.counters.items())
+    if (value.is_number()) state.counters[name] = value.get<double>();
   FloorInputs floor{soup.triangle_count(), spec.word_count()};
   for (uint32_t w : r.grid.words()) floor.set_words += w != 0;
   if (std::string(method).rfind("atlas", 0) == 0)
@@ -89,6 +98,9 @@ void run_voxelizer(benchmark::State& state, const char* method, const char* mesh
 
 void sat(benchmark::State& state, const char* mesh, int res_xy, int res_z) {
   run_voxelizer(state, "sat", mesh, res_xy, res_z);
+}
+void sat_small(benchmark::State& state, const char* mesh, int res_xy, const char* small) {
+  run_voxelizer(state, "sat", mesh, res_xy, res_xy, {std::string("small=") + small});
 }
 void slicemap(benchmark::State& state, const char* mesh, int res_xy, int res_z) {
   run_voxelizer(state, "slicemap", mesh, res_xy, res_z);
@@ -119,6 +131,22 @@ BENCHMARK_CAPTURE(sat, two_big_512x32, "two-big", 512, 32)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(sat, thousand_small_512x32, "thousand-small", 512, 32)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK_CAPTURE(sat_small, bunny2_1024_small16, "bunny2", 1024, "16")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny2_1024_small256, "bunny2", 1024, "256")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_512_small16, "bunny3", 512, "16")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_512_small256, "bunny3", 512, "256")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, cube_1024_small0, "cube", 1024, "0")
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 

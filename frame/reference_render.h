@@ -32,11 +32,12 @@ struct RenderCounters {
 // Adds one pixel's walk to the counters; any thread of either backend may call it.
 DV_HD inline void count_pixel(RenderCounters* c, unsigned long long crossings,
                               unsigned long long samples, bool overflow, uint32_t shadow_flags) {
-  atomic_add(&c->hits, crossings);
-  atomic_add(&c->volume_samples, samples);
-  atomic_max(&c->max_hits, crossings);
-  if (overflow) atomic_add(&c->overflow_pixels, 1ull);
-  if (shadow_flags) atomic_add(&c->oracle_flag_pixels, 1ull);
+  // Every pixel adds to the same few counters: combined per warp before the atomics.
+  atomic_add_combined(&c->hits, crossings);
+  atomic_add_combined(&c->volume_samples, samples);
+  atomic_max_combined(&c->max_hits, crossings);
+  atomic_add_combined(&c->overflow_pixels, overflow ? 1ull : 0ull);
+  atomic_add_combined(&c->oracle_flag_pixels, shadow_flags ? 1ull : 0ull);
 }
 
 struct RenderResult {

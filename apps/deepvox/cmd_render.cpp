@@ -96,7 +96,8 @@ Runner add_render(CLI::App& app) {
     }
     const SceneData data(scene, memory_of(backend));
     nlohmann::json stats = {
-        {"meta", run_metadata(backend)},
+        // Run metadata (a git call, the device query) only for a stats file that holds it.
+        {"meta", opt->stats.empty() ? nlohmann::json::object() : run_metadata(backend)},
         {"scene", opt->scene},
         {"shadows", {{"name", method->name()}, {"params", method->params()}}},
         {"display", {{"exposure_ev", opt->exposure}, {"tonemap", opt->tonemap}}},

@@ -32,8 +32,12 @@ Runner add_voxelize(CLI::App& app) {
   cmd->add_flag("--compare-exact", job->compare_exact,
                 "also run `exact` on the CPU and report missing/extra voxels");
   return [job] {
-    nlohmann::json meta = run_metadata(voxelize_job_backend(*job));
-    if (voxelize_job_uses_gl(*job)) meta["backend"] = "gl";
+    // Run metadata (a git call, the device query) only for a stats file that holds it.
+    nlohmann::json meta;
+    if (!job->stats.empty()) {
+      meta = run_metadata(voxelize_job_backend(*job));
+      if (voxelize_job_uses_gl(*job)) meta["backend"] = "gl";
+    }
     const nlohmann::json stats = run_voxelize_job(*job, meta);
     log_info("voxelize: " + stats["method"].get<std::string>() + " on " +
              stats["backend"].get<std::string>() + ": " +

@@ -2,6 +2,7 @@
 // apps/deepvox/usage_errors.h), runs it, and turns every error into a clear message on stderr
 // and a non-zero exit (never a crash).
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <map>
 #include <string>
@@ -16,6 +17,9 @@
 #endif
 
 int main(int argc, char** argv) {
+  // Load each CUDA kernel on its first launch, not all of them at context creation (the default
+  // since CUDA 12.2; older runtimes loaded eagerly). A value set by the user wins.
+  setenv("CUDA_MODULE_LOADING", "LAZY", 0);
   CLI::App app{"deepvox " DEEPVOX_VERSION
                ": deep shadow maps and voxelization for translucent scenes (research testbed)"};
   app.require_subcommand(1);

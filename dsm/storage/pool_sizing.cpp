@@ -1,4 +1,6 @@
-// The counting pass of the storages (see pool_sizing.h). Compiled by nvcc when CUDA is on.
+// The counting pass of the storages (see pool_sizing.h). Many texels share a total (all of
+// them for texture3d), so a warp's lanes combine their counts before the atomic. Compiled by
+// nvcc when CUDA is on.
 #include "dsm/storage/pool_sizing.h"
 
 #include "core/atomic.h"
@@ -31,9 +33,9 @@ std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
           const int32_t nodes = g.generate(t, eps, CountingNodeSink{}).record.nodes;
           int32_t* total = &totals[by.group_of(g, i, t.index)];
           if (by.maximum)
-            atomic_max(total, nodes);
+            atomic_max_combined(total, nodes);
           else
-            atomic_add(total, nodes);
+            atomic_add_combined(total, nodes);
         });
   });
   return buffer.to_vector();

@@ -6,9 +6,13 @@
 //   count   per record, a few threads (a warp on CUDA) share the tiles of its box: per tile a
 //           coverage mask; non-zero ones are counted per tile (atomic);
 //   scan    on the host over the per-tile counts (the array is small), with the entry limit;
-//   write   the same masks again, each stored at its tile's next free slot (atomic cursor);
-//   sort    one thread per tile: entries ordered by (triangle, mask), so the arbitrary order
-//           of the atomic writes never shows.
+//   write   the same masks again, each stored at its tile's next free slot (atomic cursor) of
+//           a scratch copy;
+//   sort    entries ordered by (triangle, mask) into the lists, so the arbitrary order of the
+//           atomic writes never shows: one thread per entry of a short list (at most
+//           kRankSortedEntries) puts it at its rank among its tile's entries, one thread per
+//           longer list sorts that list. The order is total up to equal entries, so both give
+//           the same lists.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -42,19 +46,23 @@ DV_HD uint32_t setup_source(const RasterView& view, int64_t t, Emit&& emit) {
   return setup_triangle(view.projection, world, uint32_t(t), emit);
 }
 
+DV_HD inline unsigned long long one_if(bool b) {
+  return b ? 1ull : 0ull;
+}
+
+// Every thread adds to the same counters (zero where its flag is not set): combined per warp.
 DV_HD inline void tally(SetupCounters* c, uint32_t flags, int pieces) {
-  const unsigned long long one = 1;
-  if (flags & kSetupCulledAny) {
-    if (flags & kSetupCulledBehind) atomic_add(&c->culled_behind, one);
-    if (flags & kSetupCulledOffscreen) atomic_add(&c->culled_offscreen, one);
-    if (flags & kSetupCulledDegenerate) atomic_add(&c->culled_degenerate, one);
-    if (flags & kSetupCulledInvalid) atomic_add(&c->culled_invalid, one);
-    return;
-  }
-  if (flags & (kSetupClippedNear | kSetupClippedGuard)) atomic_add(&c->clipped, one);
-  if (flags & kSetupClippedNear) atomic_add(&c->clipped_near, one);
-  if (flags & kSetupClippedGuard) atomic_add(&c->clipped_guard, one);
-  if (pieces > 1) atomic_add(&c->extra_pieces, (unsigned long long)(pieces - 1));
+  const bool culled = (flags & kSetupCulledAny) != 0;
+  atomic_add_combined(&c->culled_behind, one_if(flags & kSetupCulledBehind));
+  atomic_add_combined(&c->culled_offscreen, one_if(flags & kSetupCulledOffscreen));
+  atomic_add_combined(&c->culled_degenerate, one_if(flags & kSetupCulledDegenerate));
+  atomic_add_combined(&c->culled_invalid, one_if(flags & kSetupCulledInvalid));
+  atomic_add_combined(&c->clipped,
+                      one_if(!culled && (flags & (kSetupClippedNear | kSetupClippedGuard))));
+  atomic_add_combined(&c->clipped_near, one_if(!culled && (flags & kSetupClippedNear)));
+  atomic_add_combined(&c->clipped_guard, one_if(!culled && (flags & kSetupClippedGuard)));
+  atomic_add_combined(&c->extra_pieces,
+                      (unsigned long long)(!culled && pieces > 1 ? pieces - 1 : 0));
 }
 
 // The records: one per source triangle (possibly empty), then the extra pieces.
@@ -97,6 +105,23 @@ DV_HD inline void sift_down(TileEntry* e, int64_t root, int64_t end) {
     e[child] = swap;
     root = child;
   }
+}
+
+// Lists up to this long are sorted by rank, one thread per entry (a few dozen comparisons each,
+// all in parallel); longer ones by one thread per list.
+constexpr int64_t kRankSortedEntries = 64;
+
+// The tile whose entries [range[t], range[t + 1]) hold entry e (the last t with range[t] <= e).
+DV_HD inline int64_t tile_of_entry(const View<const uint32_t>& range, int64_t tiles, int64_t e) {
+  int64_t lo = 0, hi = tiles - 1;
+  while (lo < hi) {
+    const int64_t mid = (lo + hi + 1) / 2;
+    if (int64_t(range[mid]) <= e)
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  return lo;
 }
 
 // Insertion sort for short lists, heap sort (n log n, no extra memory) for long ones.
@@ -246,7 +271,8 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   tile_fill.fill_zero();
   uint32_t* fill = tile_fill.data();
   const View<const uint32_t> range = lists.offsets.const_view();
-  const View<TileEntry> entries = lists.entries.view();
+  Buffer<TileEntry> unsorted_entries(memory, int64_t(stored), "raster unsorted tile entries");
+  const View<TileEntry> unsorted = unsorted_entries.view();
   parallel_for(
       backend, "raster_write", records.size() * lanes, DV_KERNEL_LAMBDA(int64_t i) {
         const RasterTriangle& t = records[i / lanes];
@@ -256,13 +282,31 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
           const int64_t tile = int64_t(ty) * tiles_x + tx;
           const uint32_t slot = atomic_add(fill + tile, 1u);
           if (slot < range[tile + 1] - range[tile])
-            entries[range[tile] + slot] = {mask, t.source, 0u};
+            unsorted[range[tile] + slot] = {mask, t.source, 0u};
         });
       });
+  const View<TileEntry> entries = lists.entries.view();
   parallel_for(
-      backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
-        sort_entries(entries.data + range[t], int64_t(range[t + 1] - range[t]));
+      backend, "raster_rank_sort", int64_t(stored), DV_KERNEL_LAMBDA(int64_t e) {
+        const int64_t tile = tile_of_entry(range, tiles, e);
+        const int64_t first = range[tile], end = range[tile + 1];
+        if (end - first > kRankSortedEntries) return;
+        const TileEntry mine = unsorted[e];
+        int64_t rank = 0;
+        for (int64_t j = first; j < end; ++j) {
+          const TileEntry other = unsorted[j];
+          rank += entry_less(other, mine) || (j < e && !entry_less(mine, other));
+        }
+        entries[first + rank] = mine;
       });
+  if (s.max_entries_per_tile > kRankSortedEntries)
+    parallel_for(
+        backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
+          const int64_t first = range[t], count = int64_t(range[t + 1] - range[t]);
+          if (count <= kRankSortedEntries) return;
+          for (int64_t j = first; j < first + count; ++j) entries[j] = unsorted[j];
+          sort_entries(entries.data + first, count);
+        });
   if (backend == Backend::cuda) device_synchronize(kWhere);
 
   const SetupCounters& c = setup.counters;

@@ -11,7 +11,8 @@
 // contraction, so the CPU and CUDA grids are identical. The result is the set of voxels that
 // pass sat_voxel_passes(); the work split below only enumerates candidate supersets of it.
 //
-// Work split (large triangles must not serialise on one thread):
+// Work split (large triangles must not serialise on one thread; small ones, most triangles of a
+// fine mesh, run all their work items on one thread with sat_all_work_items):
 //   non-degenerate: one work item per voxel column of the bounding range seen along the
 //     dominant normal axis a; the item checks the column against the projection along a, then
 //     walks the few voxels along a that the plane can reach (at most about 7).
@@ -137,13 +138,12 @@ DV_HD inline int sat_clamp_index(double x, int lo, int hi) {
   return int(x);
 }
 
-// Non-degenerate work item `local`: one column along t.axis.
-DV_HD inline void sat_column(const SatTriangle& t, int64_t local, const VoxelGridView& grid) {
+// Non-degenerate: the column along a = t.axis at p[(a+1)%3] = pu, p[(a+2)%3] = pw.
+DV_HD inline void sat_column_at(const SatTriangle& t, int pu, int pw, const VoxelGridView& grid) {
   const int a = t.axis, u = (a + 1) % 3, w = (a + 2) % 3;
-  const int64_t count_u = t.range[u].count();
   ivec3 p;
-  p[u] = t.range[u].first + int(local % count_u);
-  p[w] = t.range[w].first + int(local / count_u);
+  p[u] = pu;
+  p[w] = pw;
   if (!sat_projection_passes(t, p, a)) return;
   // Where along the column the plane test can pass, widened by a voxel for rounding; the
   // per-voxel test below decides.
@@ -209,11 +209,31 @@ DV_HD inline void sat_segment_slice(const SatTriangle& t, int64_t local,
       if (sat_voxel_passes(t, p)) grid.set(p.x, p.y, p.z);
 }
 
+// Non-degenerate work item `local`: one column of the range across t.axis, rows along u.
+DV_HD inline void sat_column(const SatTriangle& t, int64_t local, const VoxelGridView& grid) {
+  const int a = t.axis, u = (a + 1) % 3, w = (a + 2) % 3;
+  const int64_t count_u = t.range[u].count();
+  sat_column_at(t, t.range[u].first + int(local % count_u), t.range[w].first + int(local / count_u),
+                grid);
+}
+
 DV_HD inline void sat_work_item(const SatTriangle& t, int64_t local, const VoxelGridView& grid) {
   if (t.degenerate)
     sat_segment_slice(t, local, grid);
   else
     sat_column(t, local, grid);
+}
+
+// Every work item of `t` on the calling thread (the small triangles' route): the same voxels as
+// sat_work_item for local = 0 .. t.work_items - 1, without the per-item index arithmetic.
+DV_HD inline void sat_all_work_items(const SatTriangle& t, const VoxelGridView& grid) {
+  if (t.degenerate) {
+    for (int64_t local = 0; local < t.work_items; ++local) sat_segment_slice(t, local, grid);
+    return;
+  }
+  const int u = (t.axis + 1) % 3, w = (t.axis + 2) % 3;
+  for (int pw = t.range[w].first; pw <= t.range[w].last; ++pw)
+    for (int pu = t.range[u].first; pu <= t.range[u].last; ++pu) sat_column_at(t, pu, pw, grid);
 }
 
 }  // namespace dv

@@ -1,24 +1,31 @@
 // The `sat` conservative voxelizer's passes (test and work split in sat_kernels.h), one source
 // for both backends (nvcc compiles this file when CUDA is on):
-//   clear    a fresh zeroed grid;
+//   clear    a fresh zeroed grid, the zeroed counters and the large triangles' list;
 //   upload   the triangles' corners;
-//   setup    allocation of the counts, then per triangle: corners to grid coordinates (in
-//            place), bounding range, work-item count, and a count of the degenerate ones;
-//   scan     exclusive scan of the counts where they live (cuda/scan.h), then one read-back of
-//            the total and the degenerate count (the total sizes the next launch);
-//   voxelize one thread per work item (a column or a slice of one triangle): it finds its
-//            triangle by binary search over the offsets, rebuilds the triangle's test from its
-//            three corners (cheaper than storing it) and ORs its voxels into the grid.
-// Per call the backend memory holds the grid, the corners and one int64 per triangle plus two.
+//   small    one thread per triangle: corners to grid coordinates, the triangle's test and its
+//            work items (voxel columns, or slices of a degenerate one); a triangle with at most
+//            `small_items` of them is voxelized right there, a larger one stores its grid
+//            corners (in place) and is appended to the large list (work_items.h's
+//            PackedWorkList: entry and first item from one atomic add, no scan);
+//   large    a fixed number of threads loops over the large triangles' work items (the count
+//            is read on the device, never by the host): each finds its triangle by binary
+//            search over the list's first items, rebuilds the triangle's test when the triangle
+//            changes and ORs one column's (or slice's) voxels into the grid.
+// The counters (small work items, degenerate triangles, the list's packed count) are read back
+// once, after the last pass. Every route sets exactly the voxels that pass sat_voxel_passes, so
+// the grid does not depend on the split. Per call the backend memory holds the grid, the corners
+// and two int64 per triangle for the list.
 #include "strategies/voxelizer/sat_voxelizer.h"
 
-#include <cstring>
+#include <algorithm>
 #include <memory>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "core/atomic.h"
+#include "core/parallel.h"
 #include "cuda/pass_timer.h"
-#include "cuda/scan.h"
 #include "strategies/voxelizer/sat_device.h"
 #include "strategies/voxelizer/work_items.h"
 
@@ -26,37 +33,61 @@ namespace dv {
 
 namespace {
 
-// values[first] and values[first + 1] set to zero / copied to the host.
-void write_tail_zeros(Buffer<int64_t>& values, int64_t first) {
-  if (values.memory() == Memory::device)
-    device_memset(values.data() + first, 0, 2 * sizeof(int64_t));
-  else
-    std::memset(values.data() + first, 0, 2 * sizeof(int64_t));
+// Threads of the large pass: enough to fill the GPU, few enough that an empty list costs little
+// (on CPU threads, a few loops per worker).
+int64_t sat_large_threads(Backend backend) {
+  return backend == Backend::cuda ? int64_t(1) << 16 : int64_t(cpu_thread_count()) * 64;
 }
-void read_tail(const Buffer<int64_t>& values, int64_t first, int64_t out[2]) {
-  if (values.memory() == Memory::device)
-    copy_to_host(out, values.data() + first, 2 * sizeof(int64_t));
-  else
-    std::memcpy(out, values.data() + first, 2 * sizeof(int64_t));
+
+// counters[kSmallItems]: work items of the small triangles; [kDegenerate]: degenerate triangles
+// with work; [kFirstList + b]: the packed count of batch b's large list.
+enum SatCounter : int64_t { kSmallItems = 0, kDegenerate = 1, kFirstList = 2 };
+
+// The most work items one triangle can have in a `res` grid (columns across two axes, or the
+// slices along one).
+int64_t max_sat_work_items(const ivec3& res) {
+  const int64_t x = res.x, y = res.y, z = res.z;
+  return std::max({x * y, y * z, x * z, x, y, z});
 }
 
 }  // namespace
 
-VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const GridSpec& spec) {
+void validate_sat_small_items(int64_t small_items) {
+  if (small_items < 0 || small_items > kSatMaxSmallItems)
+    throw InputError("voxelizer 'sat'", "small=" + std::to_string(small_items) +
+                                            " must be in [0, " + std::to_string(kSatMaxSmallItems) +
+                                            "] (work items of a triangle voxelized by one thread)");
+}
+
+VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const GridSpec& spec,
+                            int64_t small_items, int64_t max_batch) {
   validate_grid_spec(spec, "sat voxelizer");
   require_affine_grid(spec, "sat voxelizer");
   require_backend(backend);
+  validate_sat_small_items(small_items);
   const Memory memory = memory_of(backend);
+  const int64_t triangles = soup.triangle_count();
+  const ivec3 res = spec.res;
+  // Triangles per large list: one list for any mesh and grid that are not both enormous.
+  int64_t batch = packed_work_list_batch(triangles, max_sat_work_items(res));
+  if (max_batch > 0) batch = std::min(batch, max_batch);
+  const int64_t batches = triangles == 0 ? 0 : (triangles + batch - 1) / batch;
   VoxelizeResult result;
+  Buffer<unsigned long long> counters;
+  Buffer<int64_t> large_triangle, large_first;
   {
     PassTimer timer(backend);
     result.grid = VoxelGrid(spec, memory);
+    counters = Buffer<unsigned long long>(memory, kFirstList + batches, "sat counters");
+    counters.fill_zero();
+    large_triangle = Buffer<int64_t>(memory, triangles, "sat large triangles");
+    large_first = Buffer<int64_t>(memory, triangles, "sat large first items");
     result.passes.push_back({"clear", timer.stop()});
   }
-  const int64_t triangles = soup.triangle_count();
   result.counters["triangles"] = triangles;
   if (triangles == 0) {
     result.counters["work_items"] = 0;
+    result.counters["large_triangles"] = 0;
     result.counters["degenerate_triangles"] = 0;
     return result;
   }
@@ -66,69 +97,115 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
                         "sat corners");
   result.passes.push_back({"upload", upload_timer.stop()});
 
-  // counts: [0, triangles) work items per triangle, then offsets after the scan;
-  // [triangles] 0, the total after the scan; [triangles + 1] degenerate triangles.
-  Buffer<int64_t> counts;
   const GridTransform to_grid = grid_transform(spec);
-  const ivec3 res = spec.res;
+  const VoxelGridView grid = result.grid.view();
+  const int item_bits = packed_item_bits(batch);
+  const auto list_of = [&](int64_t b) {
+    return PackedWorkList{counters.data() + kFirstList + b, large_triangle.data() + b * batch,
+                          large_first.data() + b * batch, item_bits};
+  };
   {
     PassTimer timer(backend);
-    counts = Buffer<int64_t>(memory, triangles + 2, "sat work counts");
-    write_tail_zeros(counts, triangles);
     const View<dvec3> corner = corners.view();
-    const View<int64_t> count = counts.view();
-    // The slot is zeroed, added to and copied out as bytes, never read as an int64_t.
-    auto* const degenerate = reinterpret_cast<unsigned long long*>(counts.data() + triangles + 1);
-    parallel_for(
-        backend, "sat_setup", triangles, DV_KERNEL_LAMBDA(int64_t i) {
-          const dvec3 a = to_grid.apply(corner[3 * i]), b = to_grid.apply(corner[3 * i + 1]),
-                      c = to_grid.apply(corner[3 * i + 2]);
-          corner[3 * i] = a;
-          corner[3 * i + 1] = b;
-          corner[3 * i + 2] = c;
-          SatTriangle t;
-          sat_setup(a, b, c, res, t);
-          count[i] = t.work_items;
-          if (t.work_items > 0 && t.degenerate) atomic_add(degenerate, 1ull);
-        });
-    result.passes.push_back({"setup", timer.stop()});
+    unsigned long long* const small_count = counters.data() + kSmallItems;
+    unsigned long long* const degenerate_count = counters.data() + kDegenerate;
+    for (int64_t b = 0; b < batches; ++b) {
+      const int64_t begin = b * batch;
+      const PackedWorkList list = list_of(b);
+      parallel_for(
+          backend, "sat_small", std::min(batch, triangles - begin), DV_KERNEL_LAMBDA(int64_t j) {
+            const int64_t i = begin + j;
+            const dvec3 p0 = to_grid.apply(corner[3 * i]), p1 = to_grid.apply(corner[3 * i + 1]),
+                        p2 = to_grid.apply(corner[3 * i + 2]);
+            SatTriangle t;
+            unsigned long long small = 0, degenerate = 0;
+            if (sat_setup(p0, p1, p2, res, t) && t.work_items > 0) {
+              degenerate = t.degenerate ? 1 : 0;
+              if (t.work_items <= small_items) {
+                sat_all_work_items(t, grid);
+                small = static_cast<unsigned long long>(t.work_items);
+              } else {
+                corner[3 * i] = p0;
+                corner[3 * i + 1] = p1;
+                corner[3 * i + 2] = p2;
+                list.append(i, t.work_items);
+              }
+            }
+            atomic_add_combined(small_count, small);
+            atomic_add_combined(degenerate_count, degenerate);
+          });
+    }
+    result.passes.push_back({"small", timer.stop()});
   }
-
-  int64_t tail[2];
-  {
-    PassTimer timer(backend);
-    exclusive_scan_queued(backend, View<int64_t>{counts.data(), triangles + 1});
-    read_tail(counts, triangles, tail);
-    result.passes.push_back({"scan", timer.stop()});
-  }
-  const int64_t work_items = tail[0];
-  result.counters["work_items"] = work_items;
-  result.counters["degenerate_triangles"] = tail[1];
-
   {
     PassTimer timer(backend);
     const View<const dvec3> in = corners.const_view();
-    const View<const int64_t> first = counts.const_view();
-    const VoxelGridView grid = result.grid.view();
-    parallel_for(
-        backend, "sat_voxelize", work_items, DV_KERNEL_LAMBDA(int64_t i) {
-          const int64_t lo = work_item_owner(first, triangles, i);
-          SatTriangle t;
-          sat_setup(in[3 * lo], in[3 * lo + 1], in[3 * lo + 2], res, t);
-          sat_work_item(t, i - first[lo], grid);
-        });
-    result.passes.push_back({"voxelize", timer.stop()});
+    const int64_t threads = sat_large_threads(backend);
+    for (int64_t b = 0; b < batches; ++b) {
+      const PackedWorkList list = list_of(b);
+      parallel_for(
+          backend, "sat_large", threads, DV_KERNEL_LAMBDA(int64_t i) {
+            const int64_t items = list.items();
+            const View<const int64_t> first = list.firsts();
+            int64_t owner = -1;
+            SatTriangle t;
+            for (int64_t k = i; k < items; k += threads) {
+              const int64_t e = work_item_owner(first, first.size, k);
+              if (e != owner) {
+                owner = e;
+                const int64_t tri = list.primitive[e];
+                sat_setup(in[3 * tri], in[3 * tri + 1], in[3 * tri + 2], res, t);
+              }
+              sat_work_item(t, k - first[e], grid);
+            }
+          });
+    }
+    result.passes.push_back({"large", timer.stop()});
   }
+
+  std::vector<unsigned long long> counts = counters.to_vector();
+  int64_t work_items = int64_t(counts[kSmallItems]), large = 0;
+  for (int64_t b = 0; b < batches; ++b) {
+    const PackedWorkList list{&counts[size_t(kFirstList + b)], nullptr, nullptr, item_bits};
+    large += list.entries();
+    work_items += list.items();
+  }
+  result.counters["work_items"] = work_items;
+  result.counters["large_triangles"] = large;
+  result.counters["degenerate_triangles"] = int64_t(counts[kDegenerate]);
   return result;
 }
+
+namespace {
+
+class SatVoxelizer : public Voxelizer {
+ public:
+  explicit SatVoxelizer(const StrategyParams& params)
+      : small_items_(params.integer("small", int(kSatSmallItems))) {
+    validate_sat_small_items(small_items_);
+  }
+  std::string name() const override { return "sat"; }
+  nlohmann::json params() const override { return {{"small", small_items_}}; }
+  bool supports(Backend backend) const override {
+    return backend == Backend::cpu || kBuiltWithCuda;
+  }
+  VoxelizeResult voxelize(Backend backend, const TriangleSoup& soup,
+                          const GridSpec& spec) override {
+    return voxelize_sat(backend, soup, spec, small_items_);
+  }
+
+ private:
+  int64_t small_items_;
+};
+
+}  // namespace
 
 void register_sat_voxelizer(Registry<Voxelizer>& registry) {
   registry.add("sat",
                "conservative surface voxelization, plane + 2D edge tests (Schwarz & Seidel "
-               "2010), CPU and CUDA",
-               [](const StrategyParams&) {
-                 return std::make_unique<FunctionVoxelizer>("sat", voxelize_sat, true);
-               });
+               "2010), CPU and CUDA; param small=work items (voxel columns) of a triangle "
+               "voxelized by one thread, larger ones split",
+               [](const StrategyParams& p) { return std::make_unique<SatVoxelizer>(p); });
 }
 
 }  // namespace dv

@@ -191,6 +191,81 @@ TEST(StorageSizing, CountedPoolsStayNearCompactWithFiveOmniLights) {
   }
 }
 
+std::vector<std::string> pass_names(const DeepShadowMaps& maps) {
+  std::vector<std::string> names;
+  for (const DsmPass& p : maps.passes()) names.push_back(p.name);
+  return names;
+}
+
+// Counted texture3d counts only for the first maps of a size: a regeneration writes into the
+// depth the atlas has while measuring the deepest texel, then writes again deeper when the
+// scene needs more layers or keeps only the layers in use when it needs fewer. Each time the
+// atlas is exactly as deep as a fresh generation's, with the same figures and lookups.
+TEST(StorageSizing, CountedTexture3dCountsOnlyTheFirstMapsOfASize) {
+  const Scene deep = five_omni_scene();
+  Scene shallow = deep;
+  shallow.objects.resize(1);
+  Generated reused = generate(deep, Backend::cpu, "texture3d", {}, 0.02f, 64);
+  EXPECT_EQ(pass_names(*reused.maps), (std::vector<std::string>{"raster", "count", "write"}));
+  const struct {
+    const Scene* scene;
+    std::vector<std::string> passes;
+  } steps[] = {{&deep, {"raster", "write"}},
+               {&shallow, {"raster", "write", "shrink"}},
+               {&deep, {"raster", "write", "rewrite"}}};
+  int64_t previous_layers = reused.maps->figures()["max_layers"].get<int64_t>();
+  for (const auto& step : steps) {
+    reused.data = std::make_unique<SceneData>(*step.scene, Memory::host);
+    reused.maps->generate(*reused.data, Backend::cpu);
+    EXPECT_EQ(pass_names(*reused.maps), step.passes);
+    const Generated fresh = generate(*step.scene, Backend::cpu, "texture3d", {}, 0.02f, 64);
+    const nlohmann::json& got = reused.maps->figures();
+    const nlohmann::json& want = fresh.maps->figures();
+    EXPECT_EQ(got["overflowed_texels"], 0);
+    for (const char* key : {"max_layers", "nodes", "bytes_allocated", "texels"})
+      EXPECT_EQ(got[key], want[key]) << key;
+    EXPECT_EQ(got["strategy"]["layers"], want["max_layers"]);
+    expect_same_lookups(fresh, reused, Backend::cpu);
+    const int64_t layers = got["max_layers"].get<int64_t>();
+    if (step.passes.back() == "shrink") {
+      EXPECT_LT(layers, previous_layers);
+    }
+    if (step.passes.back() == "rewrite") {
+      EXPECT_GT(layers, previous_layers);
+    }
+    previous_layers = layers;
+  }
+}
+
+// A regeneration that starts from a shallower atlas than the `layers` limit and then needs more
+// than the limit: written again at the limit, where the overflowing texels are recompressed and
+// reported exactly as in a fresh generation.
+TEST(StorageOverflow, Texture3dRegenerationReportsOverflowLikeAFreshGeneration) {
+  const Scene deep = five_omni_scene();
+  Scene shallow = deep;
+  shallow.objects.resize(1);
+  const auto layers_of = [](const Scene& scene) {
+    return generate(scene, Backend::cpu, "texture3d", {}, 0.001f, 64)
+        .maps->figures()["max_layers"]
+        .get<int64_t>();
+  };
+  const int64_t shallow_layers = layers_of(shallow);
+  ASSERT_LT(shallow_layers + 1, layers_of(deep));
+  const std::vector<std::string> limit = {"layers=" + std::to_string(shallow_layers + 1)};
+  Generated reused = generate(shallow, Backend::cpu, "texture3d", limit, 0.001f, 64);
+  reused.data = std::make_unique<SceneData>(deep, Memory::host);
+  reused.maps->generate(*reused.data, Backend::cpu);
+  EXPECT_EQ(pass_names(*reused.maps), (std::vector<std::string>{"raster", "write", "rewrite"}));
+  const Generated fresh = generate(deep, Backend::cpu, "texture3d", limit, 0.001f, 64);
+  const nlohmann::json& got = reused.maps->figures();
+  const nlohmann::json& want = fresh.maps->figures();
+  EXPECT_GT(want["recompressed_texels"].get<int64_t>(), 0);
+  for (const char* key : {"max_layers", "nodes", "nodes_needed", "bytes_allocated",
+                          "overflowed_texels", "recompressed_texels", "overflow_max_error"})
+    EXPECT_EQ(got[key], want[key]) << key;
+  expect_same_lookups(fresh, reused, Backend::cpu);
+}
+
 // Sets an environment variable for the scope of one test.
 struct ScopedEnv {
   std::string name;

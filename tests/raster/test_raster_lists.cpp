@@ -107,6 +107,29 @@ TEST_P(TileListsTest, ListsMatchBruteForceBinning) {
       ASSERT_EQ(run.count(x, y), uint32_t(fragment_count(v, x, y)));
 }
 
+// The mixed scene with a stack of 100 triangles over the same tiles: lists up to 64 entries
+// are sorted by rank, one thread per entry, longer ones one thread per list; both give the
+// brute-force order.
+TEST_P(TileListsTest, LongAndShortListsMatchBruteForceBinning) {
+  MixedScene scene;
+  for (int k = 0; k < 100; ++k) {
+    const double z = 0.5 + 0.001 * k;
+    scene.soup.add_triangle({-0.3, -0.3, z}, {0.3, -0.25, z}, {0.0, 0.3, z});
+  }
+  const RasterProjection p = scene.projection();
+  const TileLists& lists = test::rasterize(backend(), scene.soup, p).lists;
+  const auto want = brute_force_lists(scene.soup, p);
+  int64_t short_lists = 0, long_lists = 0;
+  for (int64_t t = 0; t < lists.tile_count(); ++t) {
+    const size_t n = want[size_t(t)].size();
+    short_lists += n > 1 && n <= 64;
+    long_lists += n > 64;
+    expect_same_entries(test::tile_entries(lists, t), want[size_t(t)], t);
+  }
+  EXPECT_GT(short_lists, 10);
+  EXPECT_GT(long_lists, 10);
+}
+
 TEST_P(TileListsTest, OverflowIsReportedAndNothingIsWrittenBeyondTheLimit) {
   const MixedScene scene;
   const test::RasterRun full = test::rasterize(backend(), scene.soup, scene.projection());

@@ -85,7 +85,7 @@ TEST(VoxelizeJob, MeshFileToBinvoxAndStats) {
   EXPECT_EQ(stats["exact"]["metrics"]["missing_outside_band"].get<int64_t>(), 0);
   EXPECT_EQ(stats["exact"]["metrics"]["filled"].get<int64_t>(), filled);
   ASSERT_TRUE(stats["passes"].is_array());
-  EXPECT_EQ(stats["passes"].back()["pass"], "voxelize");
+  EXPECT_EQ(stats["passes"].back()["pass"], "large");
   // Default bounds: the mesh's box made cubic, the same side on every axis.
   const auto lo = stats["bounds"]["min"].get<std::vector<double>>();
   const auto hi = stats["bounds"]["max"].get<std::vector<double>>();

@@ -10,6 +10,7 @@
 #include "generators/mesh_generators.h"
 #include "strategies/voxelizer/sat_voxelizer.h"
 #include "strategies/voxelizer/voxel_metrics.h"
+#include "strategies/voxelizer/work_items.h"
 #include "tests/voxel/voxel_meshes.h"
 #include "tests/voxel/voxel_test_support.h"
 
@@ -230,6 +231,51 @@ TEST(Voxelizers, RegistryCreatesBothAndRejectsUnknownNames) {
     EXPECT_NE(std::string(e.what()).find("exact"), std::string::npos);
   }
   EXPECT_THROW(voxelizer_registry().create("sat", StrategyParams::parse({"tile=8"})), InputError);
+  EXPECT_THROW(voxelizer_registry().create("sat", StrategyParams::parse({"small=-1"})), InputError);
+  EXPECT_EQ(voxelizer_registry().create("sat", StrategyParams::parse({"small=9"}))->params(),
+            nlohmann::json({{"small", 9}}));
+}
+
+// Appends from many threads at once: the entries' first items follow their order, each entry
+// owns exactly its primitive's items, and every primitive is listed once.
+TEST(PackedWorkList, ConcurrentAppendsGiveOrderedOffsets) {
+  const int64_t n = 20000;
+  const auto items_of = [](int64_t i) { return (i * 7919) % 13; };
+  unsigned long long counter = 0;
+  std::vector<int64_t> primitive(n, -1), first(n, -1);
+  const PackedWorkList list{&counter, primitive.data(), first.data(), packed_item_bits(n)};
+  parallel_for(Backend::cpu, "test_append", n, [&](int64_t i) { list.append(i, items_of(i)); });
+  int64_t total = 0;
+  for (int64_t i = 0; i < n; ++i) total += items_of(i);
+  ASSERT_EQ(list.entries(), n);
+  ASSERT_EQ(list.items(), total);
+  std::vector<int> seen(n, 0);
+  for (int64_t e = 0; e < n; ++e) {
+    ASSERT_GE(primitive[e], 0);
+    ++seen[primitive[e]];
+    const int64_t end = e + 1 < n ? first[e + 1] : total;
+    EXPECT_EQ(end - first[e], items_of(primitive[e])) << "entry " << e;
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), n);
+  for (int64_t k = 0; k < total; k += 97) {
+    const int64_t e = work_item_owner(list.firsts(), n, k);
+    EXPECT_TRUE(first[e] <= k && k < first[e] + items_of(primitive[e])) << "item " << k;
+  }
+}
+
+TEST(PackedWorkList, BatchesKeepEntriesAndItemsApart) {
+  EXPECT_EQ(packed_work_list_batch(235136, int64_t(1) << 20), 235136);  // bunny x3 at 1024^3
+  EXPECT_EQ(packed_work_list_batch(0, 100), 1);
+  const int64_t max_items = int64_t(1) << 29;  // a 16384 x 16384 x 32 grid's columns
+  const int64_t batch = packed_work_list_batch(int64_t(1) << 30, max_items);
+  ASSERT_GE(batch, 1);
+  EXPECT_LT(batch, int64_t(1) << 30);
+  const auto fits = [&](int64_t b) {
+    return static_cast<unsigned __int128>(b) * max_items <
+           (static_cast<unsigned __int128>(1) << packed_item_bits(b));
+  };
+  EXPECT_TRUE(fits(batch));
+  EXPECT_FALSE(fits(2 * batch));  // halving stops at the first batch that fits
 }
 
 }  // namespace
