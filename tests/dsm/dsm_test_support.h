@@ -1,7 +1,6 @@
 // Shared pieces of the deep-shadow-map tests: scenes (the repository's scene files and random
 // scenes of translucent boxes, spheres and constant media built in code), a generation target
-// that records the walk's raw samples beside the compressor's nodes, texel-centre points, and
-// every texel's visibility at a set of depths.
+// that records the walk's raw samples beside the compressor's nodes, and texel-centre points.
 #pragma once
 
 #include <random>
@@ -63,27 +62,5 @@ struct RecordingTarget {
     push(z, after);
   }
 };
-
-inline constexpr int kLookupDepths = 24;
-
-// Visibility of every texel of `maps` at kLookupDepths depths from 0 to twice the scene
-// diagonal, texel-major, through the storage's reader on `backend` (where the maps live), copied
-// to the host.
-inline std::vector<float> texel_lookups(const DeepShadowMaps& maps, const SceneData& data,
-                                        Backend backend) {
-  const DsmSource source = maps.source();
-  const int64_t texels = int64_t(maps.records().size());
-  const int depths = kLookupDepths;
-  Buffer<float> out(memory_of(backend), texels * depths, "lookups");
-  const View<float> o = out.view();
-  const double far = 2.0 * data.view().diagonal;
-  parallel_for(
-      backend, "test_dsm_lookups", texels * depths, DV_KERNEL_LAMBDA(int64_t i) {
-        int hint = -1;
-        const float z = float(far * double(i % depths) / depths);
-        o[i] = source.reader.visibility(i / depths, z, hint);
-      });
-  return out.to_vector();
-}
 
 }  // namespace dv::test

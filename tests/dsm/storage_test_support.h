@@ -1,6 +1,7 @@
 // Shared pieces of the storage tests: generating a scene's maps into a storage chosen by name on
 // a backend, and reading every texel's V' at a fixed set of depths through the storage's reader
-// (on that backend), for comparisons between storages, backends and the oracle.
+// (on that backend), for comparisons between storages, backends and the oracle. Launches
+// kernels: include it only from files nvcc compiles (deepvox_kernel_sources).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -14,6 +15,28 @@
 #include "tests/dsm/dsm_test_support.h"
 
 namespace dv::test {
+
+inline constexpr int kLookupDepths = 24;
+
+// Visibility of every texel of `maps` at kLookupDepths depths from 0 to twice the scene
+// diagonal, texel-major, through the storage's reader on `backend` (where the maps live), copied
+// to the host.
+inline std::vector<float> texel_lookups(const DeepShadowMaps& maps, const SceneData& data,
+                                        Backend backend) {
+  const DsmSource source = maps.source();
+  const int64_t texels = int64_t(maps.records().size());
+  const int depths = kLookupDepths;
+  Buffer<float> out(memory_of(backend), texels * depths, "lookups");
+  const View<float> o = out.view();
+  const double far = 2.0 * data.view().diagonal;
+  parallel_for(
+      backend, "test_dsm_lookups", texels * depths, DV_KERNEL_LAMBDA(int64_t i) {
+        int hint = -1;
+        const float z = float(far * double(i % depths) / depths);
+        o[i] = source.reader.visibility(i / depths, z, hint);
+      });
+  return out.to_vector();
+}
 
 struct Generated {
   std::unique_ptr<SceneData> data;

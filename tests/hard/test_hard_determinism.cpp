@@ -7,13 +7,13 @@
 
 #include <cstring>
 
-#include "load/scene_loader.h"
 #include "frame/raster_render.h"
+#include "load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
 #include "strategies/voxelizer/sat_voxelizer.h"
 #include "strategies/voxelizer/slicemap_voxelizer.h"
 #include "strategies/voxelizer/triangle_soup.h"
-#include "tests/dsm/dsm_test_support.h"
+#include "tests/dsm/storage_test_support.h"
 #include "tests/hard/hard_test_support.h"
 #include "tests/support/paths.h"
 
@@ -97,10 +97,12 @@ TEST_P(HardDeterminism, NodeCountsAndNodesAreIdentical) {
 TEST_P(HardDeterminism, VoxelGridsAreIdentical) {
   const TriangleSoup soup = triangle_soup(small_demo());
   const GridSpec spec = make_box_grid({96, 80, 64}, soup.bounds());
-  for (auto voxelize : {&voxelize_sat, &voxelize_slicemap}) {
-    const std::vector<uint32_t> first = voxelize(GetParam(), soup, spec).grid.words();
+  for (const char* name : {"sat", "slicemap"}) {
+    const auto voxelizer = voxelizer_registry().create(name);
+    const std::vector<uint32_t> first = voxelizer->voxelize(GetParam(), soup, spec).grid.words();
     for (int run = 1; run < kRuns; ++run)
-      EXPECT_EQ(voxelize(GetParam(), soup, spec).grid.words(), first) << "run " << run;
+      EXPECT_EQ(voxelizer->voxelize(GetParam(), soup, spec).grid.words(), first)
+          << name << " run " << run;
   }
 }
 

@@ -244,7 +244,7 @@ TEST(PackedWorkList, ConcurrentAppendsGiveOrderedOffsets) {
   unsigned long long counter = 0;
   std::vector<int64_t> primitive(n, -1), first(n, -1);
   const PackedWorkList list{&counter, primitive.data(), first.data(), packed_item_bits(n)};
-  parallel_for(Backend::cpu, "test_append", n, [&](int64_t i) { list.append(i, items_of(i)); });
+  cpu_parallel_for(n, [&](int64_t i) { list.append(i, items_of(i)); });
   int64_t total = 0;
   for (int64_t i = 0; i < n; ++i) total += items_of(i);
   ASSERT_EQ(list.entries(), n);
