@@ -43,6 +43,25 @@ DsmSettings DsmSettings::read(const StrategyParams& p) {
   return s;
 }
 
+nlohmann::json DsmSettings::params(const DsmStorage& created) const {
+  nlohmann::json j = {{"storage", created.name()},
+                      {"res", resolution},
+                      {"eps", eps},
+                      {"filter", bilinear ? "bilinear" : "none"},
+                      {"bias", bias},
+                      {"slope", slope_bias},
+                      {"subrays", subrays},
+                      {"volume", precompressed ? "table" : "midpoint"},
+                      {"table_bins", table_bins},
+                      {"step_scale", step_scale},
+                      {"clusters", clusters.max_clusters},
+                      {"cluster_d0", clusters.d0},
+                      {"lispsm", clusters.lispsm ? 1 : 0},
+                      {"cluster_hysteresis", clusters.hysteresis}};
+  for (const auto& [key, value] : created.params().items()) j["storage." + key] = value;
+  return j;
+}
+
 ClusteredLayout DeepShadowMaps::plan_clusters(const SceneData& scene, const Camera* camera) const {
   const SceneView& s = scene.view();
   const ClusterSettings& c = settings_.clusters;

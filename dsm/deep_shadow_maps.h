@@ -35,8 +35,11 @@ struct DsmSettings {
   ClusterSettings clusters;  // max_clusters > 1: clustered maps (light_clusters.h)
   int light = -1;            // >= 0: maps of this light only, whose source answers it as light 0
 
-  // The `dsm` shadow method's parameters (strategies/shadow/dsm_shadows.cpp lists them).
+  // The `dsm` shadow method's parameters (strategies/shadow/dsm_shadows.cpp lists them), and
+  // the same keys written back (`storage` the strategy creating them: its own as storage.KEY);
+  // read(params(...)) gives these settings again.
   static DsmSettings read(const StrategyParams& p);
+  nlohmann::json params(const DsmStorage& storage) const;
 };
 
 class DeepShadowMaps {

@@ -49,36 +49,21 @@ class AutoShadows final : public ShadowMethod {
  public:
   explicit AutoShadows(const StrategyParams& p) : dsm_(DsmSettings::read(p)) {
     DeepShadowMaps check(dsm_);  // rejects bad dsm parameters before any frame
+    storage_ = storage_registry().create(dsm_.storage, dsm_.storage_params);
     depth_.res = dsm_.resolution;
     depth_.pcf = dsm_.bilinear ? 2 : 1;
     depth_.bias = dsm_.bias;
     const double dsm_reach = dsm_.bilinear ? 1.0 : 0.5, depth_reach = 0.5 * (depth_.pcf + 1);
     depth_.slope = dsm_.slope_bias * dsm_reach / depth_reach;
-    storage_params_ = check.storage().params();
   }
   std::string name() const override { return "auto"; }
-  nlohmann::json params() const override {
-    return {{"storage", dsm_.storage},
-            {"storage_params", storage_params_},
-            {"res", dsm_.resolution},
-            {"eps", dsm_.eps},
-            {"filter", dsm_.bilinear ? "bilinear" : "none"},
-            {"bias", dsm_.bias >= 0.0 ? nlohmann::json(dsm_.bias) : nlohmann::json("auto")},
-            {"slope", dsm_.slope_bias},
-            {"subrays", dsm_.subrays},
-            {"volume", dsm_.precompressed ? "table" : "midpoint"},
-            {"table_bins", dsm_.table_bins},
-            {"step_scale", dsm_.step_scale},
-            {"clusters", dsm_.clusters.max_clusters},
-            {"cluster_d0", dsm_.clusters.d0},
-            {"lispsm", dsm_.clusters.lispsm ? 1 : 0},
-            {"cluster_hysteresis", dsm_.clusters.hysteresis},
-            {"shadowmap", depth_.json()}};
-  }
+  // The dsm parameters it reads (its depth maps derive theirs: stats() shows them).
+  nlohmann::json params() const override { return dsm_.params(*storage_); }
   nlohmann::json stats() const override {
     return {{"prepare_calls", prepare_calls_},
             {"maps_built", maps_built_},
             {"maps_reused", maps_reused_},
+            {"shadowmap", depth_.json()},
             {"plan", plan_json_}};
   }
   nlohmann::json plan() const override { return plan_json_; }
@@ -186,7 +171,7 @@ class AutoShadows final : public ShadowMethod {
 
   DsmSettings dsm_;
   DepthMapParams depth_;
-  nlohmann::json storage_params_;
+  std::unique_ptr<DsmStorage> storage_;  // echoes the storage's parameters
   Backend backend_ = Backend::cpu;
   std::vector<LightSlot> slots_;
   Buffer<PlannedLight> plan_;

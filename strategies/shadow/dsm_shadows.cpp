@@ -52,25 +52,7 @@ class DsmShadows final : public ShadowMethod {
     return maps_.generations() > 0 ? &maps_ : nullptr;
   }
   nlohmann::json params() const override {
-    const DsmSettings& s = maps_.settings();
-    nlohmann::json j = {{"storage", maps_.storage().name()},
-                        {"res", s.resolution},
-                        {"eps", s.eps},
-                        {"filter", s.bilinear ? "bilinear" : "none"},
-                        {"bias", s.bias},
-                        {"slope", s.slope_bias},
-                        {"subrays", s.subrays},
-                        {"volume", s.precompressed ? "table" : "midpoint"},
-                        {"table_bins", s.table_bins},
-                        {"step_scale", s.step_scale},
-                        {"clusters", s.clusters.max_clusters},
-                        {"cluster_d0", s.clusters.d0},
-                        {"lispsm", s.clusters.lispsm ? 1 : 0},
-                        {"cluster_hysteresis", s.clusters.hysteresis}};
-    // The storage's own parameters as the factory reads them: storage.KEY.
-    const nlohmann::json storage = maps_.storage().params();
-    for (const auto& [key, value] : storage.items()) j["storage." + key] = value;
-    return j;
+    return maps_.settings().params(maps_.storage());
   }
   nlohmann::json stats() const override {
     nlohmann::json j = {{"maps_built", maps_.generations()}, {"prepare_calls", prepare_calls_}};
