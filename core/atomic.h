@@ -9,10 +9,6 @@
 #if !DV_IN_DEVICE_CODE
 #include <atomic>
 #endif
-#if defined(__CUDACC__)
-#include <cooperative_groups.h>
-#include <cooperative_groups/reduce.h>
-#endif
 
 namespace dv {
 
@@ -92,17 +88,37 @@ DV_HD T atomic_exchange(T* address, T value) {
 #endif
 }
 
-// atomic_add / atomic_max from many threads onto few hot addresses: on the device the active
-// lanes of a warp that target the same address combine their values first and one of them
-// does the atomic (one per warp and address instead of one per thread); on the host they are
-// the plain atomics. The add skips a zero sum.
+// atomic_add / atomic_max from many threads onto few hot addresses: on the device the lanes of
+// a warp that reach the call together and target the same address combine their values first
+// (each reads its peers' values by shuffle) and the lowest of them does the one atomic; on the
+// host they are the plain atomics. The add skips a zero sum.
+#if DV_IN_DEVICE_CODE
+__device__ inline int warp_lane() {
+  unsigned lane;
+  asm("mov.u32 %0, %%laneid;" : "=r"(lane));
+  return int(lane);
+}
+
+// `value` of every lane here with this one that targets `address`, folded by `op` (each of
+// them gets the result); `leader`: this lane is the lowest of them.
+template <class T, class Op>
+__device__ T combine_with_peers(const void* address, T value, Op op, bool& leader) {
+  const unsigned peers =
+      __match_any_sync(__activemask(), reinterpret_cast<unsigned long long>(address));
+  T result = __shfl_sync(peers, value, __ffs(peers) - 1);
+  for (unsigned rest = peers & (peers - 1); rest != 0; rest &= rest - 1)
+    result = op(result, __shfl_sync(peers, value, __ffs(rest) - 1));
+  leader = warp_lane() == __ffs(peers) - 1;
+  return result;
+}
+#endif
+
 template <class T>
 DV_HD void atomic_add_combined(T* address, T value) {
 #if DV_IN_DEVICE_CODE
-  namespace cg = cooperative_groups;
-  const cg::coalesced_group peers = cg::labeled_partition(cg::coalesced_threads(), address);
-  const T sum = cg::reduce(peers, value, cg::plus<T>());
-  if (peers.thread_rank() == 0 && sum != T(0)) atomicAdd(address, sum);
+  bool leader = false;
+  const T sum = combine_with_peers(address, value, [](T a, T b) { return a + b; }, leader);
+  if (leader && sum != T(0)) atomicAdd(address, sum);
 #else
   if (value != T(0)) atomic_add(address, value);
 #endif
@@ -111,10 +127,9 @@ DV_HD void atomic_add_combined(T* address, T value) {
 template <class T>
 DV_HD void atomic_max_combined(T* address, T value) {
 #if DV_IN_DEVICE_CODE
-  namespace cg = cooperative_groups;
-  const cg::coalesced_group peers = cg::labeled_partition(cg::coalesced_threads(), address);
-  const T most = cg::reduce(peers, value, cg::greater<T>());
-  if (peers.thread_rank() == 0) atomicMax(address, most);
+  bool leader = false;
+  const T most = combine_with_peers(address, value, [](T a, T b) { return a < b ? b : a; }, leader);
+  if (leader) atomicMax(address, most);
 #else
   atomic_max(address, value);
 #endif

@@ -42,8 +42,9 @@ std::vector<std::string> as_items(const nlohmann::json& params) {
 }
 
 template <class Base>
-void expect_params_round_trip(const Registry<Base>& registry, const std::string& name) {
-  const auto made = registry.create(name);
+void expect_params_round_trip(const Registry<Base>& registry, const std::string& name,
+                              const std::vector<std::string>& first = {}) {
+  const auto made = registry.create(name, StrategyParams::parse(first));
   const nlohmann::json echoed = made->params();
   const auto again = registry.create(name, StrategyParams::parse(as_items(echoed)));
   EXPECT_EQ(again->params(), echoed) << echoed.dump();
@@ -108,6 +109,9 @@ TEST_P(EveryStorage, CreatesRoundTripsAndAnswersSanely) {
   const auto& [name, backend] = GetParam();
   DV_SKIP_UNLESS_BACKEND(backend);
   expect_params_round_trip(storage_registry(), name);
+  // The methods that take a storage echo its parameters as storage.KEY.
+  for (const char* method : {"dsm", "auto"})
+    expect_params_round_trip(shadow_registry(), method, {"storage=" + name});
   expect_sane_and_matching_cpu("dsm", {"storage=" + name, "res=64"}, backend);
 }
 
