@@ -58,7 +58,8 @@ nlohmann::json DsmSettings::params(const DsmStorage& created) const {
                       {"cluster_d0", clusters.d0},
                       {"lispsm", clusters.lispsm ? 1 : 0},
                       {"cluster_hysteresis", clusters.hysteresis}};
-  for (const auto& [key, value] : created.params().items()) j["storage." + key] = value;
+  const nlohmann::json own = created.params();  // items() must not outlive it
+  for (const auto& [key, value] : own.items()) j["storage." + key] = value;
   return j;
 }
 
