@@ -14,6 +14,7 @@
 #include "dsm/storage/compact_device.h"
 #include "dsm/storage/fourier_device.h"
 #include "dsm/storage/moments_device.h"
+#include "dsm/storage/occupancy_device.h"
 #include "dsm/storage/texture3d_device.h"
 
 namespace dv {
@@ -26,7 +27,8 @@ enum class DsmReaderKind : uint8_t {
   beer,
   avsm,
   moments,
-  fourier
+  fourier,
+  occupancy
 };
 
 struct DsmReader {
@@ -39,6 +41,7 @@ struct DsmReader {
   AvsmReader avsm{};
   MomentsReader moments{};
   FourierReader fourier{};
+  OccupancyReader occupancy{};
 
   // V'(z) of texel `texel`; `hint` carries coherent-search state between lookups of one ray
   // (start it at -1).
@@ -58,6 +61,8 @@ struct DsmReader {
         return moments.visibility(texel, z, hint);
       case DsmReaderKind::fourier:
         return fourier.visibility(texel, z, hint);
+      case DsmReaderKind::occupancy:
+        return occupancy.visibility(texel, z, hint);
       default:
         return compact.visibility(texel, z, hint);
     }

@@ -1,6 +1,6 @@
 // Host side of the deep-shadow-map storage family (texture3d, chunked, blocked, compact; beer and
-// avsm, the fixed-size approximations engines ship; moments and fourier, which fold each texel's
-// nodes into basis coefficients). A
+// avsm, the fixed-size approximations engines ship; moments, fourier and occupancy, which fold
+// each texel's nodes into a fixed record: basis coefficients, slice bits and slab sums). A
 // storage strategy is a sink the generation walk writes nodes into as it goes (per texel: begin,
 // push node, end), with an optional counting pass before; its generation time includes these
 // writes, which is where the strategies differ. It then answers lookups through a DsmReader

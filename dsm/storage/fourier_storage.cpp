@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "cuda/ensure_buffer.h"
+#include "dsm/storage/basis_texel_write.h"
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/fourier_device.h"
 #include "dsm/storage/texel_depth_ranges.h"
@@ -18,24 +19,6 @@
 namespace dv {
 
 namespace {
-
-void write_coefficients(const DsmGenerationContext& c, int frequencies, View<float> data) {
-  const DsmGenerator g = c.generator;
-  const float eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
-  const int stride = fourier_stride(frequencies);
-  parallel_for(
-      c.backend, "dsm_fourier_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
-        DsmTexel t;
-        if (!g.texel_of_thread(i, t)) return;
-        FourierSink sink;
-        sink.texel = data.data + t.index * stride;
-        sink.frequencies = frequencies;
-        const DsmTexelResult<FourierSink> r = g.generate(t, eps, sink);
-        r.sink.write();
-        records[t.index] = r.record;
-      });
-}
 
 class FourierStorage final : public DsmStorage {
  public:
@@ -52,7 +35,10 @@ class FourierStorage final : public DsmStorage {
     ensure_buffer(data_, memory_of(c.backend), c.generator.texel_count() * stride,
                   "dsm fourier texels");
     timed_pass(c, "range", [&] { write_texel_depth_ranges(c, data_.view(), stride); });
-    timed_pass(c, "write", [&] { write_coefficients(c, frequencies_, data_.view()); });
+    timed_pass(c, "write", [&] {
+      write_basis_texels(c, "dsm_fourier_write", FourierSink{nullptr, frequencies_}, stride,
+                         data_.view());
+    });
   }
 
   DsmReader reader() const override {

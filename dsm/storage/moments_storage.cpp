@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "cuda/ensure_buffer.h"
+#include "dsm/storage/basis_texel_write.h"
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/moments_device.h"
 #include "dsm/storage/texel_depth_ranges.h"
@@ -23,24 +24,6 @@
 namespace dv {
 
 namespace {
-
-void write_moments(const DsmGenerationContext& c, int moments, View<float> data) {
-  const DsmGenerator g = c.generator;
-  const float eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
-  const int stride = moments_stride(moments);
-  parallel_for(
-      c.backend, "dsm_moments_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
-        DsmTexel t;
-        if (!g.texel_of_thread(i, t)) return;
-        PowerMomentSink sink;
-        sink.texel = data.data + t.index * stride;
-        sink.moments = moments;
-        const DsmTexelResult<PowerMomentSink> r = g.generate(t, eps, sink);
-        r.sink.write();
-        records[t.index] = r.record;
-      });
-}
 
 class MomentsStorage final : public DsmStorage {
  public:
@@ -63,7 +46,10 @@ class MomentsStorage final : public DsmStorage {
     ensure_buffer(data_, memory_of(c.backend), c.generator.texel_count() * stride,
                   "dsm moments texels");
     timed_pass(c, "range", [&] { write_texel_depth_ranges(c, data_.view(), stride); });
-    timed_pass(c, "write", [&] { write_moments(c, moments_, data_.view()); });
+    timed_pass(c, "write", [&] {
+      write_basis_texels(c, "dsm_moments_write", PowerMomentSink{nullptr, moments_}, stride,
+                         data_.view());
+    });
   }
 
   DsmReader reader() const override {

@@ -1,4 +1,5 @@
-// What the two basis-function storages (`moments`, `fourier`) share: both fold one texel's
+// What the storages that fold a texel into a fixed record (`moments`, `fourier`, `occupancy`)
+// share: each folds one texel's
 // compressed visibility function V' (the generation walk's nodes, dsm/dsm_generator.h) into a
 // few numbers per texel instead of storing its nodes. V' is turned into optical depth
 // tau = -ln V' (capped at kMaxOpticalDepth, Muenstermann et al. 2018's ABSORBANCE_MAX_VALUE, so

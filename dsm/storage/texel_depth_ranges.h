@@ -1,4 +1,5 @@
-// The `range` pass of the basis-function storages (moments, fourier; optical_depth_basis.h):
+// The `range` pass of the storages that fold a texel into a fixed record (moments, fourier,
+// occupancy; optical_depth_basis.h):
 // one generation walk per texel that writes the depths of its first and last node into the
 // first two floats of its record (texel t's record at t * stride). Compiled by nvcc when CUDA
 // is on (texel_depth_ranges.cpp).

@@ -129,7 +129,7 @@ class TransmittanceSlicemap final : public ShadowMethod {
         transforms.push_back(grid_transform(spec));
         face_grids_.push_back(std::move(r.grid));
       }
-    for (uint32_t w : words) set_voxels_ += VoxelGridView::bit_count(w);
+    for (uint32_t w : words) set_voxels_ += bit_count(w);
     voxelizer_passes_ = nlohmann::json::array();
     for (const auto& [name, ms] : passes) voxelizer_passes_.push_back({{"pass", name}, {"ms", ms}});
     grids_ = Buffer<GridTransform>(memory, transforms, "transmittance slicemap grids");

@@ -20,12 +20,12 @@
 //     (k * H + y) * W + x: a stack of D/32 slices of W x H words, like a layered integer texture.
 #pragma once
 
-#include <bit>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/atomic.h"
+#include "core/bits.h"
 #include "core/math.h"
 #include "cuda/buffer.h"
 #include "cuda/execute.h"
@@ -127,15 +127,8 @@ struct VoxelGridView {
   DV_HD int count_below(int x, int y, int z) const {
     int count = 0;
     for (int k = 0; k < (z >> 5); ++k) count += bit_count(words[word_index(x, y, k)]);
-    if (z & 31) count += bit_count(words[word_index(x, y, z >> 5)] & ((1u << (z & 31)) - 1u));
+    if (z & 31) count += bit_count(bits_below(words[word_index(x, y, z >> 5)], z & 31));
     return count;
-  }
-  DV_HD static int bit_count(uint32_t v) {
-#if defined(__CUDA_ARCH__)
-    return __popc(v);
-#else
-    return std::popcount(v);
-#endif
   }
 };
 

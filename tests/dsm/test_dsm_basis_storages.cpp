@@ -5,7 +5,7 @@
 // gives in front of, between and behind surfaces), transmittance in [0, 1] and finite with
 // many surfaces on one texel and extreme depth ranges, ill-conditioned moments; then the whole
 // dsm pipeline on a stacked-slab scene against the oracle, and CPU/CUDA parity (skipped
-// without a GPU).
+// without a GPU), both with occupancy too (its closed forms: test_dsm_occupancy_storage.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,112 +17,22 @@
 #include <vector>
 
 #include "cuda/device_memory.h"
-#include "dsm/storage/fourier_device.h"
 #include "dsm/storage/moments_device.h"
 #include "strategies/shadow/probe.h"
+#include "tests/dsm/basis_test_support.h"
 #include "tests/dsm/dsm_test_support.h"
 #include "tests/dsm/storage_test_support.h"
 
 namespace dv {
 namespace {
 
-using Nodes = std::vector<std::pair<float, float>>;  // (z, v) as the compressor emits them
-
-// One texel's record filled from `nodes` the way the storages' two passes fill it.
-template <class Sink>
-std::vector<float> texel_record(const Nodes& nodes, Sink sink, int stride) {
-  std::vector<float> record(stride, 0.0f);
-  DepthRangeSink range;
-  for (const auto& [z, v] : nodes) range.emit(z, v);
-  record[0] = range.first, record[1] = range.last;
-  sink.texel = record.data();
-  for (const auto& [z, v] : nodes) sink.emit(z, v);
-  sink.write();
-  return record;
-}
-
-// A lookup function over one texel for `storage` ("moments4", "moments6", "fourierK").
-struct BasisTexel {
-  std::string storage;
-  std::vector<float> record;
-
-  BasisTexel(const std::string& name, const Nodes& nodes) : storage(name) {
-    if (name.rfind("moments", 0) == 0) {
-      PowerMomentSink sink{};
-      sink.moments = moments();
-      record = texel_record(nodes, sink, moments_stride(moments()));
-    } else {
-      FourierSink sink{};
-      sink.frequencies = frequencies();
-      record = texel_record(nodes, sink, fourier_stride(frequencies()));
-    }
-  }
-  int moments() const { return std::stoi(storage.substr(7)); }
-  int frequencies() const { return std::stoi(storage.substr(7)); }
-  double at(float z) const {
-    int hint = -1;
-    const View<const float> data{record.data(), int64_t(record.size())};
-    if (storage.rfind("moments", 0) == 0) {
-      const MomentsReader r{data, moments(), float(default_moment_bias(moments())), 0.25f};
-      return r.visibility(0, z, hint);
-    }
-    return FourierReader{data, frequencies()}.visibility(0, z, hint);
-  }
-};
+using test::BasisTexel;
+using test::ErrorFigures;
+using test::Nodes;
+using test::Profile;
+using test::error_over;
 
 const char* const kBasisStorages[] = {"moments4", "moments6", "fourier4", "fourier8", "fourier16"};
-
-// Nodes of constant-extinction slabs [a, b] (extinction sigma), sampled exactly every `step`,
-// and translucent surfaces (z, alpha), in depth order.
-struct Profile {
-  struct Slab {
-    double a, b, sigma;
-  };
-  std::vector<Slab> slabs;
-  std::vector<std::pair<double, double>> surfaces;  // (z, alpha)
-
-  double optical_depth(double z) const {
-    double tau = 0.0;
-    for (const Slab& s : slabs) tau += s.sigma * std::clamp(z - s.a, 0.0, s.b - s.a);
-    for (const auto& [zs, alpha] : surfaces)
-      if (zs < z) tau -= std::log(1.0 - alpha);
-    return tau;
-  }
-  double transmittance(double z) const { return std::exp(-optical_depth(z)); }
-
-  Nodes nodes(double step) const {
-    std::vector<double> depths;
-    for (const Slab& s : slabs)
-      for (double z = s.a; z < s.b + 0.5 * step; z += step) depths.push_back(std::min(z, s.b));
-    for (const auto& [zs, alpha] : surfaces) depths.push_back(zs);
-    std::sort(depths.begin(), depths.end());
-    Nodes out;
-    for (double z : depths) {
-      const bool surface = std::any_of(surfaces.begin(), surfaces.end(),
-                                       [&](const auto& s) { return s.first == z; });
-      if (surface) out.push_back({float(z), float(transmittance(z))});
-      out.push_back({float(z), float(transmittance(std::nextafter(z, 1e300)))});
-    }
-    return out;
-  }
-};
-
-struct ErrorFigures {
-  double max = 0.0, mean = 0.0;
-};
-
-// |T' - T| over depths spread over [lo, hi].
-ErrorFigures error_over(const BasisTexel& texel, const Profile& p, double lo, double hi) {
-  ErrorFigures e;
-  const int n = 400;
-  for (int i = 0; i <= n; ++i) {
-    const double z = lo + (hi - lo) * i / n;
-    const double d = std::abs(texel.at(float(z)) - p.transmittance(double(float(z))));
-    e.max = std::max(e.max, d);
-    e.mean += d / (n + 1);
-  }
-  return e;
-}
 
 // Bounds from the measured errors (test properties), rounded up.
 struct Bound {
@@ -298,9 +208,10 @@ TEST(BasisStorages, StackedSlabSceneAgainstTheOracle) {
       {"moments", {"moments=4"}},
       {"moments", {"moments=6"}},
       {"fourier", {"frequencies=4"}},
-      {"fourier", {"frequencies=16"}}};
-  const double bounds[] = {0.016, 0.2, 0.2, 0.15,
-                           0.125};  // measured 0.0106, 0.188, 0.183, 0.132, 0.112
+      {"fourier", {"frequencies=16"}},
+      {"occupancy", {"slices=64"}}};
+  const double bounds[] = {0.016, 0.2, 0.2, 0.15, 0.125,
+                           0.25};  // measured 0.0106, 0.188, 0.183, 0.132, 0.112, 0.243
   for (size_t s = 0; s < std::size(storages); ++s) {
     DsmSettings settings;
     settings.storage = storages[s].first;
@@ -409,7 +320,9 @@ INSTANTIATE_TEST_SUITE_P(Storages, BasisStorageBackends,
                          ::testing::Values(std::pair{"moments", "moments=4"},
                                            std::pair{"moments", "moments=6"},
                                            std::pair{"fourier", "frequencies=4"},
-                                           std::pair{"fourier", "frequencies=16"}),
+                                           std::pair{"fourier", "frequencies=16"},
+                                           std::pair{"occupancy", "slices=64"},
+                                           std::pair{"occupancy", "slices=128"}),
                          [](const auto& info) {
                            std::string n = std::string(info.param.first) + "_" + info.param.second;
                            for (char& c : n)
