@@ -76,39 +76,47 @@ TEST(Backends, HostAtomicsAgreeWithSerialResults) {
   EXPECT_EQ(word, 9);
 }
 
-// The warp-combined atomics give the plain atomics' totals where lanes diverge: values and
-// targets vary per thread, some lanes add inside a branch, some after a loop of their own
-// length, and a quarter add to a second counter. Sums, counts and maxima against serial ones.
+// The value thread i adds in the combined-atomics test (a fifth add zero).
+DV_HD inline unsigned long long combined_value(int64_t i) {
+  return (unsigned long long)(i % 13) * (i % 5 == 0 ? 0 : 1);
+}
+
+// Totals of the warp-combined atomics on `backend` where lanes diverge: some add inside a
+// branch, some after a loop of their own length, a quarter to a second counter; [2] is a
+// maximum, [3] counts the threads.
+std::vector<unsigned long long> combined_totals(Backend backend, int64_t n) {
+  Buffer<unsigned long long> totals(memory_of(backend), 4, "test totals");
+  totals.fill_zero();
+  unsigned long long* t = totals.data();
+  parallel_for(
+      backend, "combined_atomics", n, DV_KERNEL_LAMBDA(int64_t i) {
+        const unsigned long long v = combined_value(i);
+        if (i % 3 == 0) {
+          atomic_add_combined(t + 0, v);
+        } else {
+          unsigned long long spin = 0;
+          for (int64_t k = 0; k < i % 7; ++k) spin += (unsigned long long)k;
+          atomic_add_combined(t + (i % 4 == 1 ? 1 : 0), v + spin - spin);
+        }
+        atomic_max_combined(t + 2, (unsigned long long)((i * 7919) % 100003));
+        atomic_add_combined(t + 3, 1ull);
+      });
+  if (backend == Backend::cuda) device_synchronize("combined_atomics");
+  return totals.to_vector();
+}
+
+// The warp-combined atomics give the serial totals on both backends.
 TEST(Backends, CombinedAtomicsEqualSerialTotalsUnderDivergence) {
   const int64_t n = (int64_t(1) << 18) + 77;
+  std::vector<unsigned long long> expected(4, 0);
+  for (int64_t i = 0; i < n; ++i) {
+    expected[i % 3 != 0 && i % 4 == 1 ? 1 : 0] += combined_value(i);
+    expected[2] = std::max(expected[2], (unsigned long long)((i * 7919) % 100003));
+    expected[3] += 1;
+  }
   for (Backend backend : {Backend::cpu, Backend::cuda}) {
     if (backend == Backend::cuda && !cuda_device_available()) continue;
-    Buffer<unsigned long long> totals(memory_of(backend), 4, "test totals");
-    totals.fill_zero();
-    unsigned long long* t = totals.data();
-    parallel_for(
-        backend, "combined_atomics", n, DV_KERNEL_LAMBDA(int64_t i) {
-          const unsigned long long v = (unsigned long long)(i % 13) * (i % 5 == 0 ? 0 : 1);
-          if (i % 3 == 0) {
-            atomic_add_combined(t + 0, v);
-          } else {
-            unsigned long long spin = 0;
-            for (int64_t k = 0; k < i % 7; ++k) spin += (unsigned long long)k;
-            atomic_add_combined(t + (i % 4 == 1 ? 1 : 0), v + spin - spin);
-          }
-          atomic_max_combined(t + 2, (unsigned long long)((i * 7919) % 100003));
-          atomic_add_combined(t + 3, 1ull);
-        });
-    if (backend == Backend::cuda) device_synchronize("combined_atomics");
-    unsigned long long expected[4] = {0, 0, 0, 0};
-    for (int64_t i = 0; i < n; ++i) {
-      const unsigned long long v = (unsigned long long)(i % 13) * (i % 5 == 0 ? 0 : 1);
-      expected[i % 3 != 0 && i % 4 == 1 ? 1 : 0] += v;
-      expected[2] = std::max(expected[2], (unsigned long long)((i * 7919) % 100003));
-      expected[3] += 1;
-    }
-    const std::vector<unsigned long long> got = totals.to_vector();
-    for (int k = 0; k < 4; ++k) EXPECT_EQ(got[size_t(k)], expected[k]) << to_string(backend) << " " << k;
+    EXPECT_EQ(combined_totals(backend, n), expected) << to_string(backend);
   }
 }
 
