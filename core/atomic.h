@@ -117,7 +117,8 @@ template <class T>
 DV_HD void atomic_add_combined(T* address, T value) {
 #if DV_IN_DEVICE_CODE
   bool leader = false;
-  const T sum = combine_with_peers(address, value, [](T a, T b) { return a + b; }, leader);
+  const T sum = combine_with_peers(
+      address, value, [](T a, T b) { return a + b; }, leader);
   if (leader && sum != T(0)) atomicAdd(address, sum);
 #else
   if (value != T(0)) atomic_add(address, value);
@@ -128,7 +129,8 @@ template <class T>
 DV_HD void atomic_max_combined(T* address, T value) {
 #if DV_IN_DEVICE_CODE
   bool leader = false;
-  const T most = combine_with_peers(address, value, [](T a, T b) { return a < b ? b : a; }, leader);
+  const T most = combine_with_peers(
+      address, value, [](T a, T b) { return a < b ? b : a; }, leader);
   if (leader) atomicMax(address, most);
 #else
   atomic_max(address, value);

@@ -37,6 +37,11 @@ long long count_of(const std::string& word) {
 // ASCII OFF: "[C|N|ST|4|n]OFF", the counts (on the header line or the next), vertex lines,
 // then face lines "k i1 .. ik [colour]"; k may not exceed the numbers left in the file.
 void check_off(const std::string& path, const std::string& text) {
+  // CGAL's binary OFF reader converts header floats to int without a range check (UB; found
+  // by fuzz_mesh, also with NUL bytes between the keywords): binary OFF is not read.
+  const std::string first_line = text.substr(0, text.find('\n', text.find_first_not_of("\r\n \t")));
+  if (first_line.find("OFF") != std::string::npos && first_line.find("BINARY") != std::string::npos)
+    throw InputError(path, "binary OFF is not read: convert it to ASCII OFF or PLY");
   std::vector<std::vector<std::string>> lines;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
@@ -48,7 +53,7 @@ void check_off(const std::string& path, const std::string& text) {
     return;  // not OFF: CGAL's reader names the problem
   std::vector<std::string> counts(lines[0].begin() + 1, lines[0].end());
   size_t next = 1;
-  if (!counts.empty() && counts[0] == "BINARY") return;
+  if (!counts.empty() && counts[0] == "BINARY") return;  // refused above
   if (counts.empty() && lines.size() > 1) counts = lines[next++];
   if (counts.size() < 2) return;
   const long long vertices = count_of(counts[0]), faces = count_of(counts[1]);
@@ -106,38 +111,62 @@ uint64_t read_unsigned(const char* p, int size, bool big_endian) {
   return v;
 }
 
-// PLY: the header's elements and properties (each property after an element), then every
-// element walked through the data:
-// element counts and list lengths may not run past the end of the file.
+// PLY: the header read by its grammar (any other line is an input error: CGAL's reader reads
+// on through unknown lines and sizes lists from garbage, or runs for minutes; found by
+// fuzz_mesh), then every element walked through the data: element counts and list lengths may
+// not run past the end of the file.
 void check_ply(const std::string& path, const std::string& text) {
   std::istringstream in(text);
   std::string line, format;
   std::vector<PlyElement> elements;
   size_t data_start = std::string::npos;
+  int number = 0;
+  const auto bad_line = [&](const std::string& why) {
+    throw InputError(path, "PLY header line " + std::to_string(number) + " '" + line + "': " + why);
+  };
   while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::vector<std::string> w = split_words(line);
-    if (!w.empty() && w[0] == "end_header") {
+    if (number == 1) {
+      if (w.size() != 1 || w[0] != "ply") bad_line("a PLY file starts with a line 'ply'");
+      continue;
+    }
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "end_header") {
       data_start = size_t(in.tellg());
       break;
     }
-    if (w.size() >= 2 && w[0] == "format") format = w[1];
-    // CGAL's reader adds a property to its last element without checking there is one.
-    if (!w.empty() && w[0] == "property" && elements.empty())
-      throw InputError(path, "a 'property' line comes before any 'element' line");
-    if (w.size() >= 3 && w[0] == "element") elements.push_back({w[1], count_of(w[2]), {}});
-    if (w.size() >= 3 && w[0] == "property" && !elements.empty()) {
+    if (w[0] == "format") {
+      if (!format.empty() || !elements.empty()) bad_line("one format line, before the elements");
+      if (w.size() != 3 || w[2] != "1.0" ||
+          (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+        bad_line("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      format = w[1];
+    } else if (w[0] == "element") {
+      if (w.size() != 3 || count_of(w[2]) < 0) bad_line("expected 'element NAME COUNT'");
+      elements.push_back({w[1], count_of(w[2]), {}});
+    } else if (w[0] == "property") {
+      // CGAL's reader adds a property to its last element without checking there is one.
+      if (elements.empty()) bad_line("a 'property' line comes before any 'element' line");
       PlyProperty p;
-      if (w[1] == "list" && w.size() >= 5) {
+      if (w.size() == 5 && w[1] == "list") {
         p.list = true, p.count_size = ply_type_size(w[2]), p.item_size = ply_type_size(w[3]);
-      } else {
+      } else if (w.size() == 3) {
         p.item_size = ply_type_size(w[1]);
+      } else {
+        bad_line("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
       }
-      if (p.item_size == 0 || (p.list && p.count_size == 0))  // CGAL's reader guesses on
-        throw InputError(path, "PLY property line '" + line + "' has an unknown type");
+      if (p.item_size == 0 || (p.list && p.count_size == 0)) bad_line("unknown property type");
       elements.back().properties.push_back(p);
+    } else {
+      bad_line("not a PLY header line (format, element, property, comment, end_header)");
     }
   }
-  if (data_start == std::string::npos || data_start > text.size()) return;  // CGAL says why
+  if (number == 0) return;  // empty: CGAL says why
+  if (data_start == std::string::npos || data_start > text.size())
+    throw InputError(path, "the PLY header has no 'end_header' line");
+  if (format.empty()) throw InputError(path, "the PLY header has no 'format' line");
   const auto too_long = [&](const PlyElement& e, long long i, const std::string& what) {
     throw InputError(path, "element '" + e.name + "' " + std::to_string(i) + " of " +
                                std::to_string(e.count) + ": " + what +
@@ -166,10 +195,6 @@ void check_ply(const std::string& path, const std::string& text) {
     return;
   }
   const bool big_endian = format == "binary_big_endian";
-  if (!big_endian && format != "binary_little_endian")  // CGAL's reader then guesses binary
-    throw InputError(path,
-                     "the PLY header names no known format (ascii, binary_little_endian, "
-                     "binary_big_endian)");
   size_t at = data_start;
   for (const PlyElement& e : elements) {
     if (e.count < 0 || e.properties.empty()) continue;

@@ -42,8 +42,8 @@ class OccupancyStorage final : public DsmStorage {
                   "dsm occupancy texels");
     timed_pass(c, "range", [&] { write_texel_depth_ranges(c, data_.view(), stride); });
     timed_pass(c, "write", [&] {
-      write_basis_texels(c, "dsm_occupancy_write", OccupancySink{nullptr, slices_, slabs_},
-                         stride, data_.view());
+      write_basis_texels(c, "dsm_occupancy_write", OccupancySink{nullptr, slices_, slabs_}, stride,
+                         data_.view());
     });
   }
 

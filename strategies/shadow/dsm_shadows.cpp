@@ -51,9 +51,7 @@ class DsmShadows final : public ShadowMethod {
   const DeepShadowMaps* deep_shadow_maps() const override {
     return maps_.generations() > 0 ? &maps_ : nullptr;
   }
-  nlohmann::json params() const override {
-    return maps_.settings().params(maps_.storage());
-  }
+  nlohmann::json params() const override { return maps_.settings().params(maps_.storage()); }
   nlohmann::json stats() const override {
     nlohmann::json j = {{"maps_built", maps_.generations()}, {"prepare_calls", prepare_calls_}};
     if (maps_.generations() == 0) return j;

@@ -27,10 +27,10 @@ namespace dv {
 namespace {
 
 using test::BasisTexel;
+using test::error_over;
 using test::ErrorFigures;
 using test::Nodes;
 using test::Profile;
-using test::error_over;
 
 const char* const kBasisStorages[] = {"moments4", "moments6", "fourier4", "fourier8", "fourier16"};
 
@@ -210,8 +210,8 @@ TEST(BasisStorages, StackedSlabSceneAgainstTheOracle) {
       {"fourier", {"frequencies=4"}},
       {"fourier", {"frequencies=16"}},
       {"occupancy", {"slices=64"}}};
-  const double bounds[] = {0.016, 0.2, 0.2, 0.15, 0.125,
-                           0.25};  // measured 0.0106, 0.188, 0.183, 0.132, 0.112, 0.243
+  const double bounds[] = {0.016, 0.2, 0.2, 0.15,
+                           0.125, 0.25};  // measured 0.0106, 0.188, 0.183, 0.132, 0.112, 0.243
   for (size_t s = 0; s < std::size(storages); ++s) {
     DsmSettings settings;
     settings.storage = storages[s].first;
@@ -316,19 +316,17 @@ TEST_P(BasisStorageBackends, CpuAndCudaLookupsAgree) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Storages, BasisStorageBackends,
-                         ::testing::Values(std::pair{"moments", "moments=4"},
-                                           std::pair{"moments", "moments=6"},
-                                           std::pair{"fourier", "frequencies=4"},
-                                           std::pair{"fourier", "frequencies=16"},
-                                           std::pair{"occupancy", "slices=64"},
-                                           std::pair{"occupancy", "slices=128"}),
-                         [](const auto& info) {
-                           std::string n = std::string(info.param.first) + "_" + info.param.second;
-                           for (char& c : n)
-                             if (c == '=') c = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Storages, BasisStorageBackends,
+    ::testing::Values(std::pair{"moments", "moments=4"}, std::pair{"moments", "moments=6"},
+                      std::pair{"fourier", "frequencies=4"}, std::pair{"fourier", "frequencies=16"},
+                      std::pair{"occupancy", "slices=64"}, std::pair{"occupancy", "slices=128"}),
+    [](const auto& info) {
+      std::string n = std::string(info.param.first) + "_" + info.param.second;
+      for (char& c : n)
+        if (c == '=') c = '_';
+      return n;
+    });
 
 }  // namespace
 }  // namespace dv

@@ -44,8 +44,8 @@ TEST(OccupancyStorage, ConstantSlabIsAStaircaseOfOneSlice) {
 // slices of 1/32 each, the surfaces in slabs 0 and 1. Every lookup in a later slice is exact; on
 // a surface (its own slice) the value before its step.
 TEST(OccupancyStorage, SurfacesInSlicesOfTheirOwnAreExact) {
-  const Nodes nodes = {{1.0f, 1.0f},   {1.0f, 0.5f},  {1.5f, 0.5f},
-                       {1.5f, 0.35f},  {3.0f, 0.35f}, {3.0f, 0.0f}};
+  const Nodes nodes = {{1.0f, 1.0f},  {1.0f, 0.5f},  {1.5f, 0.5f},
+                       {1.5f, 0.35f}, {3.0f, 0.35f}, {3.0f, 0.0f}};
   const BasisTexel texel("occupancy64", nodes);
   EXPECT_EQ(texel.at(0.5f), 1.0);
   EXPECT_EQ(texel.at(1.0f), 1.0);
@@ -60,7 +60,7 @@ TEST(OccupancyStorage, SurfacesInSlicesOfTheirOwnAreExact) {
 // occupied slice half the slab's optical depth, exp(-(tau_1 + tau_2) / 2), the paper's
 // (1 - a)^n with one alpha for the slab; behind both it is exact again.
 TEST(OccupancyStorage, SurfacesSharingASlabShareItsDepth) {
-  const Nodes nodes = {{1.0f, 1.0f}, {1.0f, 0.5f},   {1.2f, 0.5f},
+  const Nodes nodes = {{1.0f, 1.0f},  {1.0f, 0.5f},  {1.2f, 0.5f},
                        {1.2f, 0.35f}, {3.0f, 0.35f}, {3.0f, 0.0f}};
   const BasisTexel texel("occupancy64", nodes);
   const double tau = -std::log(0.5) - std::log(0.7);
