@@ -1,6 +1,7 @@
 // OFF and PLY declared counts against the file's contents (see mesh_declared_counts.h).
 #include "io/mesh_declared_counts.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -64,18 +65,29 @@ void check_off(const std::string& path, const std::string& text) {
     throw InputError(path, "the header declares " + std::to_string(vertices) + " vertices and " +
                                std::to_string(faces) + " faces, but the file holds only " +
                                std::to_string(words_left) + " numbers after it");
-  // One vertex per line (the usual layout): then the face lines follow them.
-  if ((long long)(lines.size() - next) < vertices + faces) return;
+  // One vertex per line (the usual layout): then the face lines follow them (those present:
+  // CGAL reads the first ones before it finds the rest missing).
+  if ((long long)(lines.size() - next) < vertices) return;
   for (long long v = 0; v < vertices; ++v) {
     words_left -= (long long)lines[next + size_t(v)].size();
     if (lines[next + size_t(v)].size() < 3) return;
   }
-  for (long long f = 0; f < faces; ++f) {
+  const long long face_lines =
+      std::min<long long>(faces, (long long)(lines.size() - next) - vertices);
+  for (long long f = 0; f < face_lines; ++f) {
     const std::vector<std::string>& face = lines[next + size_t(vertices + f)];
     const long long corners = count_of(face[0]);
     if (corners > words_left - 1)
       throw InputError(path, "face " + std::to_string(f) + " declares " + face[0] +
                                  " corners, more than the numbers left in the file");
+    // CGAL's reader casts each index to an unsigned type unchecked (UB for -2; fuzz_mesh).
+    for (long long k = 1; k <= corners && k < (long long)face.size(); ++k) {
+      const long long index = count_of(face[size_t(k)]);
+      if (index < 0 || index >= vertices)
+        throw InputError(path, "face " + std::to_string(f) + " corner " + std::to_string(k) +
+                                   ": '" + face[size_t(k)] + "' is not a vertex index in [0, " +
+                                   std::to_string(vertices) + ")");
+    }
     words_left -= (long long)face.size();
   }
 }
