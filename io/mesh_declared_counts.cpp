@@ -77,6 +77,9 @@ void check_off(const std::string& path, const std::string& text) {
   for (long long f = 0; f < face_lines; ++f) {
     const std::vector<std::string>& face = lines[next + size_t(vertices + f)];
     const long long corners = count_of(face[0]);
+    if (corners < 0)  // CGAL reads the digits before any junk and allocates for them
+      throw InputError(path,
+                       "face " + std::to_string(f) + ": '" + face[0] + "' is not a corner count");
     if (corners > words_left - 1)
       throw InputError(path, "face " + std::to_string(f) + " declares " + face[0] +
                                  " corners, more than the numbers left in the file");
