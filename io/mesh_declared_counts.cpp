@@ -35,8 +35,9 @@ long long count_of(const std::string& word) {
   return std::stoll(word);
 }
 
-// ASCII OFF: "[C|N|ST|4|n]OFF", the counts (on the header line or the next), vertex lines,
-// then face lines "k i1 .. ik [colour]"; k may not exceed the numbers left in the file.
+// ASCII OFF: "[C|N|ST|4|n]OFF", the counts (on the header line or the next), vertex lines (one
+// vertex a line, at least 3 numbers), then face lines "k i1 .. ik [colour]": k a count no
+// larger than the numbers left in the file, each index a vertex.
 void check_off(const std::string& path, const std::string& text) {
   // CGAL's binary OFF reader converts header floats to int without a range check (UB; found
   // by fuzz_mesh, also with NUL bytes between the keywords): binary OFF is not read.
@@ -55,7 +56,9 @@ void check_off(const std::string& path, const std::string& text) {
   std::vector<std::string> counts(lines[0].begin() + 1, lines[0].end());
   size_t next = 1;
   if (!counts.empty() && counts[0] == "BINARY") return;  // refused above
-  if (counts.empty() && lines.size() > 1) counts = lines[next++];
+  // CGAL reads the counts as a stream: those missing from the header line come from the next.
+  if (counts.size() < 2 && lines.size() > 1)
+    counts.insert(counts.end(), lines[next].begin(), lines[next].end()), ++next;
   if (counts.size() < 2) return;
   const long long vertices = count_of(counts[0]), faces = count_of(counts[1]);
   if (vertices < 0 || faces < 0) return;
@@ -70,7 +73,9 @@ void check_off(const std::string& path, const std::string& text) {
   if ((long long)(lines.size() - next) < vertices) return;
   for (long long v = 0; v < vertices; ++v) {
     words_left -= (long long)lines[next + size_t(v)].size();
-    if (lines[next + size_t(v)].size() < 3) return;
+    if (lines[next + size_t(v)].size() < 3)  // CGAL reads on into the faces (fuzz_mesh)
+      throw InputError(path, "vertex " + std::to_string(v) +
+                                 ": fewer than 3 numbers on its line (one vertex a line)");
   }
   const long long face_lines =
       std::min<long long>(faces, (long long)(lines.size() - next) - vertices);
