@@ -100,14 +100,8 @@ struct FourierReader {
   DV_HD float visibility(int64_t t, float z, int&) const {
     const float* texel = data.data + t * fourier_stride(frequencies);
     const float* coefficients = texel + kTexelHeaderFloats;
-    switch (range_part(texel, z)) {
-      case RangePart::before:
-        return 1.0f;
-      case RangePart::after:
-        return float(exp(-double(texel[2])));
-      default:
-        break;
-    }
+    float outside;
+    if (visibility_outside_range(texel, z, outside)) return outside;
     const double u = fourier_depth_u(texel[0], texel[1], z);
     return float(exp(-max_value(fourier_optical_depth(coefficients, frequencies, u), 0.0)));
   }

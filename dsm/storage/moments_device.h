@@ -53,14 +53,8 @@ struct MomentsReader {
 
   DV_HD float visibility(int64_t t, float z, int&) const {
     const float* texel = data.data + t * moments_stride(moments);
-    switch (range_part(texel, z)) {
-      case RangePart::before:
-        return 1.0f;
-      case RangePart::after:
-        return float(exp(-double(texel[2])));
-      default:
-        break;
-    }
+    float outside;
+    if (visibility_outside_range(texel, z, outside)) return outside;
     const double mass = texel[kTexelHeaderFloats];
     if (!(mass > 0.0)) return 1.0f;
     double b[kMaxPowerMoments + 1];

@@ -109,14 +109,8 @@ struct OccupancyReader {
 
   DV_HD float visibility(int64_t t, float z, int&) const {
     const float* texel = data.data + t * occupancy_stride(slices, slabs);
-    switch (range_part(texel, z)) {
-      case RangePart::before:
-        return 1.0f;
-      case RangePart::after:
-        return float(exp(-double(texel[2])));
-      default:
-        break;
-    }
+    float outside;
+    if (visibility_outside_range(texel, z, outside)) return outside;
     const int slice = occupancy_slice(occupancy_depth_u(texel, z), slices);
     const int slab = slice / (slices / slabs);
     double tau = 0.0;

@@ -63,13 +63,18 @@ struct OpticalDepthPieces {
   }
 };
 
-// Where a lookup depth falls in a texel's range: before it (lit), after it (the total), or
-// inside (the basis reconstructs).
-enum class RangePart { before, inside, after };
-
-DV_HD inline RangePart range_part(const float* texel, float z) {
-  if (!(z > texel[0])) return RangePart::before;  // at z_first: the value before its step
-  return z > texel[1] ? RangePart::after : RangePart::inside;
+// A lookup outside its texel's range: 1 up to and at z_first (the value before its step),
+// exp(-total) after z_last; false inside, where the record's reconstruction answers.
+DV_HD inline bool visibility_outside_range(const float* texel, float z, float& visibility) {
+  if (!(z > texel[0])) {
+    visibility = 1.0f;
+    return true;
+  }
+  if (z > texel[1]) {
+    visibility = float(exp(-double(texel[2])));
+    return true;
+  }
+  return false;
 }
 
 }  // namespace dv

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -98,6 +99,25 @@ struct Profile {
     return out;
   }
 };
+
+// Depth ranges of the extreme texels: ordinary, 10 decades wide, far from the light, and of
+// zero width.
+inline const std::vector<std::pair<double, double>> kExtremeRanges = {
+    {1.0, 2.0}, {1e-3, 1e7}, {1e6, 1e6 + 0.25}, {5.0, 5.0}};
+
+// 2000 translucent surfaces (alpha up to 0.02 each, drawn from `rng`) spread over [near, far].
+inline Nodes many_surfaces(double near, double far, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Nodes nodes;
+  double v = 1.0;
+  for (int i = 0; i < 2000; ++i) {
+    const float z = float(near + (far - near) * i / 1999.0);
+    nodes.push_back({z, float(v)});
+    v *= 1.0 - 0.02 * u(rng);
+    nodes.push_back({z, float(v)});
+  }
+  return nodes;
+}
 
 struct ErrorFigures {
   double max = 0.0, mean = 0.0;

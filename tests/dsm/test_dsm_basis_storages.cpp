@@ -109,17 +109,8 @@ TEST(BasisStorages, LastSurfaceDoesNotShadowItself) {
 
 TEST(BasisStorages, ManySurfacesOnOneTexelStayFiniteAndInRange) {
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (const auto& [near, far] :
-       {std::pair<double, double>{1.0, 2.0}, {1e-3, 1e7}, {1e6, 1e6 + 0.25}, {5.0, 5.0}}) {
-    Nodes nodes;
-    double v = 1.0;
-    for (int i = 0; i < 2000; ++i) {
-      const float z = float(near + (far - near) * i / 1999.0);
-      nodes.push_back({z, float(v)});
-      v *= 1.0 - 0.02 * u(rng);
-      nodes.push_back({z, float(v)});
-    }
+  for (const auto& [near, far] : test::kExtremeRanges) {
+    const Nodes nodes = test::many_surfaces(near, far, rng);
     for (const char* name : kBasisStorages) {
       const BasisTexel texel(name, nodes);
       for (float x : texel.record) EXPECT_TRUE(std::isfinite(x)) << name;
