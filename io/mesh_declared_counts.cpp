@@ -2,6 +2,7 @@
 #include "io/mesh_declared_counts.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -50,10 +51,19 @@ void check_off(const std::string& path, const std::string& text) {
     std::vector<std::string> words = split_words(line);
     if (!words.empty()) lines.push_back(std::move(words));
   }
-  if (lines.empty() || lines[0][0].size() < 3 ||
-      lines[0][0].compare(lines[0][0].size() - 3, 3, "OFF") != 0)
+  if (lines.empty()) return;
+  // CGAL's keyword is the first word's letters and digits; the character ending them is
+  // consumed and the counts follow it ("OFF=9 9 0" is OFF: fuzz_mesh).
+  const std::string& head = lines[0][0];
+  const size_t end = size_t(std::find_if(head.begin(), head.end(),
+                                         [](char c) { return !std::isalnum((unsigned char)c); }) -
+                            head.begin());
+  const std::string keyword = head.substr(0, end);
+  if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
     return;  // not OFF: CGAL's reader names the problem
-  std::vector<std::string> counts(lines[0].begin() + 1, lines[0].end());
+  std::vector<std::string> counts;
+  if (end + 1 < head.size()) counts.push_back(head.substr(end + 1));
+  counts.insert(counts.end(), lines[0].begin() + 1, lines[0].end());
   size_t next = 1;
   if (!counts.empty() && counts[0] == "BINARY") return;  // refused above
   // CGAL reads the counts as a stream: those missing from the header line come from the next.
