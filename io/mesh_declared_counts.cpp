@@ -70,8 +70,16 @@ void check_off(const std::string& path, const std::string& text) {
   if (counts.size() < 2 && lines.size() > 1)
     counts.insert(counts.end(), lines[next].begin(), lines[next].end()), ++next;
   if (counts.size() < 2) return;
-  const long long vertices = count_of(counts[0]), faces = count_of(counts[1]);
-  if (vertices < 0 || faces < 0) return;
+  // The counts as CGAL's integer extractions see them ("2000-00000" is 2000, then -0: fuzz_mesh).
+  std::string joined;
+  for (const std::string& word : counts) joined += word + " ";
+  std::istringstream numbers(joined);
+  long long vertices = -1, faces = -1, edges = 0;
+  if (!(numbers >> vertices >> faces) || vertices < 0 || faces < 0) return;  // CGAL refuses it
+  // CGAL doubles the edge count into an int unchecked (UB above 2^30: fuzz_mesh).
+  if (numbers >> edges && (edges < 0 || edges > (1ll << 30)))
+    throw InputError(path,
+                     "the header declares " + std::to_string(edges) + " edges, outside [0, 2^30]");
   long long words_left = 0;  // numbers after the counts
   for (size_t i = next; i < lines.size(); ++i) words_left += (long long)lines[i].size();
   if (vertices > words_left / 3 || faces > words_left - 3 * vertices)
