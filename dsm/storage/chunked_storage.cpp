@@ -79,11 +79,15 @@ class ChunkedStorage final : public DsmStorage {
         wanted += double(units_needed(nodes, chunk_layers_, block_limit_));
     }
     // The racing allocation (alloc=thesis) loses chunks to the race, so a counted pool may run
-    // out: it then grows to what the race took and the maps are written again.
-    for (int attempt = 0;; ++attempt) {
+    // out: it then doubles what the race took and the maps are written again, until no node is
+    // refused (the race differs each time; growing only to what it took left a retry short now
+    // and then, and the maps then differed between runs: HardDeterminism on an H200) or the
+    // pool reaches its 32-bit limit, where the overflow is reported.
+    const int32_t most = int32_t(double((int64_t(1) << 31) - 1) / chunk_layers_);
+    for (;;) {
       write_pool(c, wanted);
-      if (!counted || taken_ <= capacity_ || attempt == 3) break;
-      wanted = double(taken_);
+      if (!counted || taken_ <= capacity_ || capacity_ >= most) break;
+      wanted = 2.0 * double(taken_);
     }
   }
 
