@@ -88,7 +88,9 @@ std::string find_obj_problem(const std::string& path) {
       while (words >> word) {
         const long long index = std::strtoll(word.c_str(), nullptr, 10);  // stops at '/'
         const bool valid =
-            index > 0 ? size_t(index) <= total_vertices : index < 0 && size_t(-index) <= vertices;
+            index > 0
+                ? size_t(index) <= total_vertices
+                : index < 0 && index >= -(long long)vertices;  // no negation: strtoll saturates
         if (!valid) {
           return at("face refers to vertex " + word.substr(0, word.find('/')) +
                     " but the file has " + std::to_string(total_vertices) +
