@@ -61,25 +61,32 @@ void check_off(const std::string& path, const std::string& text) {
   const std::string keyword = head.substr(0, end);
   if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
     return;  // not OFF: CGAL's reader names the problem
-  std::vector<std::string> counts;
-  if (end + 1 < head.size()) counts.push_back(head.substr(end + 1));
-  counts.insert(counts.end(), lines[0].begin() + 1, lines[0].end());
-  size_t next = 1;
-  if (!counts.empty() && counts[0] == "BINARY") return;  // refused above
-  // CGAL reads the counts as a stream: those missing from the header line come from the next.
-  if (counts.size() < 2 && lines.size() > 1)
-    counts.insert(counts.end(), lines[next].begin(), lines[next].end()), ++next;
-  if (counts.size() < 2) return;
-  // The counts as CGAL's integer extractions see them ("2000-00000" is 2000, then -0: fuzz_mesh).
-  std::string joined;
-  for (const std::string& word : counts) joined += word + " ";
-  std::istringstream numbers(joined);
+  // CGAL reads the counts as integer extractions from the stream after the keyword, over as
+  // many lines as it takes ("2000-00000" is 2000, then -0; "OFF\n2000000000\n20000 0":
+  // fuzz_mesh). Read them the same way; vertex lines start on the line after the last count.
+  std::string stream_text = end + 1 < head.size() ? head.substr(end + 1) : "";
+  for (size_t w = 1; w < lines[0].size(); ++w) stream_text += " " + lines[0][w];
+  std::vector<size_t> line_starts;  // of lines[1], lines[2], ... in stream_text
+  for (size_t i = 1; i < lines.size(); ++i) {
+    stream_text += "\n";
+    line_starts.push_back(stream_text.size());
+    for (const std::string& word : lines[i]) stream_text += word + " ";
+  }
+  std::istringstream numbers(stream_text);
+  std::string first_word;
+  if (std::istringstream(stream_text) >> first_word && first_word == "BINARY") return;  // refused
   long long vertices = -1, faces = -1, edges = 0;
   if (!(numbers >> vertices >> faces) || vertices < 0 || faces < 0) return;  // CGAL refuses it
+  std::streamoff consumed = numbers.tellg();
   // CGAL doubles the edge count into an int unchecked (UB above 2^30: fuzz_mesh).
-  if (numbers >> edges && (edges < 0 || edges > (1ll << 30)))
-    throw InputError(path,
-                     "the header declares " + std::to_string(edges) + " edges, outside [0, 2^30]");
+  if (numbers >> edges) {
+    if (edges < 0 || edges > (1ll << 30))
+      throw InputError(
+          path, "the header declares " + std::to_string(edges) + " edges, outside [0, 2^30]");
+    consumed = numbers.tellg();
+  }
+  size_t next = 1;
+  while (next - 1 < line_starts.size() && std::streamoff(line_starts[next - 1]) <= consumed) ++next;
   long long words_left = 0;  // numbers after the counts
   for (size_t i = next; i < lines.size(); ++i) words_left += (long long)lines[i].size();
   if (vertices > words_left / 3 || faces > words_left - 3 * vertices)
