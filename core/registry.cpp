@@ -18,38 +18,105 @@ StrategyParams StrategyParams::parse(const std::vector<std::string>& items) {
   return StrategyParams(std::move(values));
 }
 
-double StrategyParams::number(const std::string& key, double fallback) const {
+StrategyParams StrategyParams::from_json(const nlohmann::json& object) {
+  std::map<std::string, std::string> values;
+  for (const auto& [key, value] : object.items())
+    values[key] = value.is_string() ? value.get<std::string>() : value.dump();
+  return StrategyParams(std::move(values));
+}
+
+StrategyParams StrategyParams::resolved(const ParamTable& table, const std::string& where) const {
+  const auto declared = [&](const std::string& key) -> const ParamSpec* {
+    for (const ParamSpec& spec : table) {
+      const bool nested = spec.type == ParamSpec::Type::nested;
+      if (!nested && key == spec.key) return &spec;
+      if (nested && key.size() > spec.key.size() + 1 &&
+          key.compare(0, spec.key.size(), spec.key) == 0 && key[spec.key.size()] == '.')
+        return &spec;
+    }
+    return nullptr;
+  };
+  StrategyParams out;
+  out.table_ = &table;
+  for (const auto& [key, value] : values_) {
+    const ParamSpec* spec = declared(key);
+    if (!spec) {
+      std::string known;
+      for (const ParamSpec& s : table)
+        known +=
+            (known.empty() ? "" : ", ") + s.key + (s.type == ParamSpec::Type::nested ? ".KEY" : "");
+      throw InputError(where, "unknown parameter '" + key + "' (known: " +
+                                  (known.empty() ? "none, it takes no parameters" : known) + ")");
+    }
+    out.values_[key] = spec->check(value, where);
+  }
+  for (const ParamSpec& spec : table)
+    if (spec.type != ParamSpec::Type::nested && !spec.fallback.empty())
+      out.values_.emplace(spec.key, spec.fallback);
+  return out;
+}
+
+nlohmann::json StrategyParams::echo() const {
+  nlohmann::json out = nlohmann::json::object();
+  if (!table_) return out;
+  for (const ParamSpec& spec : *table_) {
+    if (spec.type == ParamSpec::Type::nested) continue;
+    const std::string* value = find(spec.key);
+    if (!value) {
+      auto used = fallbacks_used_.find(spec.key);
+      if (used == fallbacks_used_.end()) continue;
+      value = &used->second;
+    }
+    out[spec.key] = spec.typed(*value);
+  }
+  return out;
+}
+
+const std::string* StrategyParams::find(const std::string& key) const {
   auto it = values_.find(key);
-  if (it == values_.end()) return fallback;
+  if (it == values_.end()) return nullptr;
   read_.insert(key);
+  return &it->second;
+}
+
+std::string StrategyParams::string(const std::string& key) const {
+  const std::string* value = find(key);
+  if (!value) throw Error("parameter '" + key + "' has no value: its table declares no default");
+  return *value;
+}
+
+double StrategyParams::number(const std::string& key) const {
+  const std::string value = string(key);
   char* end = nullptr;
-  const double v = std::strtod(it->second.c_str(), &end);
-  if (end == it->second.c_str() || *end != '\0' || !std::isfinite(v))
-    throw InputError("--param " + key, "expected a number, got '" + it->second + "'");
+  const double v = std::strtod(value.c_str(), &end);
+  if (end == value.c_str() || *end != '\0' || !std::isfinite(v))
+    throw InputError("--param " + key, "expected a number, got '" + value + "'");
   return v;
 }
 
-int StrategyParams::integer(const std::string& key, int fallback) const {
-  const double v = number(key, fallback);
+int StrategyParams::integer(const std::string& key) const {
+  const double v = number(key);
   if (v != std::floor(v) || std::abs(v) > 2e9)
     throw InputError("--param " + key, "expected an integer");
   return int(v);
 }
 
 std::string StrategyParams::string(const std::string& key, const std::string& fallback) const {
-  auto it = values_.find(key);
-  if (it == values_.end()) return fallback;
-  read_.insert(key);
-  return it->second;
+  if (find(key)) return string(key);
+  fallbacks_used_[key] = fallback;
+  return fallback;
 }
 
-std::string StrategyParams::choice(const std::string& key, const std::string& fallback,
-                                   const std::vector<std::string>& allowed) const {
-  const std::string value = string(key, fallback);
-  if (std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return value;
-  std::string names;
-  for (const std::string& a : allowed) names += (names.empty() ? "'" : ", '") + a + "'";
-  throw InputError("--param " + key, "must be one of " + names + ", got '" + value + "'");
+double StrategyParams::number(const std::string& key, double fallback) const {
+  if (find(key)) return number(key);
+  fallbacks_used_[key] = nlohmann::json(fallback).dump();
+  return fallback;
+}
+
+int StrategyParams::integer(const std::string& key, int fallback) const {
+  if (find(key)) return integer(key);
+  fallbacks_used_[key] = std::to_string(fallback);
+  return fallback;
 }
 
 StrategyParams StrategyParams::prefixed(const std::string& prefix) const {
@@ -65,8 +132,11 @@ StrategyParams StrategyParams::prefixed(const std::string& prefix) const {
 
 void StrategyParams::finish(const std::string& strategy) const {
   std::string unknown;
-  for (const auto& [key, value] : values_)
-    if (!read_.count(key)) unknown += (unknown.empty() ? "'" : ", '") + key + "'";
+  for (const auto& [key, value] : values_) {
+    if (read_.count(key)) continue;
+    if (table_) throw Error(strategy + " declares parameter '" + key + "' but does not read it");
+    unknown += (unknown.empty() ? "'" : ", '") + key + "'";
+  }
   if (!unknown.empty()) throw InputError(strategy, "unknown parameter(s) " + unknown);
 }
 

@@ -1,7 +1,8 @@
 // Registries of swappable strategies, one per family (DSM storage, voxelizer, shadow method),
-// keyed by case-insensitive name. create() rejects unknown names with the list of known ones and
-// rejects parameters the strategy did not read; every strategy echoes its parameters as JSON
-// so runs record exactly what ran.
+// keyed by case-insensitive name. Each strategy registers with its parameter table
+// (param_table.h); create() rejects unknown names with the list of known ones, checks the given
+// parameters against the table, fills in the defaults and builds the strategy from the result;
+// every strategy echoes its parameters (StrategyParams::echo) so runs record exactly what ran.
 #pragma once
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/param_table.h"
 #include "core/text.h"
 
 namespace dv {
@@ -30,24 +32,42 @@ class StrategyParams {
 
   // Parses "key=value" items.
   static StrategyParams parse(const std::vector<std::string>& items);
+  // The items of a JSON object (an echo): strings as they are, numbers as their JSON text.
+  static StrategyParams from_json(const nlohmann::json& object);
 
+  // These values checked against `table`, every declared default added: what a strategy is
+  // built from. Keys the table does not declare (nor a nested prefix of it) and values out of
+  // their range are InputErrors naming `where` and the key. The result keeps `table` (which
+  // must outlive it) for echo() and finish().
+  StrategyParams resolved(const ParamTable& table, const std::string& where) const;
+  // Every declared key with the value given or defaulted, typed as declared; nested keys
+  // (storage.KEY) are the nested strategy's to echo.
+  nlohmann::json echo() const;
+
+  // A declared key of a resolved object (its default filled in); absent keys are an Error.
+  double number(const std::string& key) const;
+  int integer(const std::string& key) const;
+  std::string string(const std::string& key) const;
+  // A key without a declared default (derived by the strategy): `fallback` when absent, and
+  // echo() reports the fallback used.
   double number(const std::string& key, double fallback) const;
   int integer(const std::string& key, int fallback) const;
   std::string string(const std::string& key, const std::string& fallback) const;
-  // A string that must be one of `allowed` (fallback when absent); others are an InputError.
-  std::string choice(const std::string& key, const std::string& fallback,
-                     const std::vector<std::string>& allowed) const;
-
   // The parameters "prefix.key" as "key" (marked read here): how a strategy passes parameters
   // on to a strategy of another family it is built from (the dsm method's storage.* keys).
   StrategyParams prefixed(const std::string& prefix) const;
 
-  // Throws InputError naming the strategy and the unread keys.
+  // Throws InputError naming the strategy and the unread keys (an Error for a declared key its
+  // strategy never read: the table and the code disagree).
   void finish(const std::string& strategy) const;
 
  private:
+  const std::string* find(const std::string& key) const;
+
   std::map<std::string, std::string> values_;
+  const ParamTable* table_ = nullptr;
   mutable std::set<std::string> read_;
+  mutable std::map<std::string, std::string> fallbacks_used_;
 };
 
 template <class Base>
@@ -58,11 +78,12 @@ class Registry {
   explicit Registry(std::string family) : family_(std::move(family)) {}
 
   // Registering a name twice (in any letter case) is an Error: two strategies cannot share
-  // a name.
-  void add(const std::string& name, const std::string& description, Factory factory) {
+  // a name. `params` declares every parameter the factory reads.
+  void add(const std::string& name, const std::string& description, ParamTable params,
+           Factory factory) {
     if (entries_.count(lowercase(name)))
       throw Error(family_ + " '" + name + "' is registered twice");
-    entries_[lowercase(name)] = {name, description, std::move(factory)};
+    entries_[lowercase(name)] = {name, description, std::move(params), std::move(factory)};
   }
 
   std::unique_ptr<Base> create(const std::string& name, const StrategyParams& params = {}) const {
@@ -73,8 +94,10 @@ class Registry {
       throw InputError("", family_ + " '" + name + "' not found (known: " +
                                (known.empty() ? "none registered yet" : known) + ")");
     }
-    std::unique_ptr<Base> made = it->second.factory(params);
-    params.finish(family_ + " '" + name + "'");
+    const std::string where = family_ + " '" + it->second.name + "'";
+    const StrategyParams resolved = params.resolved(it->second.params, where);
+    std::unique_ptr<Base> made = it->second.factory(resolved);
+    resolved.finish(where);
     return made;
   }
 
@@ -87,12 +110,19 @@ class Registry {
     auto it = entries_.find(lowercase(name));
     return it == entries_.end() ? "" : it->second.description;
   }
+  // The declared parameters of `name` (empty for unknown names).
+  const ParamTable& params(const std::string& name) const {
+    static const ParamTable none;
+    auto it = entries_.find(lowercase(name));
+    return it == entries_.end() ? none : it->second.params;
+  }
   const std::string& family() const { return family_; }
 
  private:
   struct Entry {
     std::string name;
     std::string description;
+    ParamTable params;
     Factory factory;
   };
   std::string family_;

@@ -1,66 +1,98 @@
 // DeepShadowMaps (see deep_shadow_maps.h).
 #include "dsm/deep_shadow_maps.h"
 
+#include <limits>
+
 #include "core/error.h"
 #include "cuda/ensure_buffer.h"
 
 namespace dv {
 
 DeepShadowMaps::DeepShadowMaps(DsmSettings settings) : settings_(std::move(settings)) {
-  if (settings_.resolution < 1 || settings_.resolution > kMaxRasterSide)
-    throw InputError("dsm res", "must lie in [1, 65536]");
-  if (!(settings_.eps >= 0.0f)) throw InputError("dsm eps", "must be a number >= 0");
-  const int s = settings_.subrays;
-  if (s != 1 && s != 4 && s != 9 && s != 16)
-    throw InputError("dsm subrays", "must be 1, 4, 9 or 16");
-  if (settings_.table_bins < 2 || settings_.table_bins > 1024)
-    throw InputError("dsm table_bins", "must lie in [2, 1024]");
-  if (!(settings_.step_scale > 0.0)) throw InputError("dsm step_scale", "must be positive");
-  if (settings_.clusters.max_clusters < 1) throw InputError("dsm clusters", "must be at least 1");
-  if (!(settings_.clusters.d0 >= 0.0)) throw InputError("dsm cluster_d0", "must be >= 0");
-  if (!(settings_.clusters.hysteresis >= 0.0))
-    throw InputError("dsm cluster_hysteresis", "must be >= 0");
+  StrategyParams::from_json(settings_.own_params()).resolved(dsm_param_table(), "dsm");
   storage_ = storage_registry().create(settings_.storage, settings_.storage_params);
+}
+
+const ParamTable& dsm_param_table() {
+  static const ParamTable table = [] {
+    const DsmSettings d;
+    const ClusterSettings& c = d.clusters;
+    ParamSpec bias = number_param("bias", d.bias, -1.0, std::numeric_limits<double>::infinity(),
+                                  "receiver depth bias in world units; < 0: 1e-4 of the scene "
+                                  "diagonal");
+    return ParamTable{
+        name_param("storage", d.storage, "storage strategy of the maps (`deepvox list`)"),
+        nested_param("storage", "a parameter of the storage strategy (storage.alloc=thesis)"),
+        integer_param("res", d.resolution, 1, kMaxRasterSide, "texels per side of each map"),
+        number_param("eps", d.eps, 0.0, std::numeric_limits<double>::infinity(),
+                     "bound on the error of every compressed visibility function"),
+        choice_param("filter", d.bilinear ? "bilinear" : "none", {"none", "bilinear"},
+                     "lookup: nearest texel or bilinear over four"),
+        bias,
+        number_param("slope", d.slope_bias, 0.0, std::numeric_limits<double>::infinity(),
+                     "slope bias: texel sizes times the receiver's tangent to the light"),
+        integer_choice_param("subrays", d.subrays, {1, 4, 9, 16},
+                             "jittered sub-rays per texel, averaged (pre-filtering)"),
+        choice_param("volume", d.precompressed ? "table" : "midpoint", {"midpoint", "table"},
+                     "volume steps: midpoint samples, or Hadwiger's pre-compressed tables"),
+        integer_param("table_bins", d.table_bins, 2, 1024, "bins of the pre-compressed tables"),
+        positive_param("step_scale", d.step_scale, "multiplies the volumes' steps in generation"),
+        integer_param("clusters", c.max_clusters, 1, std::numeric_limits<int32_t>::max(),
+                      "most clusters per light (Knecht 2011); 1: one map per light face"),
+        number_param("cluster_d0", c.d0, 0.0, std::numeric_limits<double>::infinity(),
+                     "distance threshold of the clustering, NDC units of the face"),
+        integer_choice_param("lispsm", c.lispsm ? 1 : 0, {0, 1},
+                             "1: cluster in the light-space perspective of the camera"),
+        number_param("cluster_hysteresis", c.hysteresis, 0.0,
+                     std::numeric_limits<double>::infinity(),
+                     "fraction of cluster_d0 a distance may move before reclustering")};
+  }();
+  return table;
 }
 
 DsmSettings DsmSettings::read(const StrategyParams& p) {
   DsmSettings s;
-  s.storage = p.string("storage", s.storage);
+  s.storage = p.string("storage");
   s.storage_params = p.prefixed("storage");
-  s.resolution = p.integer("res", s.resolution);
-  s.eps = float(p.number("eps", s.eps));
-  s.bilinear = p.choice("filter", "none", {"none", "bilinear"}) == "bilinear";
-  s.bias = p.number("bias", s.bias);
-  s.slope_bias = p.number("slope", s.slope_bias);
-  s.subrays = p.integer("subrays", s.subrays);
-  s.precompressed = p.choice("volume", "midpoint", {"midpoint", "table"}) == "table";
-  s.table_bins = p.integer("table_bins", s.table_bins);
-  s.step_scale = p.number("step_scale", s.step_scale);
-  s.clusters.max_clusters = p.integer("clusters", s.clusters.max_clusters);
-  s.clusters.d0 = p.number("cluster_d0", s.clusters.d0);
-  s.clusters.lispsm = p.choice("lispsm", "0", {"0", "1"}) == "1";
-  s.clusters.hysteresis = p.number("cluster_hysteresis", s.clusters.hysteresis);
+  s.resolution = p.integer("res");
+  s.eps = float(p.number("eps"));
+  s.bilinear = p.string("filter") == "bilinear";
+  s.bias = p.number("bias");
+  s.slope_bias = p.number("slope");
+  s.subrays = p.integer("subrays");
+  s.precompressed = p.string("volume") == "table";
+  s.table_bins = p.integer("table_bins");
+  s.step_scale = p.number("step_scale");
+  s.clusters.max_clusters = p.integer("clusters");
+  s.clusters.d0 = p.number("cluster_d0");
+  s.clusters.lispsm = p.integer("lispsm") == 1;
+  s.clusters.hysteresis = p.number("cluster_hysteresis");
   return s;
 }
 
 nlohmann::json DsmSettings::params(const DsmStorage& created) const {
-  nlohmann::json j = {{"storage", created.name()},
-                      {"res", resolution},
-                      {"eps", eps},
-                      {"filter", bilinear ? "bilinear" : "none"},
-                      {"bias", bias},
-                      {"slope", slope_bias},
-                      {"subrays", subrays},
-                      {"volume", precompressed ? "table" : "midpoint"},
-                      {"table_bins", table_bins},
-                      {"step_scale", step_scale},
-                      {"clusters", clusters.max_clusters},
-                      {"cluster_d0", clusters.d0},
-                      {"lispsm", clusters.lispsm ? 1 : 0},
-                      {"cluster_hysteresis", clusters.hysteresis}};
+  nlohmann::json j = own_params();
+  j["storage"] = created.name();
   const nlohmann::json own = created.params();  // items() must not outlive it
   for (const auto& [key, value] : own.items()) j["storage." + key] = value;
   return j;
+}
+
+nlohmann::json DsmSettings::own_params() const {
+  return {{"storage", storage},
+          {"res", resolution},
+          {"eps", eps},
+          {"filter", bilinear ? "bilinear" : "none"},
+          {"bias", bias},
+          {"slope", slope_bias},
+          {"subrays", subrays},
+          {"volume", precompressed ? "table" : "midpoint"},
+          {"table_bins", table_bins},
+          {"step_scale", step_scale},
+          {"clusters", clusters.max_clusters},
+          {"cluster_d0", clusters.d0},
+          {"lispsm", clusters.lispsm ? 1 : 0},
+          {"cluster_hysteresis", clusters.hysteresis}};
 }
 
 ClusteredLayout DeepShadowMaps::plan_clusters(const SceneData& scene, const Camera* camera) const {

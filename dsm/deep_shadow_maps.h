@@ -35,12 +35,19 @@ struct DsmSettings {
   ClusterSettings clusters;  // max_clusters > 1: clustered maps (light_clusters.h)
   int light = -1;            // >= 0: maps of this light only, whose source answers it as light 0
 
-  // The `dsm` shadow method's parameters (strategies/shadow/dsm_shadows.cpp lists them), and
-  // the same keys written back (`storage` the strategy creating them: its own as storage.KEY);
-  // read(params(...)) gives these settings again.
+  // From parameters resolved against dsm_param_table() (every key present), and the same keys
+  // written back: own_params() the table's keys, params() with the storage strategy that
+  // created them (its name, its own keys as storage.KEY); read(params(...)) gives these
+  // settings again.
   static DsmSettings read(const StrategyParams& p);
+  nlohmann::json own_params() const;
   nlohmann::json params(const DsmStorage& storage) const;
 };
+
+// The parameters of the `dsm` shadow method (and of `auto`, which builds deep maps with them):
+// keys, defaults (those of DsmSettings), ranges and descriptions. DeepShadowMaps checks its
+// settings against it too, so direct users meet the same rules.
+const ParamTable& dsm_param_table();
 
 class DeepShadowMaps {
  public:

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
+#include "dsm/dsm_generator.h"
 #include "strategies/voxelizer/atlas_packing.h"
 
 #if defined(DEEPVOX_WITH_CUDA)
@@ -65,6 +66,20 @@ std::optional<double> pass_floor_bytes(const std::string& method, const std::str
   if (method == "atlas-compute" && pass == "points")
     return corners + sizeof(AtlasCell) * t + offsets + set;
   return std::nullopt;
+}
+
+std::optional<double> dsm_pass_floor_bytes(const std::string& pass, const DsmFloorInputs& in) {
+  const double texels = double(in.texels);
+  if (pass == "count") return sizeof(int64_t) * texels;
+  if (pass == "scan") return 2.0 * sizeof(int64_t) * texels;
+  if (pass == "range") return 2.0 * sizeof(float) * texels;
+  if (pass == "write") return in.bytes_in_nodes + sizeof(DsmTexelRecord) * texels;
+  if (pass == "relayout" || pass == "rewrite" || pass == "shrink") return 2.0 * in.bytes_in_nodes;
+  return std::nullopt;
+}
+
+double frame_floor_bytes(int width, int height) {
+  return 3.0 * sizeof(float) * double(width) * double(height);
 }
 
 }  // namespace dv

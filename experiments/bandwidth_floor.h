@@ -28,4 +28,20 @@ struct FloorInputs {
 std::optional<double> pass_floor_bytes(const std::string& method, const std::string& pass,
                                        const FloorInputs& in);
 
+// What the byte counts of a deep-shadow-map generation depend on (DeepShadowMaps::figures()).
+struct DsmFloorInputs {
+  int64_t texels = 0;         // texels of every map (faces and clusters included)
+  double bytes_in_nodes = 0;  // bytes the storage holds in nodes (its payload)
+};
+
+// The fewest bytes DSM generation pass `pass` must move: count (one int64 per texel written),
+// scan (read and written), range (a depth range per texel), write (the nodes and the texel
+// records), relayout / rewrite / shrink (the nodes read and written). Empty for the light-view
+// rasterization and clustering passes, whose bytes follow the fragment lists that no figure holds.
+std::optional<double> dsm_pass_floor_bytes(const std::string& pass, const DsmFloorInputs& in);
+
+// The fewest bytes of a rasterized frame's fragment pass: its image written once (3 floats a
+// pixel). Its reads (fragment lists, the shadow method's maps) depend on the scene.
+double frame_floor_bytes(int width, int height);
+
 }  // namespace dv

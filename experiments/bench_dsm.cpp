@@ -10,15 +10,19 @@
 // d^2 * 64 layers * 64 bit, chunked nodes * 128 bit + d^2 * 64 bit). render_bilinear: the
 // bilinear-filtered frame per storage through the harness's timed frame (the suite's
 // render_ms). lights32: every light's maps of scenes/knecht-32-lights.json plus one bilinear
-// frame (no suite runs it), through the same harness functions.
+// frame (no suite runs it), through the same harness functions. Bandwidth floor
+// (bandwidth_floor.h): copy_GBps measured once in the run; per modelled generation pass
+// PASS_floor_ms (its fewest bytes over that bandwidth) and PASS_floor_x = PASS_ms / floor_ms.
 // Run: build/bin/bench_dsm --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cuda/device_memory.h"
 #include "dsm/deep_shadow_maps.h"
+#include "experiments/bandwidth_floor.h"
 #include "experiments/harness/shadow_measure.h"
 #include "load/scene_loader.h"
 #include "tests/support/paths.h"
@@ -47,7 +51,7 @@ bool skip_without_device(benchmark::State& state, Backend backend) {
 }
 
 // The storage's memory figures beside Knecht's formulas, and every pass of the last generation.
-void report_figures(benchmark::State& state, const DeepShadowMaps& maps) {
+void report_figures(benchmark::State& state, const DeepShadowMaps& maps, Backend backend) {
   const nlohmann::json& f = maps.figures();
   const double d2 = double(maps.settings().resolution) * maps.settings().resolution;
   state.counters["MB_allocated"] = f["bytes_allocated"].get<double>() / 1e6;
@@ -64,6 +68,16 @@ void report_figures(benchmark::State& state, const DeepShadowMaps& maps) {
     state.counters["chunks_wasted"] = own["chunks_wasted"].get<double>();
   }
   for (const DsmPass& p : maps.passes()) state.counters[p.name + "_ms"] = p.milliseconds;
+  if (backend != Backend::cuda) return;
+  const DsmFloorInputs floor{f["texels"].get<int64_t>(), f["bytes_in_nodes"].get<double>()};
+  static const double bytes_per_ms = measure_copy_bandwidth();
+  state.counters["copy_GBps"] = bytes_per_ms / 1e6;
+  for (const DsmPass& p : maps.passes()) {
+    const std::optional<double> bytes = dsm_pass_floor_bytes(p.name, floor);
+    if (!bytes) continue;
+    state.counters[p.name + "_floor_ms"] = *bytes / bytes_per_ms;
+    state.counters[p.name + "_floor_x"] = p.milliseconds / (*bytes / bytes_per_ms);
+  }
 }
 
 void dsm_generate(benchmark::State& state, std::string storage, Backend backend) {
@@ -82,7 +96,7 @@ void dsm_generate(benchmark::State& state, std::string storage, Backend backend)
   }
   state.counters["fresh_pass_ms"] = fresh.pass_milliseconds();
   state.counters["fresh_wall_ms"] = fresh.milliseconds;
-  report_figures(state, maps);
+  report_figures(state, maps, backend);
   state.SetLabel(backend == Backend::cuda ? cuda_device_name() : "cpu");
 }
 

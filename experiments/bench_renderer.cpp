@@ -4,6 +4,8 @@
 // 720x480, step 0.5 voxel), tile binning and the fragment pass (gather, sort, walk, shade) timed
 // separately with CUDA events on the GPU, per shadow method (the method generated once before).
 // Knecht 2011 reports 43 ms without shadows on a GTX 480.
+// Bandwidth floor (bandwidth_floor.h): fragment_floor_ms is the image written once over the
+// device copy bandwidth measured in the run (copy_GBps), fragment_floor_x the pass's multiple.
 // Run: build/bin/bench_renderer --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
@@ -11,6 +13,7 @@
 #include <string>
 
 #include "cuda/device_memory.h"
+#include "experiments/bandwidth_floor.h"
 #include "experiments/harness/shadow_measure.h"
 #include "load/scene_loader.h"
 #include "tests/support/paths.h"
@@ -36,6 +39,14 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
   }
   state.counters["raster_ms"] = raster_ms / double(state.iterations());
   state.counters["fragment_ms"] = fragment_ms / double(state.iterations());
+  if (backend == Backend::cuda) {
+    static const double bytes_per_ms = measure_copy_bandwidth();
+    const double floor_ms =
+        frame_floor_bytes(scene.camera.width, scene.camera.height) / bytes_per_ms;
+    state.counters["copy_GBps"] = bytes_per_ms / 1e6;
+    state.counters["fragment_floor_ms"] = floor_ms;
+    state.counters["fragment_floor_x"] = state.counters["fragment_ms"] / floor_ms;
+  }
   state.SetLabel(backend == Backend::cuda ? cuda_device_name() : "cpu");
 }
 

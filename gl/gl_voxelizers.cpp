@@ -47,12 +47,8 @@ class GlVoxelizer : public Voxelizer {
 };
 
 std::unique_ptr<Voxelizer> make_atlas(const StrategyParams& params) {
-  const int side = params.integer("atlas", kDefaultAtlasSide);
-  if (side < 1 || side > kMaxAtlasSide)
-    throw InputError("voxelizer 'atlas' (gl)",
-                     "atlas=" + std::to_string(side) + " must be in [1, " +
-                         std::to_string(kMaxAtlasSide) + "] (texels per atlas side)");
-  return std::make_unique<GlVoxelizer>("atlas", nlohmann::json{{"atlas", side}},
+  const int side = params.integer("atlas");
+  return std::make_unique<GlVoxelizer>("atlas", params.echo(),
                                        [side](const TriangleSoup& soup, const GridSpec& spec) {
                                          return voxelize_atlas_gl(soup, spec, side);
                                        });
@@ -61,16 +57,15 @@ std::unique_ptr<Voxelizer> make_atlas(const StrategyParams& params) {
 }  // namespace
 
 void register_gl_voxelizers(Registry<Voxelizer>& registry) {
-  registry.add("slicemap", "OpenGL slicemap through headless EGL (imageAtomicOr, any depth)",
+  registry.add("slicemap", "OpenGL slicemap through headless EGL (imageAtomicOr, any depth)", {},
                [](const StrategyParams&) {
                  return std::make_unique<GlVoxelizer>("slicemap", nlohmann::json::object(),
                                                       voxelize_slicemap_gl);
                });
   registry.add("atlas",
                "OpenGL atlas through headless EGL: the triangle atlas rendered into an RGBA32F "
-               "position texture, then one GL point per texel (imageAtomicOr); param "
-               "atlas=texels per side",
-               make_atlas);
+               "position texture, then one GL point per texel (imageAtomicOr)",
+               {atlas_side_param()}, make_atlas);
 }
 
 void install_gl_voxelizers() {

@@ -22,8 +22,7 @@ void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
   cmd->add_option("--dsm-res", o.dsm_res, "dsm: texels per side of each map (its res parameter)");
   cmd->add_option("--eps", o.eps,
                   "dsm: error bound of the compressed visibility functions (its eps parameter)");
-  cmd->add_option("--filter", o.filter, "dsm: none or bilinear")
-      ->check(CLI::IsMember({"none", "bilinear"}));
+  cmd->add_option("--filter", o.filter, "dsm: none or bilinear (its filter parameter)");
   cmd->add_option("--voxelizer", o.voxelizer,
                   "transmittance-slicemap: voxelizer filling its grids (see `deepvox list`)");
 }

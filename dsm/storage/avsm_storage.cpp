@@ -1,5 +1,5 @@
 // Storage strategy `avsm` (Salvi et al. 2010, see avsm_layout.h): N nodes per texel, 8 N bytes
-// (parameter `nodes`, default 8, 2..32). A storage strategy rather than a shadow method because
+// (parameter `nodes`). A storage strategy rather than a shadow method because
 // it changes only what a texel keeps of the visibility function the DSM walk produces: the
 // walk, the light faces, the receiver bias, the filter and the lookups' clamp rules stay those
 // of `dsm`, so the comparison with the papers' storages isolates the representation. The walk
@@ -40,12 +40,9 @@ void write_avsm_nodes(const DsmGenerationContext& c, int capacity, View<DsmNode>
 
 class AvsmStorage final : public DsmStorage {
  public:
-  explicit AvsmStorage(const StrategyParams& p) : capacity_(p.integer("nodes", 8)) {
-    if (capacity_ < 2 || capacity_ > kAvsmMaxNodes)
-      throw InputError("avsm nodes", "must lie in [2, " + std::to_string(kAvsmMaxNodes) + "]");
-  }
+  explicit AvsmStorage(const StrategyParams& p) : params_(p), capacity_(p.integer("nodes")) {}
   std::string name() const override { return "avsm"; }
-  nlohmann::json params() const override { return {{"nodes", capacity_}}; }
+  nlohmann::json params() const override { return params_.echo(); }
 
   void generate(const DsmGenerationContext& c) override {
     ensure_buffer(nodes_, memory_of(c.backend), c.generator.texel_count() * capacity_,
@@ -69,6 +66,7 @@ class AvsmStorage final : public DsmStorage {
   }
 
  private:
+  StrategyParams params_;
   int capacity_;
   Buffer<DsmNode> nodes_;
 };
@@ -78,8 +76,8 @@ class AvsmStorage final : public DsmStorage {
 void register_avsm_storage(Registry<DsmStorage>& registry) {
   registry.add("avsm",
                "Salvi et al. 2010 adaptive volumetric shadow maps: N nodes per texel (8 N bytes), "
-               "streaming insertion dropping the least-area node; error unbounded (params: "
-               "nodes=2..32, default 8)",
+               "streaming insertion dropping the least-area node; error unbounded",
+               {integer_param("nodes", 8, 2, kAvsmMaxNodes, "nodes per texel (8 bytes each)")},
                [](const StrategyParams& p) { return std::make_unique<AvsmStorage>(p); });
 }
 

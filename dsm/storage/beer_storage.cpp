@@ -69,7 +69,7 @@ void register_beer_storage(Registry<DsmStorage>& registry) {
   registry.add("beer",
                "UE 5 Beer shadow map: entry and exit depth and transmittance per texel (16 bytes), "
                "Beer-Lambert interpolation between them; error unbounded",
-               [](const StrategyParams&) { return std::make_unique<BeerStorage>(); });
+               {}, [](const StrategyParams&) { return std::make_unique<BeerStorage>(); });
 }
 
 }  // namespace dv

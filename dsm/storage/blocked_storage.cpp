@@ -1,11 +1,12 @@
-// Storage strategy `blocked` (see blocked_layout.h). Parameters: tile = T texels per side
-// (default 8), layers = most layers per texel (default 256, a multiple of 8), pool = blocks of
-// 8 layers x T^2 texels, sizing = counted | thesis (dsm/storage/pool_sizing.h). The pool:
-// `pool` when given; else counted (default) sums over the tiles the blocks each needs for its
-// deepest texel (at most layers / 8), and thesis reserves pool_per_tile (default 8) per tile. A
+// Storage strategy `blocked` (see blocked_layout.h). Parameters (table at the registration):
+// tile = T texels per side, layers, pool = blocks of 8 layers x T^2 texels, pool_per_tile,
+// sizing (dsm/storage/pool_sizing.h). The pool: `pool` when given; else counted sums over the
+// tiles the blocks each needs for its deepest texel (at most layers / 8), and thesis reserves
+// pool_per_tile per tile. A
 // node beyond `layers` or with the pool exhausted ends the texel's function there (an overflow with
 // the error reached, reported). Compiled by nvcc when CUDA is on.
 #include <algorithm>
+#include <limits>
 #include <memory>
 
 #include "core/error.h"
@@ -39,24 +40,14 @@ void write_blocks(const DsmGenerationContext& c, const BlockedSink& prototype,
 class BlockedStorage final : public DsmStorage {
  public:
   explicit BlockedStorage(const StrategyParams& p)
-      : tile_(p.integer("tile", 8)),
-        layers_(p.integer("layers", 256)),
-        pool_per_tile_(p.number("pool_per_tile", 8.0)),
-        pool_(p.integer("pool", 0)),
-        sizing_(read_pool_sizing(p)) {
-    if (tile_ < 1 || tile_ > 256) throw InputError("blocked tile", "must lie in [1, 256]");
-    if (layers_ < kBlockLayers || layers_ % kBlockLayers != 0 || layers_ > 65536)
-      throw InputError("blocked layers", "must be a multiple of 8 in [8, 65536]");
-    if (pool_ < 0 || !(pool_per_tile_ > 0.0)) throw InputError("blocked pool", "must be positive");
-  }
+      : params_(p),
+        tile_(p.integer("tile")),
+        layers_(p.integer("layers")),
+        pool_per_tile_(p.number("pool_per_tile")),
+        pool_(p.integer("pool")),
+        sizing_(read_pool_sizing(p)) {}
   std::string name() const override { return "blocked"; }
-  nlohmann::json params() const override {
-    return {{"tile", tile_},
-            {"layers", layers_},
-            {"pool", pool_},
-            {"pool_per_tile", pool_per_tile_},
-            {"sizing", to_string(sizing_)}};
-  }
+  nlohmann::json params() const override { return params_.echo(); }
 
   void generate(const DsmGenerationContext& c) override {
     const DsmGenerator& g = c.generator;
@@ -112,6 +103,7 @@ class BlockedStorage final : public DsmStorage {
   }
 
  private:
+  StrategyParams params_;
   int tile_, layers_;
   double pool_per_tile_;
   int32_t pool_;
@@ -126,10 +118,15 @@ class BlockedStorage final : public DsmStorage {
 }  // namespace
 
 void register_blocked_storage(Registry<DsmStorage>& registry) {
-  registry.add("blocked",
-               "Hadwiger 2006 3.4: tiles, blocks of 8 layers on demand, indirection per tile "
-               "(params: tile, layers, pool, pool_per_tile, sizing=counted|thesis)",
-               [](const StrategyParams& p) { return std::make_unique<BlockedStorage>(p); });
+  registry.add(
+      "blocked", "Hadwiger 2006 3.4: tiles, blocks of 8 layers on demand, indirection per tile",
+      {integer_param("tile", 8, 1, 256, "texels per tile side"),
+       multiple_param("layers", 256, kBlockLayers, kBlockLayers, 65536, "most layers per texel"),
+       integer_param("pool", 0, 0, std::numeric_limits<int32_t>::max(),
+                     "blocks in the pool (8 layers x tile^2 texels); 0: by sizing"),
+       positive_param("pool_per_tile", 8.0, "blocks reserved per tile by sizing=thesis"),
+       pool_sizing_param()},
+      [](const StrategyParams& p) { return std::make_unique<BlockedStorage>(p); });
 }
 
 }  // namespace dv

@@ -1,8 +1,8 @@
-// Storage strategy `chunked` (see chunked_layout.h). Parameters: alloc = thesis | aggregated
-// (default aggregated), chunk = L_C layers per chunk (default 64), block_chunks = C_B (default
-// 64), pool = C_max chunks, sizing = counted | thesis (dsm/storage/pool_sizing.h).
-// The pool: `pool` when given; else counted (default) sums over the 8x8 blocks the chunks each
-// needs for its nodes (at most C_B), and thesis reserves pool_per_block (default 32) per block.
+// Storage strategy `chunked` (see chunked_layout.h). Parameters (table at the registration):
+// alloc, chunk = L_C layers per chunk, block_chunks = C_B, pool = C_max chunks, pool_per_block,
+// sizing (dsm/storage/pool_sizing.h). The pool: `pool` when given; else counted sums over the
+// 8x8 blocks the chunks each needs for its nodes (at most C_B), and thesis reserves
+// pool_per_block per block.
 // `thesis` allocates as Knecht's
 // Algorithm 4.1 (threads of a block race, losers' chunks are wasted: measured, reported);
 // `aggregated` claims each chunk once with a pending state, so a block wastes at most the
@@ -10,6 +10,7 @@
 // texel's function there: counted as an overflow with the error reached, reported per
 // generation, never written out of bounds. Compiled by nvcc when CUDA is on.
 #include <algorithm>
+#include <limits>
 #include <memory>
 
 #include "core/error.h"
@@ -46,27 +47,15 @@ void relayout(Backend backend, const ChunkPool& pool, View<ChunkEntry> entries) 
 class ChunkedStorage final : public DsmStorage {
  public:
   explicit ChunkedStorage(const StrategyParams& p)
-      : alloc_(p.choice("alloc", "aggregated", {"aggregated", "thesis"})),
-        chunk_layers_(p.integer("chunk", 64)),
-        block_limit_(p.integer("block_chunks", 64)),
-        pool_per_block_(p.number("pool_per_block", 32.0)),
-        pool_(p.integer("pool", 0)),
-        sizing_(read_pool_sizing(p)) {
-    if (chunk_layers_ < 1 || chunk_layers_ > 1024)
-      throw InputError("chunked chunk", "must lie in [1, 1024]");
-    if (block_limit_ < 1 || block_limit_ > 65536)
-      throw InputError("chunked block_chunks", "must lie in [1, 65536]");
-    if (pool_ < 0 || !(pool_per_block_ > 0.0)) throw InputError("chunked pool", "must be positive");
-  }
+      : params_(p),
+        alloc_(p.string("alloc")),
+        chunk_layers_(p.integer("chunk")),
+        block_limit_(p.integer("block_chunks")),
+        pool_per_block_(p.number("pool_per_block")),
+        pool_(p.integer("pool")),
+        sizing_(read_pool_sizing(p)) {}
   std::string name() const override { return "chunked"; }
-  nlohmann::json params() const override {
-    return {{"alloc", alloc_},
-            {"chunk", chunk_layers_},
-            {"block_chunks", block_limit_},
-            {"pool", pool_},
-            {"pool_per_block", pool_per_block_},
-            {"sizing", to_string(sizing_)}};
-  }
+  nlohmann::json params() const override { return params_.echo(); }
 
   void generate(const DsmGenerationContext& c) override {
     blocks_ = c.generator.thread_count() / (kDsmBlockSide * kDsmBlockSide);
@@ -162,6 +151,7 @@ class ChunkedStorage final : public DsmStorage {
     for (int32_t slot : block_chunks_.to_vector()) used_ += slot > 0;
   }
 
+  StrategyParams params_;
   std::string alloc_;
   int32_t chunk_layers_, block_limit_;
   double pool_per_block_;
@@ -178,11 +168,18 @@ class ChunkedStorage final : public DsmStorage {
 }  // namespace
 
 void register_chunked_storage(Registry<DsmStorage>& registry) {
-  registry.add("chunked",
-               "Knecht 2011 4.2.2: chunks from a global pool per 8x8 block, linked lists "
-               "(params: alloc=thesis|aggregated, chunk, block_chunks, pool, pool_per_block, "
-               "sizing=counted|thesis)",
-               [](const StrategyParams& p) { return std::make_unique<ChunkedStorage>(p); });
+  registry.add(
+      "chunked", "Knecht 2011 4.2.2: chunks from a global pool per 8x8 block, linked lists",
+      {choice_param("alloc", "aggregated", {"aggregated", "thesis"},
+                    "thesis: Knecht's Algorithm 4.1 (a block's threads race, losers' "
+                    "chunks wasted); aggregated: each chunk claimed once"),
+       integer_param("chunk", 64, 1, 1024, "layers per chunk (L_C)"),
+       integer_param("block_chunks", 64, 1, 65536, "most chunks per 8x8 block (C_B)"),
+       integer_param("pool", 0, 0, std::numeric_limits<int32_t>::max(),
+                     "chunks in the pool (C_max); 0: by sizing"),
+       positive_param("pool_per_block", 32.0, "chunks reserved per block by sizing=thesis"),
+       pool_sizing_param()},
+      [](const StrategyParams& p) { return std::make_unique<ChunkedStorage>(p); });
 }
 
 }  // namespace dv

@@ -74,7 +74,7 @@ class CompactStorage final : public DsmStorage {
 
 void register_compact_storage(Registry<DsmStorage>& registry) {
   registry.add("compact",
-               "ours: count, scan, pack into one exact-size array; zero waste, binary search",
+               "ours: count, scan, pack into one exact-size array; zero waste, binary search", {},
                [](const StrategyParams&) { return std::make_unique<CompactStorage>(); });
 }
 

@@ -5,7 +5,7 @@
 // per-texel visibility function (the sink interface of dsm_storage.h), and faces, clusters,
 // receiver bias and filtering are the dsm method's. Passes: `range` (first and last node
 // depth), `write` (a second walk projecting the nodes). Bytes per texel: 4 * (4 + 2K): 48
-// (K = 4), 80 (K = 8), 144 (K = 16). Parameter: frequencies (K, 1..32, default 8). The answer
+// (K = 4), 80 (K = 8), 144 (K = 16). Parameter: frequencies (K). The answer
 // does not respect eps: truncation error and ringing remain. Compiled by nvcc when CUDA is on.
 #include <memory>
 
@@ -22,13 +22,10 @@ namespace {
 
 class FourierStorage final : public DsmStorage {
  public:
-  explicit FourierStorage(const StrategyParams& p) : frequencies_(p.integer("frequencies", 8)) {
-    if (frequencies_ < 1 || frequencies_ > kMaxFourierFrequencies)
-      throw InputError("fourier frequencies",
-                       "must lie in [1, " + std::to_string(kMaxFourierFrequencies) + "]");
-  }
+  explicit FourierStorage(const StrategyParams& p)
+      : params_(p), frequencies_(p.integer("frequencies")) {}
   std::string name() const override { return "fourier"; }
-  nlohmann::json params() const override { return {{"frequencies", frequencies_}}; }
+  nlohmann::json params() const override { return params_.echo(); }
 
   void generate(const DsmGenerationContext& c) override {
     const int stride = fourier_stride(frequencies_);
@@ -58,6 +55,7 @@ class FourierStorage final : public DsmStorage {
   }
 
  private:
+  StrategyParams params_;
   int frequencies_;
   Buffer<float> data_;
 };
@@ -67,7 +65,9 @@ class FourierStorage final : public DsmStorage {
 void register_fourier_storage(Registry<DsmStorage>& registry) {
   registry.add("fourier",
                "Jansen & Bavoil 2010 Fourier opacity maps: K frequencies of the optical-depth "
-               "density per texel, ringing clamped (params: frequencies)",
+               "density per texel, ringing clamped",
+               {integer_param("frequencies", 8, 1, kMaxFourierFrequencies,
+                              "frequencies K per texel (4 (4 + 2K) bytes)")},
                [](const StrategyParams& p) { return std::make_unique<FourierStorage>(p); });
 }
 

@@ -6,10 +6,8 @@
 // dsm_storage.h), and everything around the texel (faces, clusters, receiver bias, bilinear
 // filter) is the dsm method's; only what a texel keeps and how it answers differs. Passes:
 // `range` (first and last node depth), `write` (a second walk folding the nodes into moments).
-// Bytes per texel: 4 * (4 + n): 32 (n = 4), 40 (n = 6). Parameters: moments (4 | 6, default
-// 4), bias (moment bias alpha; default 5e-7 for 4, 5e-6 for 6 moments, the paper's 32-bit
-// values), overestimation (the weight at the query depth between the lower (0) and upper (1)
-// bound, default 0.25 as in the paper). The answer is biased: a bound blended between the
+// Bytes per texel: 4 * (4 + n): 32 (n = 4), 40 (n = 6). Parameters: the table at its
+// registration. The answer is biased: a bound blended between the
 // Chebyshev-Markov-Krein bounds, not the function; it does not respect eps. Compiled by nvcc
 // when CUDA is on.
 #include <memory>
@@ -28,18 +26,12 @@ namespace {
 class MomentsStorage final : public DsmStorage {
  public:
   explicit MomentsStorage(const StrategyParams& p)
-      : moments_(p.integer("moments", 4)),
+      : params_(p),
+        moments_(p.integer("moments")),
         bias_(p.number("bias", default_moment_bias(moments_))),
-        overestimation_(p.number("overestimation", 0.25)) {
-    if (moments_ != 4 && moments_ != 6) throw InputError("moments moments", "must be 4 or 6");
-    if (!(bias_ >= 0.0 && bias_ < 1.0)) throw InputError("moments bias", "must lie in [0, 1)");
-    if (!(overestimation_ >= 0.0 && overestimation_ <= 1.0))
-      throw InputError("moments overestimation", "must lie in [0, 1]");
-  }
+        overestimation_(p.number("overestimation")) {}
   std::string name() const override { return "moments"; }
-  nlohmann::json params() const override {
-    return {{"moments", moments_}, {"bias", bias_}, {"overestimation", overestimation_}};
-  }
+  nlohmann::json params() const override { return params_.echo(); }
 
   void generate(const DsmGenerationContext& c) override {
     const int stride = moments_stride(moments_);
@@ -69,6 +61,7 @@ class MomentsStorage final : public DsmStorage {
   }
 
  private:
+  StrategyParams params_;
   int moments_;
   double bias_;
   double overestimation_;
@@ -80,7 +73,19 @@ class MomentsStorage final : public DsmStorage {
 void register_moments_storage(Registry<DsmStorage>& registry) {
   registry.add("moments",
                "Muenstermann et al. 2018 / Peters & Klein 2015: 4 or 6 power moments of optical "
-               "depth per texel, biased bound (params: moments=4|6, bias, overestimation)",
+               "depth per texel, biased bound",
+               {integer_choice_param("moments", 4, {4, 6}, "power moments per texel"),
+                [] {
+                  ParamSpec bias = derived(number_param(
+                      "bias", 0.0, 0.0, 1.0,
+                      "moment bias alpha (default: 5e-7 for 4 moments, 5e-6 for 6, the "
+                      "paper's 32-bit values)"));
+                  bias.hi_open = true;
+                  return bias;
+                }(),
+                number_param("overestimation", 0.25, 0.0, 1.0,
+                             "weight at the query depth between the lower (0) and upper (1) "
+                             "bound (the paper's 0.25)")},
                [](const StrategyParams& p) { return std::make_unique<MomentsStorage>(p); });
 }
 

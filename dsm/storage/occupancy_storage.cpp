@@ -27,14 +27,9 @@ namespace {
 class OccupancyStorage final : public DsmStorage {
  public:
   explicit OccupancyStorage(const StrategyParams& p)
-      : slices_(p.integer("slices", 64)), slabs_(p.integer("slabs", 4)) {
-    if (slices_ != 32 && slices_ != 64 && slices_ != 128)
-      throw InputError("occupancy slices", "must be 32, 64 or 128");
-    if (slabs_ != 1 && slabs_ != 2 && slabs_ != 4 && slabs_ != 8)
-      throw InputError("occupancy slabs", "must be 1, 2, 4 or 8");
-  }
+      : params_(p), slices_(p.integer("slices")), slabs_(p.integer("slabs")) {}
   std::string name() const override { return "occupancy"; }
-  nlohmann::json params() const override { return {{"slices", slices_}, {"slabs", slabs_}}; }
+  nlohmann::json params() const override { return params_.echo(); }
 
   void generate(const DsmGenerationContext& c) override {
     const int stride = occupancy_stride(slices_, slabs_);
@@ -64,6 +59,7 @@ class OccupancyStorage final : public DsmStorage {
   }
 
  private:
+  StrategyParams params_;
   int slices_;
   int slabs_;
   Buffer<float> data_;
@@ -72,10 +68,14 @@ class OccupancyStorage final : public DsmStorage {
 }  // namespace
 
 void register_occupancy_storage(Registry<DsmStorage>& registry) {
-  registry.add("occupancy",
-               "Sintorn & Assarsson 2009 occupancy maps: a bit per slice of the texel's depth "
-               "range and a slab map of optical depth (params: slices=32|64|128, slabs=1|2|4|8)",
-               [](const StrategyParams& p) { return std::make_unique<OccupancyStorage>(p); });
+  registry.add(
+      "occupancy",
+      "Sintorn & Assarsson 2009 occupancy maps: a bit per slice of the texel's depth "
+      "range and a slab map of optical depth",
+      {integer_choice_param("slices", 64, {32, 64, 128}, "bits per texel over its own depth range"),
+       integer_choice_param("slabs", 4, {1, 2, 4, 8},
+                            "sums of optical depth per texel, each over slices / slabs")},
+      [](const StrategyParams& p) { return std::make_unique<OccupancyStorage>(p); });
 }
 
 }  // namespace dv

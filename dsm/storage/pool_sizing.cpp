@@ -7,10 +7,14 @@
 
 namespace dv {
 
+ParamSpec pool_sizing_param() {
+  return choice_param("sizing", "counted", {"counted", "thesis"},
+                      "counted: a counting pass sizes the pool to what the maps need (within "
+                      "the limits); thesis: the paper's fixed reservation");
+}
+
 PoolSizing read_pool_sizing(const StrategyParams& params) {
-  return params.choice("sizing", "counted", {"counted", "thesis"}) == "thesis"
-             ? PoolSizing::thesis
-             : PoolSizing::counted;
+  return params.string("sizing") == "thesis" ? PoolSizing::thesis : PoolSizing::counted;
 }
 
 const char* to_string(PoolSizing sizing) {

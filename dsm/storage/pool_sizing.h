@@ -20,7 +20,8 @@ namespace dv {
 
 enum class PoolSizing { counted, thesis };
 
-// The `sizing` parameter (counted | thesis, default counted).
+// The `sizing` parameter of the pooled storages, and reading it.
+ParamSpec pool_sizing_param();
 PoolSizing read_pool_sizing(const StrategyParams& params);
 const char* to_string(PoolSizing sizing);
 

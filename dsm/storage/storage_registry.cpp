@@ -17,8 +17,7 @@ Registry<DsmStorage>& storage_registry() {
   static Registry<DsmStorage> registry = make_registry<DsmStorage>(
       "storage", {register_compact_storage, register_texture3d_storage, register_chunked_storage,
                   register_blocked_storage, register_beer_storage, register_avsm_storage,
-                  register_moments_storage, register_fourier_storage,
-                  register_occupancy_storage});
+                  register_moments_storage, register_fourier_storage, register_occupancy_storage});
   return registry;
 }
 

@@ -1,15 +1,14 @@
-// Storage strategy `texture3d` (see texture3d_layout.h). Parameters: layers (default 64, the
-// thesis's maximum), sizing = counted | thesis (dsm/storage/pool_sizing.h; counted, the
-// default, gives the atlas as many layers as the deepest texel needs, at most `layers`; thesis
-// always `layers`). Overflow policy: a texel whose compressed function needs more nodes than
-// layers is compressed again with eps doubled (from at least 1/1024) until it fits, which
-// keeps the whole function, now within the larger bound, instead of cutting it off; with
-// eps = 1 a function needs one node, so every texel fits. The walk's samples stay those of
-// the asked eps. Such texels count as overflowed, with
-// the error bound they reached. Counted sizing costs one counting pass for the first maps of a
-// size only: later generations write into the previous depth, measure the deepest texel in the
-// same walk and write again only when it grew (the atlas ends as deep as the deepest texel,
-// exactly as after a counting pass). Compiled by nvcc when CUDA is on.
+// Storage strategy `texture3d` (see texture3d_layout.h). Parameters (table at the
+// registration): layers, sizing (dsm/storage/pool_sizing.h; counted gives the atlas as many
+// layers as the deepest texel needs, at most `layers`; thesis always `layers`). Overflow policy: a
+// texel whose compressed function needs more nodes than layers is compressed again with eps doubled
+// (from at least 1/1024) until it fits, which keeps the whole function, now within the larger
+// bound, instead of cutting it off; with eps = 1 a function needs one node, so every texel fits.
+// The walk's samples stay those of the asked eps. Such texels count as overflowed, with the error
+// bound they reached. Counted sizing costs one counting pass for the first maps of a size only:
+// later generations write into the previous depth, measure the deepest texel in the same walk and
+// write again only when it grew (the atlas ends as deep as the deepest texel, exactly as after a
+// counting pass). Compiled by nvcc when CUDA is on.
 #include <algorithm>
 #include <memory>
 
@@ -63,14 +62,9 @@ void copy_nodes(Backend backend, View<const DsmNode> from, View<DsmNode> to, int
 class Texture3dStorage final : public DsmStorage {
  public:
   explicit Texture3dStorage(const StrategyParams& p)
-      : layers_(p.integer("layers", 64)), sizing_(read_pool_sizing(p)) {
-    if (layers_ < 1 || layers_ > 4096)
-      throw InputError("texture3d layers", "must lie in [1, 4096]");
-  }
+      : params_(p), layers_(p.integer("layers")), sizing_(read_pool_sizing(p)) {}
   std::string name() const override { return "texture3d"; }
-  nlohmann::json params() const override {
-    return {{"layers", layers_}, {"sizing", to_string(sizing_)}};
-  }
+  nlohmann::json params() const override { return params_.echo(); }
 
   void generate(const DsmGenerationContext& c) override {
     const int64_t texels = c.generator.texel_count();
@@ -132,6 +126,7 @@ class Texture3dStorage final : public DsmStorage {
   }
 
  private:
+  StrategyParams params_;
   int layers_;
   PoolSizing sizing_;
   int atlas_layers_ = 0;
@@ -145,8 +140,11 @@ class Texture3dStorage final : public DsmStorage {
 
 void register_texture3d_storage(Registry<DsmStorage>& registry) {
   registry.add("texture3d",
-               "Knecht 2011 4.2.1: one 3D atlas, fixed layers per texel, coherent binary search "
-               "(params: layers, sizing=counted|thesis)",
+               "Knecht 2011 4.2.1: one 3D atlas, fixed layers per texel, coherent binary search",
+               {integer_param("layers", 64, 1, 4096,
+                              "most nodes per texel (the thesis's maximum 64); deeper texels are "
+                              "compressed again with eps doubled until they fit"),
+                pool_sizing_param()},
                [](const StrategyParams& p) { return std::make_unique<Texture3dStorage>(p); });
 }
 

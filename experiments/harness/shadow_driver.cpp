@@ -208,7 +208,7 @@ void register_shadow_driver(Registry<Driver>& registry) {
   registry.add("shadow",
                "a shadow method on a scene: generation and render time per pass, bytes, error at "
                "probe points against the exact oracle, image error against the reference render",
-               [](const StrategyParams&) { return std::make_unique<ShadowDriver>(); });
+               {}, [](const StrategyParams&) { return std::make_unique<ShadowDriver>(); });
 }
 
 }  // namespace dv

@@ -93,7 +93,7 @@ void register_voxelize_driver(Registry<Driver>& registry) {
   registry.add("voxelize",
                "a voxelizer on a scene's triangles: time per pass, filled voxels, missing and "
                "extra voxels against exact",
-               [](const StrategyParams&) { return std::make_unique<VoxelizeDriver>(); });
+               {}, [](const StrategyParams&) { return std::make_unique<VoxelizeDriver>(); });
 }
 
 }  // namespace dv

@@ -1,7 +1,6 @@
 // Shadow method "auto": the effect planner (effect_planner.h) chooses each light's method every
-// frame and the maps are cached per light. Parameters: those of `dsm` (res, eps, filter, storage,
-// storage.KEY, bias, slope, subrays, volume, table_bins, step_scale, clusters, cluster_d0,
-// lispsm, cluster_hysteresis); the depth maps of opaque-only lights take the same res and bias,
+// frame and the maps are cached per light. Parameters: those of `dsm` (dsm_param_table()); the
+// depth maps of opaque-only lights take the same res and bias,
 // PCF 2 with filter=bilinear (else 1, one nearest-texel test), and the slope that gives the same
 // receiver bias as the dsm lookup (slope x reach equal). Clustering and filtering run only when
 // asked (clusters > 1, filter=bilinear), never by a rule of the planner's own.
@@ -48,7 +47,6 @@ std::string rebuild_reason(const LightSlot& slot, const LightPlan& plan, bool ba
 class AutoShadows final : public ShadowMethod {
  public:
   explicit AutoShadows(const StrategyParams& p) : dsm_(DsmSettings::read(p)) {
-    DeepShadowMaps check(dsm_);  // rejects bad dsm parameters before any frame
     storage_ = storage_registry().create(dsm_.storage, dsm_.storage_params);
     depth_.res = dsm_.resolution;
     depth_.pcf = dsm_.bilinear ? 2 : 1;
@@ -186,7 +184,8 @@ class AutoShadows final : public ShadowMethod {
 void register_auto_shadows(Registry<ShadowMethod>& registry) {
   registry.add("auto",
                "the effect planner: per light none, shadowmap or dsm as its casters need, maps "
-               "cached per light (params: those of dsm)",
+               "cached per light (the parameters of dsm)",
+               dsm_param_table(),
                [](const StrategyParams& p) { return std::make_unique<AutoShadows>(p); });
 }
 

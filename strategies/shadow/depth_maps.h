@@ -18,20 +18,22 @@
 
 namespace dv {
 
-// res (texels per side, default 1024), pcf (kernel side, default 2), bias (world units; < 0:
-// 1e-4 of the scene diagonal, the default) and slope (texel sizes times the receiver's tangent
-// to the light, default 1.5), the receiver bias of surface points (light_faces.h).
+// res, pcf, bias and slope (depth_map_param_table(): defaults these), the receiver bias of
+// surface points (light_faces.h).
 struct DepthMapParams {
   int res = 1024;
   int pcf = 2;
   double bias = -1.0;
   double slope = 1.5;
 
-  // Reads the four keys from `p`; InputError naming `method` when out of range.
-  static DepthMapParams read(const StrategyParams& p, const std::string& method);
+  // Reads the four keys from `p`, resolved against depth_map_param_table().
+  static DepthMapParams read(const StrategyParams& p);
   nlohmann::json json() const;
   double bias_for(const SceneView& s) const { return bias >= 0.0 ? bias : 1e-4 * s.diagonal; }
 };
+
+// The four parameters of DepthMapParams, as the methods that render depth maps declare them.
+const ParamTable& depth_map_param_table();
 
 // Which surfaces cast into a depth map.
 enum class DepthCasters {

@@ -1,15 +1,9 @@
-// Shadow method "dsm": deep shadow maps (dsm/deep_shadow_maps.h). Parameters: storage (compact,
-// texture3d, chunked, blocked; default compact), res (texels per side, default 1024), eps (error
-// bound, default 0.02), filter (none | bilinear, default none), bias (world units, default 1e-4
-// of the scene diagonal) and slope (texel sizes times the receiver's tangent to the light,
-// default 3) for surface receivers (light_faces.h, receiver_depth), storage.KEY passed to the
-// storage strategy (e.g. storage.alloc=thesis), and for clustered maps
-// (dsm/light_clusters.h) clusters (m, default 1: one map per light face),
-// cluster_d0 (distance threshold, NDC units, default 0.5), lispsm (0 | 1, default 0: cluster in
-// the light-space perspective of the camera, dsm/lispsm.h; without a camera as 0)
-// and cluster_hysteresis (fraction of d0 a distance may move before reclustering, default 0.5).
-// Maps are generated when the scene data or the backend changes and, clustered, when the
-// clustering no longer holds for the camera (DeepShadowMaps::clustering_holds).
+// Shadow method "dsm": deep shadow maps (dsm/deep_shadow_maps.h). Parameters: dsm_param_table()
+// (storage and storage.KEY, res, eps, filter, bias and slope for surface receivers
+// (light_faces.h, receiver_depth), pre-filtering and volume steps, and the clustered maps of
+// dsm/light_clusters.h; lispsm without a camera acts as 0). Maps are generated when the scene data
+// or the backend changes and, clustered, when the clustering no longer holds for the camera
+// (DeepShadowMaps::clustering_holds).
 #include <memory>
 #include <vector>
 
@@ -102,10 +96,7 @@ class DsmShadows final : public ShadowMethod {
 }  // namespace
 
 void register_dsm_shadows(Registry<ShadowMethod>& registry) {
-  registry.add("dsm",
-               "deep shadow maps with an error bound (params: storage, res, eps, filter, bias, "
-               "slope, subrays, volume, table_bins, step_scale, clusters, cluster_d0, lispsm, "
-               "cluster_hysteresis, storage.KEY)",
+  registry.add("dsm", "deep shadow maps with an error bound", dsm_param_table(),
                [](const StrategyParams& p) { return std::make_unique<DsmShadows>(p); });
 }
 

@@ -17,7 +17,7 @@ class NoShadows final : public ShadowMethod {
 }  // namespace
 
 void register_no_shadows(Registry<ShadowMethod>& registry) {
-  registry.add("none", "no shadows: every light reaches every point",
+  registry.add("none", "no shadows: every light reaches every point", {},
                [](const StrategyParams&) { return std::make_unique<NoShadows>(); });
 }
 

@@ -24,7 +24,7 @@ class ReferenceShadows final : public ShadowMethod {
 }  // namespace
 
 void register_reference_shadows(Registry<ShadowMethod>& registry) {
-  registry.add("reference", "exact transmittance oracle per shaded sample (ground truth, slow)",
+  registry.add("reference", "exact transmittance oracle per shaded sample (ground truth, slow)", {},
                [](const StrategyParams&) { return std::make_unique<ReferenceShadows>(); });
 }
 

@@ -1,15 +1,14 @@
 // Shadow method "shadowmap": conventional depth shadow maps rendered with the tile rasterizer
-// from each light (see shadow_map_source.h for the lookup). Parameters: res (texels per side,
-// default 1024), pcf (kernel side, default 2; 1 = unfiltered), bias (world units, default
-// 1e-4 of the scene diagonal), slope (texel sizes added to the bias, default 1.5), focus (1:
-// fit spot and directional maps to what the camera can see, Brabec 2003 §4.2; default 0).
-// Focusing is geometric and conservative: the map covers the part of the scene bounds inside
-// the bounding box of the camera frustum (a control render with read-back, as Brabec does,
-// would be tighter); omni faces and queries without a camera (probe) are not focused. A
-// focused map depends on the camera, so it is rebuilt when the camera moves. Near and far planes
+// from each light (see shadow_map_source.h for the lookup). Parameters: those of depth maps
+// (depth_map_param_table()) and focus (1: fit spot and directional maps to what the camera can
+// see, Brabec 2003 §4.2). Focusing is geometric and conservative: the map covers the part of the
+// scene bounds inside the bounding box of the camera frustum (a control render with read-back, as
+// Brabec does, would be tighter); omni faces and queries without a camera (probe) are not focused.
+// A focused map depends on the camera, so it is rebuilt when the camera moves. Near and far planes
 // are fitted to the casters (the scene's bounds); maps are rebuilt only when the scene data or
 // backend changes. Also implements the shared depth maps of depth_maps.h.
 #include <algorithm>
+#include <limits>
 
 #include "cuda/buffer.h"
 #include "cuda/pass_timer.h"
@@ -99,13 +98,9 @@ void clear_depth_face(Backend backend, const ShadowFace& face, View<float> depth
 class ShadowMapMethod final : public ShadowMethod {
  public:
   explicit ShadowMapMethod(const StrategyParams& p)
-      : params_(DepthMapParams::read(p, "shadowmap")), focus_(p.integer("focus", 0) != 0) {}
+      : given_(p), params_(DepthMapParams::read(p)), focus_(p.integer("focus") != 0) {}
   std::string name() const override { return "shadowmap"; }
-  nlohmann::json params() const override {
-    nlohmann::json j = params_.json();
-    j["focus"] = focus_ ? 1 : 0;
-    return j;
-  }
+  nlohmann::json params() const override { return given_.echo(); }
   nlohmann::json stats() const override {
     return {{"maps_built", builds_},
             {"prepare_calls", prepare_calls_},
@@ -152,6 +147,7 @@ class ShadowMapMethod final : public ShadowMethod {
     faces_built_ = int(layout.faces.size());
   }
 
+  StrategyParams given_;  // resolved: echoes the table's keys
   DepthMapParams params_;
   bool focus_;
   Camera camera_;
@@ -166,16 +162,28 @@ class ShadowMapMethod final : public ShadowMethod {
 
 }  // namespace
 
-DepthMapParams DepthMapParams::read(const StrategyParams& p, const std::string& method) {
+DepthMapParams DepthMapParams::read(const StrategyParams& p) {
   DepthMapParams d;
-  d.res = p.integer("res", d.res);
-  d.pcf = p.integer("pcf", d.pcf);
-  d.bias = p.number("bias", d.bias);
-  d.slope = p.number("slope", d.slope);
-  if (d.res < 1 || d.res > kMaxRasterSide)
-    throw InputError(method + " res", "must lie in [1, 65536]");
-  if (d.pcf < 1 || d.pcf > 16) throw InputError(method + " pcf", "must lie in [1, 16]");
+  d.res = p.integer("res");
+  d.pcf = p.integer("pcf");
+  d.bias = p.number("bias");
+  d.slope = p.number("slope");
   return d;
+}
+
+const ParamTable& depth_map_param_table() {
+  static const ParamTable table = [] {
+    const DepthMapParams d;
+    const double inf = std::numeric_limits<double>::infinity();
+    return ParamTable{
+        integer_param("res", d.res, 1, kMaxRasterSide, "texels per side of each map"),
+        integer_param("pcf", d.pcf, 1, 16, "side of the percentage-closer kernel; 1: unfiltered"),
+        number_param("bias", d.bias, -1.0, inf,
+                     "receiver depth bias in world units; < 0: 1e-4 of the scene diagonal"),
+        number_param("slope", d.slope, 0.0, inf,
+                     "texel sizes times the receiver's tangent to the light added to the bias")};
+  }();
+  return table;
 }
 
 nlohmann::json DepthMapParams::json() const {
@@ -205,10 +213,12 @@ DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapL
 }
 
 void register_shadow_maps(Registry<ShadowMethod>& registry) {
-  registry.add(
-      "shadowmap",
-      "depth shadow maps from the tile rasterizer, PCF (params: res, pcf, bias, slope, focus)",
-      [](const StrategyParams& p) { return std::make_unique<ShadowMapMethod>(p); });
+  registry.add("shadowmap", "depth shadow maps from the tile rasterizer, PCF",
+               join(depth_map_param_table(),
+                    {integer_choice_param("focus", 0, {0, 1},
+                                          "1: fit spot and directional maps to the camera's view "
+                                          "(Brabec 2003 4.2)")}),
+               [](const StrategyParams& p) { return std::make_unique<ShadowMapMethod>(p); });
 }
 
 }  // namespace dv

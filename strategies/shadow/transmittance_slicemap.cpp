@@ -2,9 +2,9 @@
 // transmittance_slicemap_source.h). Per light face: a depth map of the opaque casters (alpha >=
 // 1, the shadowmap method's code, depth_maps.h), then a grid of the translucent casters (0 <
 // alpha < 1) over the face's frustum (frustum_grid.h), filled by a registered voxelizer.
-// Parameters: voxelizer (registry name, default slicemap; voxelizer.KEY passes KEY on to it),
-// slices (grid depth, a multiple of 32 in [32, 1024], default 32), res, pcf, bias, slope (as
-// shadowmap; res is also the grids' columns per side). The opacity a of (1 - a)^n is the mean
+// Parameters (table at the registration): voxelizer (voxelizer.KEY passes KEY on to it), slices
+// (grid depth), res, pcf, bias, slope (as shadowmap; res is also the grids' columns per side).
+// The opacity a of (1 - a)^n is the mean
 // over the translucent objects when they differ (stats: casters). Grids and maps are built once
 // per scene and backend, never per camera. A voxelizer that cannot run on the backend (exact on
 // CUDA) runs on the CPU and its grids are copied; conservative voxelizers (exact, sat) reject
@@ -32,21 +32,16 @@ constexpr const char* kName = "transmittance-slicemap";
 class TransmittanceSlicemap final : public ShadowMethod {
  public:
   explicit TransmittanceSlicemap(const StrategyParams& p)
-      : params_(DepthMapParams::read(p, kName)),
-        voxelizer_name_(p.string("voxelizer", "slicemap")),
-        slices_(p.integer("slices", 32)) {
-    if (slices_ < 32 || slices_ > 1024 || slices_ % 32 != 0)
-      throw InputError(std::string(kName) + " slices",
-                       std::to_string(slices_) + " must be a multiple of 32 in [32, 1024]");
-    voxelizer_ = voxelizer_registry().create(voxelizer_name_, p.prefixed("voxelizer"));
-  }
+      : given_(p),
+        params_(DepthMapParams::read(p)),
+        slices_(p.integer("slices")),
+        voxelizer_(voxelizer_registry().create(p.string("voxelizer"), p.prefixed("voxelizer"))) {}
   std::string name() const override { return kName; }
   nlohmann::json params() const override {
-    nlohmann::json j = params_.json();
-    j["voxelizer"] = voxelizer_name_;
+    nlohmann::json j = given_.echo();
+    j["voxelizer"] = voxelizer_->name();
     const nlohmann::json voxelizer = voxelizer_->params();
     for (const auto& [key, value] : voxelizer.items()) j["voxelizer." + key] = value;
-    j["slices"] = slices_;
     return j;
   }
   nlohmann::json stats() const override {
@@ -136,8 +131,8 @@ class TransmittanceSlicemap final : public ShadowMethod {
     words_ = Buffer<uint32_t>(memory, words, "transmittance slicemap words");
   }
 
+  StrategyParams given_;  // resolved: echoes the table's keys
   DepthMapParams params_;
-  std::string voxelizer_name_;
   int slices_;
   std::unique_ptr<Voxelizer> voxelizer_;
   DepthMaps opaque_;
@@ -157,11 +152,16 @@ class TransmittanceSlicemap final : public ShadowMethod {
 }  // namespace
 
 void register_transmittance_slicemap(Registry<ShadowMethod>& registry) {
-  registry.add(kName,
-               "transmittance shadow mapping: opaque depth map, then (1 - a)^n over a voxel grid "
-               "of the translucent casters per light face, Buchacher 2014 5.1 (params: "
-               "voxelizer, slices, res, pcf, bias, slope, voxelizer.KEY)",
-               [](const StrategyParams& p) { return std::make_unique<TransmittanceSlicemap>(p); });
+  registry.add(
+      kName,
+      "transmittance shadow mapping: opaque depth map, then (1 - a)^n over a voxel grid "
+      "of the translucent casters per light face, Buchacher 2014 5.1",
+      join(depth_map_param_table(),
+           {name_param("voxelizer", "slicemap",
+                       "voxelizer filling the grids of the translucent casters"),
+            nested_param("voxelizer", "a parameter of the voxelizer (voxelizer.small=16)"),
+            multiple_param("slices", 32, 32, 32, 1024, "depth of each light face's grid")}),
+      [](const StrategyParams& p) { return std::make_unique<TransmittanceSlicemap>(p); });
 }
 
 }  // namespace dv

@@ -149,14 +149,9 @@ namespace {
 class AtlasVoxelizer : public Voxelizer {
  public:
   AtlasVoxelizer(bool compute, const StrategyParams& params)
-      : compute_(compute), side_(params.integer("atlas", kDefaultAtlasSide)) {
-    if (side_ < 1 || side_ > kMaxAtlasSide)
-      throw InputError("voxelizer '" + name() + "'",
-                       "atlas=" + std::to_string(side_) + " must be in [1, " +
-                           std::to_string(kMaxAtlasSide) + "] (texels per atlas side)");
-  }
+      : compute_(compute), params_(params), side_(params.integer("atlas")) {}
   std::string name() const override { return compute_ ? "atlas-compute" : "atlas"; }
-  nlohmann::json params() const override { return {{"atlas", side_}}; }
+  nlohmann::json params() const override { return params_.echo(); }
   bool supports(Backend backend) const override {
     return backend == Backend::cpu || kBuiltWithCuda;
   }
@@ -168,19 +163,27 @@ class AtlasVoxelizer : public Voxelizer {
 
  private:
   bool compute_;
+  StrategyParams params_;
   int side_;
 };
 
 }  // namespace
 
+ParamSpec atlas_side_param() {
+  return integer_param("atlas", kDefaultAtlasSide, 1, kMaxAtlasSide,
+                       "texels per side of the triangle atlas (points per triangle follow)");
+}
+
 void register_atlas_voxelizers(Registry<Voxelizer>& registry) {
   registry.add("atlas",
                "one point per texel of a triangle atlas rasterized into a position texture "
-               "(Thiedemann et al. 2011), CPU and CUDA; param atlas=texels per side",
+               "(Thiedemann et al. 2011), CPU and CUDA",
+               {atlas_side_param()},
                [](const StrategyParams& p) { return std::make_unique<AtlasVoxelizer>(false, p); });
   registry.add("atlas-compute",
                "the atlas points computed and written by a compute kernel, no rasterization "
-               "(Buchacher 2014 3.4), CPU and CUDA; param atlas=texels per side",
+               "(Buchacher 2014 3.4), CPU and CUDA",
+               {atlas_side_param()},
                [](const StrategyParams& p) { return std::make_unique<AtlasVoxelizer>(true, p); });
 }
 

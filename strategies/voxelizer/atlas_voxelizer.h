@@ -15,6 +15,8 @@
 namespace dv {
 
 inline constexpr int kDefaultAtlasSide = 1024;
+// The `atlas` parameter of the atlas voxelizers (CPU, CUDA and OpenGL): texels per side.
+ParamSpec atlas_side_param();
 
 // Passes: clear, pack (the atlas layout, host), upload, atlas_update (rasterization into the
 // position texture), points. Counters: triangles, atlas_side, texel_size, valid_texels, raster.

@@ -178,7 +178,7 @@ void register_exact_voxelizer(Registry<Voxelizer>& registry) {
   registry.add("exact",
                "CPU reference: voxels whose closed box overlaps a triangle (13-axis "
                "separating-axis test, double precision)",
-               [](const StrategyParams&) {
+               {}, [](const StrategyParams&) {
                  return std::make_unique<FunctionVoxelizer>("exact", voxelize_exact_result, false);
                });
 }

@@ -181,11 +181,9 @@ namespace {
 class SatVoxelizer : public Voxelizer {
  public:
   explicit SatVoxelizer(const StrategyParams& params)
-      : small_items_(params.integer("small", int(kSatSmallItems))) {
-    validate_sat_small_items(small_items_);
-  }
+      : params_(params), small_items_(params.integer("small")) {}
   std::string name() const override { return "sat"; }
-  nlohmann::json params() const override { return {{"small", small_items_}}; }
+  nlohmann::json params() const override { return params_.echo(); }
   bool supports(Backend backend) const override {
     return backend == Backend::cpu || kBuiltWithCuda;
   }
@@ -195,6 +193,7 @@ class SatVoxelizer : public Voxelizer {
   }
 
  private:
+  StrategyParams params_;
   int64_t small_items_;
 };
 
@@ -203,8 +202,10 @@ class SatVoxelizer : public Voxelizer {
 void register_sat_voxelizer(Registry<Voxelizer>& registry) {
   registry.add("sat",
                "conservative surface voxelization, plane + 2D edge tests (Schwarz & Seidel "
-               "2010), CPU and CUDA; param small=work items (voxel columns) of a triangle "
-               "voxelized by one thread, larger ones split",
+               "2010), CPU and CUDA",
+               {integer_param("small", int(kSatSmallItems), 0, int(kSatMaxSmallItems),
+                              "work items (voxel columns) of a triangle voxelized by one "
+                              "thread; larger ones are split")},
                [](const StrategyParams& p) { return std::make_unique<SatVoxelizer>(p); });
 }
 

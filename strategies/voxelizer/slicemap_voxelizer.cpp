@@ -125,7 +125,7 @@ void register_slicemap_voxelizer(Registry<Voxelizer>& registry) {
   registry.add("slicemap",
                "slices of the fragments rasterized along +z, one bit per fragment (Eisemann & "
                "Decoret 2006), CPU and CUDA; OpenGL with --backend gl",
-               [](const StrategyParams&) {
+               {}, [](const StrategyParams&) {
                  return std::make_unique<FunctionVoxelizer>("slicemap", voxelize_slicemap, true);
                });
 }

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -75,6 +77,39 @@ TEST_F(Cli, HelpAndList) {
                            "icosphere", "shepp_logan", "cpu"})
     EXPECT_NE(list.output.find(name), std::string::npos) << name;
   EXPECT_NE(run("").exit_code, 0);
+}
+
+// docs/strategies.md is the output of `deepvox list --markdown`: the parameter tables the
+// strategies register with, so the documentation cannot drift from the code.
+TEST_F(Cli, StrategyDocsAreTheRegisteredTables) {
+  const CommandResult r = run("list --markdown");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(std::string(DEEPVOX_SOURCE_DIR) + "/docs/strategies.md");
+  std::stringstream committed;
+  committed << in.rdbuf();
+  EXPECT_EQ(committed.str(), r.output)
+      << "regenerate: build/bin/deepvox list --markdown > docs/strategies.md";
+  for (const char* row : {"| `eps` | 0.02 | >= 0 |", "| `storage.KEY` |", "| `slices` | 64 |",
+                          "| `small` | 64 | an integer [0, 1048576] |"})
+    EXPECT_NE(r.output.find(row), std::string::npos) << row;
+  const CommandResult text = run("list");
+  EXPECT_NE(text.output.find("res=1024"), std::string::npos) << text.output;
+}
+
+// The CLI's shortcuts pass through the same table checks as --param: exit 2 naming the key.
+TEST_F(Cli, ShortcutsMeetTheParameterTable) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string out = " --backend cpu --shadows dsm --out " + path("x.png");
+  for (const auto& [args, key] : std::vector<std::pair<std::string, std::string>>{
+           {" --eps -1", "eps"},
+           {" --filter cubic", "filter"},
+           {" --dsm-res 0", "res"},
+           {" --param subrays=3", "subrays"},
+           {" --param storage.layers=0 --storage texture3d", "layers"}}) {
+    const CommandResult r = run("render " + scene + out + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(key), std::string::npos) << args << ": " << r.output;
+  }
 }
 
 TEST_F(Cli, ProbeMatchesTheOracle) {

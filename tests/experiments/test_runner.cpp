@@ -179,7 +179,7 @@ class SkippingDriver : public Driver {
 };
 
 TEST_F(Runner, SkippedRunIsRecordedAndIsNoFailure) {
-  driver_registry().add("test-skip", "skips gpu-only",
+  driver_registry().add("test-skip", "skips gpu-only", {},
                         [](const StrategyParams&) { return std::make_unique<SkippingDriver>(); });
   const SuiteOutcome r = run(write("skip.json", R"({"suite": "skip", "repeat": 1,
     "experiments": [{"name": "e", "kind": "test-skip", "scene": "none.json",
@@ -208,7 +208,7 @@ class SigintDriver : public Driver {
 };
 
 TEST_F(Runner, CtrlCWritesFinishedRowsAndAReportOfWhatWasDone) {
-  driver_registry().add("test-sigint", "raises SIGINT while it runs",
+  driver_registry().add("test-sigint", "raises SIGINT while it runs", {},
                         [](const StrategyParams&) { return std::make_unique<SigintDriver>(); });
   const SuiteOutcome r = run(write("sigint.json", R"({"suite": "sigint", "repeat": 1,
     "experiments": [{"name": "e", "kind": "test-sigint", "scene": "none.json",

@@ -46,6 +46,16 @@ void expect_params_round_trip(const Registry<Base>& registry, const std::string&
                               const std::vector<std::string>& first = {}) {
   const auto made = registry.create(name, StrategyParams::parse(first));
   const nlohmann::json echoed = made->params();
+  for (const ParamSpec& spec : registry.params(name))  // every declared key is echoed
+    if (spec.type != ParamSpec::Type::nested && !spec.fallback.empty())
+      EXPECT_TRUE(echoed.contains(spec.key)) << name << " does not echo " << spec.key;
+  for (const auto& [key, value] : echoed.items()) {  // and nothing else but nested keys
+    bool declared = false;
+    for (const ParamSpec& spec : registry.params(name))
+      declared = declared || key == spec.key ||
+                 (spec.type == ParamSpec::Type::nested && key.rfind(spec.key + ".", 0) == 0);
+    EXPECT_TRUE(declared) << name << " echoes the undeclared key " << key;
+  }
   const auto again = registry.create(name, StrategyParams::parse(as_items(echoed)));
   EXPECT_EQ(again->params(), echoed) << echoed.dump();
 }
@@ -151,8 +161,8 @@ INSTANTIATE_TEST_SUITE_P(Registry, EveryVoxelizer,
 TEST(Registries, RegisteringANameTwiceIsAnError) {
   Registry<Voxelizer> registry("voxelizer");
   const auto make = [](const StrategyParams&) -> std::unique_ptr<Voxelizer> { return nullptr; };
-  registry.add("twin", "first", make);
-  EXPECT_THROW(registry.add("Twin", "second", make), Error);
+  registry.add("twin", "first", {}, make);
+  EXPECT_THROW(registry.add("Twin", "second", {}, make), Error);
 }
 
 }  // namespace
