@@ -13,6 +13,14 @@
 #define DV_KERNEL_LAMBDA [=]
 #endif
 
+// A call kept out of line in CUDA code: a function whose body would otherwise be inlined at
+// every call site of a large kernel and spill its registers on every path.
+#if defined(__CUDACC__)
+#define DV_NOINLINE __noinline__
+#else
+#define DV_NOINLINE
+#endif
+
 #if defined(__CUDA_ARCH__)
 #define DV_IN_DEVICE_CODE 1
 #else
