@@ -102,17 +102,21 @@ std::string ParamSpec::range_text() const {
   if (!allowed.empty()) return joined(allowed, " | ");
   const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
   std::string bounds;
-  if (has_lo && has_hi)
-    bounds = std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) +
-             (hi_open ? ")" : "]");
-  else if (has_lo)
+  if (has_lo && has_hi) {
+    bounds = lo_open ? "(" : "[";
+    bounds += number_text(lo) + ", ";
+    bounds += number_text(hi);
+    bounds += hi_open ? ")" : "]";
+  } else if (has_lo)
     bounds = (lo_open ? "> " : ">= ") + number_text(lo);
   else if (has_hi)
     bounds = (hi_open ? "< " : "<= ") + number_text(hi);
   else
     bounds = "any";
   if (step > 1) return "a multiple of " + std::to_string(step) + " in " + bounds;
-  return (type == Type::integer ? "an integer " : "") + bounds;
+  std::string text = type == Type::integer ? "an integer " : "";
+  text += bounds;
+  return text;
 }
 
 ParamSpec number_param(std::string key, double fallback, double lo, double hi,
