@@ -36,9 +36,10 @@ long long count_of(const std::string& word) {
   return std::stoll(word);
 }
 
-// ASCII OFF: "[C|N|ST|4|n]OFF", the counts (on the header line or the next), vertex lines (one
-// vertex a line, at least 3 numbers), then face lines "k i1 .. ik [colour]": k a count no
-// larger than the numbers left in the file, each index a vertex.
+// ASCII OFF: "[C|N|ST|4|n]OFF", the counts (read as CGAL's stream reads them, over as many
+// lines as they take), vertex lines (one vertex a line, at least 3 numbers), then face lines
+// "k i1 .. ik [colour]": k a count no larger than the numbers left in the file, each index a
+// vertex.
 void check_off(const std::string& path, const std::string& text) {
   // CGAL's binary OFF reader converts header floats to int without a range check (UB; found
   // by fuzz_mesh, also with NUL bytes between the keywords): binary OFF is not read.
