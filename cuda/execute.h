@@ -46,4 +46,25 @@ void parallel_for(Backend backend, const char* name, int64_t n, F body) {
   }
 }
 
+// body(i, threads): the call of a persistent-thread pass (parallel_for_resident).
+template <class F>
+struct ResidentBody {
+  F body;
+  int64_t threads;
+  DV_HD void operator()(int64_t i) const { body(i, threads); }
+};
+
+// A pass of persistent threads that loop over work whose amount only the device knows: body(i,
+// threads) for i in [0, threads), where threads is as many as run at once (CUDA: one full wave
+// of the kernel; CPU: 64 per worker thread). More threads than a wave would wait for a second
+// one and, each with as much to do, double the pass.
+template <class F>
+void parallel_for_resident(Backend backend, const char* name, F body) {
+  int64_t threads = int64_t(cpu_thread_count()) * 64;
+#if defined(__CUDACC__)
+  if (backend == Backend::cuda) threads = cuda_resident_threads<ResidentBody<F>>();
+#endif
+  parallel_for(backend, name, threads, ResidentBody<F>{body, threads});
+}
+
 }  // namespace dv

@@ -6,6 +6,7 @@
 
 #include <cuda_runtime.h>
 
+#include <algorithm>
 #include <cstdint>
 
 #include "cuda/cuda_check.h"
@@ -37,18 +38,61 @@ int occupancy_block_size() {
   return block_size;
 }
 
+// The SMs of the current device, asked once (1 if the runtime cannot answer).
+inline int cuda_multiprocessors() {
+  static const int count = [] {
+    int device = 0, value = 0;
+    if (cudaGetDevice(&device) != cudaSuccess ||
+        cudaDeviceGetAttribute(&value, cudaDevAttrMultiProcessorCount, device) != cudaSuccess ||
+        value <= 0) {
+      cudaGetLastError();
+      return 1;
+    }
+    return value;
+  }();
+  return count;
+}
+
+// The block size of an n-thread launch: the occupancy one, shrunk in steps of a warp (to no
+// less than 64 threads) while the launch would give an SM fewer than four blocks, so that a
+// small launch whose threads do uneven work (one thread per triangle) still reaches every SM.
+inline int spread_block_size(int64_t n, int occupancy_block) {
+  const int64_t wanted_blocks = 4 * int64_t(cuda_multiprocessors());
+  if (n >= wanted_blocks * occupancy_block) return occupancy_block;
+  const int64_t per_block = ((n + wanted_blocks - 1) / wanted_blocks + 31) / 32 * 32;
+  return int(std::clamp<int64_t>(per_block, std::min(64, occupancy_block), occupancy_block));
+}
+
 // Launches asynchronously on the default stream; errors of the launch itself are reported here
 // with `name`, errors during execution at the next synchronising call. With kernel timing on,
 // the launch is bracketed by events and waited for (timing runs are for profiling).
 template <class F>
 void cuda_parallel_for(const char* name, int64_t n, F body) {
   if (n <= 0) return;
-  const int block_size = occupancy_block_size<F>();
+  const int block_size = spread_block_size(n, occupancy_block_size<F>());
   const int64_t blocks = (n + block_size - 1) / block_size;
   KernelTimingScope timing(name, block_size);
   parallel_for_kernel<<<unsigned(blocks), block_size>>>(n, body);
   check_cuda(cudaGetLastError(), name, __FILE__, __LINE__);
   timing.finish();
+}
+
+// Threads of one full wave of parallel_for_kernel<F>: every SM holding as many of its blocks
+// as its registers allow (asked once per kernel).
+template <class F>
+int64_t cuda_resident_threads() {
+  const int block_size = occupancy_block_size<F>();
+  static const int blocks_per_sm = [block_size] {
+    int blocks = 0;
+    if (cudaOccupancyMaxActiveBlocksPerMultiprocessor(&blocks, parallel_for_kernel<F>, block_size,
+                                                      0) != cudaSuccess ||
+        blocks <= 0) {
+      cudaGetLastError();
+      return 1;
+    }
+    return blocks;
+  }();
+  return int64_t(blocks_per_sm) * cuda_multiprocessors() * block_size;
 }
 
 }  // namespace dv

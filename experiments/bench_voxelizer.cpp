@@ -1,16 +1,16 @@
 // The voxelizers on the meshes and grids, per pass with CUDA events (grid clear
 // separate, triangle upload separate). sat: the shared bunny scan midpoint-subdivided twice
 // (58,784 triangles) and three times (235,136) at 512^3 and 1024^3, the 12-triangle
-// axis-aligned cube at 1024^3, two triangles covering a 512^2 x 32 grid against a thousand
-// one-voxel triangles. slicemap, atlas and atlas-compute (default 1024^2 atlas): the bunny at
-// 512x512x32 and 512^3. Reported time = the kernel work after the upload (sat: small + large,
-// as cuda_voxelizer reports its "voxelization GPU time"; the atlas's host-side packing
+// axis-aligned cube at 512^3 and 1024^3, two triangles covering a 512^2 x 32 grid against a
+// thousand one-voxel triangles. slicemap, atlas and atlas-compute (default 1024^2 atlas): the
+// bunny at 512x512x32 and 512^3. Reported time = the kernel work after the upload (sat: small +
+// large, as cuda_voxelizer reports its "voxelization GPU time"; the atlas's host-side packing
 // is excluded and reported as pack_ms, its atlas update as atlas_update_ms); with_clear_ms adds
-// the grid clear (the goal counts it). sat_small/*: the same with the `small` parameter
-// (footprint limit of a triangle voxelized by one thread) swept, to tune it. The bandwidth floor
-// (bandwidth_floor.h): copy_GBps is the device-to-device copy bandwidth measured once in the
-// run; per modelled pass, PASS_floor_ms = its fewest bytes over that bandwidth, and for passes
-// over 100 us PASS_floor_x = PASS_ms / PASS_floor_ms (goal: at most 3).
+// the grid clear (the goal counts it). sat_small/*: the bunny rows with the `small`
+// parameter (footprint limit of a triangle voxelized by one thread) swept, to tune it. The
+// bandwidth floor (bandwidth_floor.h): copy_GBps is the device-to-device copy bandwidth
+// measured once in the run; per modelled pass, PASS_floor_ms = its fewest bytes over that
+// bandwidth, and for passes over 100 us PASS_floor_x = PASS_ms / PASS_floor_ms (goal: at most 3).
 // Run: build/bin/bench_voxelizer --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
@@ -124,6 +124,7 @@ BENCHMARK_CAPTURE(sat, bunny3_512, "bunny3", 512, 512)
 BENCHMARK_CAPTURE(sat, bunny3_1024, "bunny3", 1024, 1024)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat, cube_512, "cube", 512, 512)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(sat, cube_1024, "cube", 1024, 1024)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
@@ -134,16 +135,64 @@ BENCHMARK_CAPTURE(sat, thousand_small_512x32, "thousand-small", 512, 32)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
-BENCHMARK_CAPTURE(sat_small, bunny2_1024_small16, "bunny2", 1024, "16")
+BENCHMARK_CAPTURE(sat_small, bunny2_512_small32, "bunny2", 512, "32")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny2_512_small128, "bunny2", 512, "128")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny2_512_small256, "bunny2", 512, "256")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny2_512_small512, "bunny2", 512, "512")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny2_512_small1024, "bunny2", 512, "1024")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny2_1024_small32, "bunny2", 1024, "32")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny2_1024_small128, "bunny2", 1024, "128")
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(sat_small, bunny2_1024_small256, "bunny2", 1024, "256")
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(sat_small, bunny3_512_small16, "bunny3", 512, "16")
+BENCHMARK_CAPTURE(sat_small, bunny2_1024_small512, "bunny2", 1024, "512")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny2_1024_small1024, "bunny2", 1024, "1024")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_512_small32, "bunny3", 512, "32")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_512_small128, "bunny3", 512, "128")
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(sat_small, bunny3_512_small256, "bunny3", 512, "256")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_512_small512, "bunny3", 512, "512")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_512_small1024, "bunny3", 512, "1024")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_1024_small32, "bunny3", 1024, "32")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_1024_small128, "bunny3", 1024, "128")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_1024_small256, "bunny3", 1024, "256")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_1024_small512, "bunny3", 1024, "512")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(sat_small, bunny3_1024_small1024, "bunny3", 1024, "1024")
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(sat_small, cube_1024_small0, "cube", 1024, "0")

@@ -10,7 +10,7 @@
 //           a scratch copy;
 //   sort    entries ordered by (triangle, mask) into the lists, so the arbitrary order of the
 //           atomic writes never shows: one thread per entry of a short list (at most
-//           kRankSortedEntries) puts it at its rank among its tile's entries, one thread per
+//           rank_sorted_entries) puts it at its rank among its tile's entries, one thread per
 //           longer list sorts that list. The order is total up to equal entries, so both give
 //           the same lists.
 #include <algorithm>
@@ -107,9 +107,14 @@ DV_HD inline void sift_down(TileEntry* e, int64_t root, int64_t end) {
   }
 }
 
-// Lists up to this long are sorted by rank, one thread per entry (a few dozen comparisons each,
-// all in parallel); longer ones by one thread per list.
-constexpr int64_t kRankSortedEntries = 64;
+// Lists up to this long are sorted by rank, one thread per entry (as many comparisons as the
+// list has entries, all in parallel); longer ones by one thread per list. On the GPU a thread
+// that heap-sorts a list of hundreds of entries alone held the whole pass (0.26 of the 0.59 ms
+// of tile binning on knecht-fig56), so ranks go much further there; CPU threads are few and
+// sort faster alone.
+int64_t rank_sorted_entries(Backend backend) {
+  return backend == Backend::cuda ? 4096 : 64;
+}
 
 // The tile whose entries [range[t], range[t + 1]) hold entry e (the last t with range[t] <= e).
 DV_HD inline int64_t tile_of_entry(const View<const uint32_t>& range, int64_t tiles, int64_t e) {
@@ -286,11 +291,12 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
         });
       });
   const View<TileEntry> entries = lists.entries.view();
+  const int64_t rank_sorted = rank_sorted_entries(backend);
   parallel_for(
       backend, "raster_rank_sort", int64_t(stored), DV_KERNEL_LAMBDA(int64_t e) {
         const int64_t tile = tile_of_entry(range, tiles, e);
         const int64_t first = range[tile], end = range[tile + 1];
-        if (end - first > kRankSortedEntries) return;
+        if (end - first > rank_sorted) return;
         const TileEntry mine = unsorted[e];
         int64_t rank = 0;
         for (int64_t j = first; j < end; ++j) {
@@ -299,11 +305,11 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
         }
         entries[first + rank] = mine;
       });
-  if (s.max_entries_per_tile > kRankSortedEntries)
+  if (s.max_entries_per_tile > rank_sorted)
     parallel_for(
         backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
           const int64_t first = range[t], count = int64_t(range[t + 1] - range[t]);
-          if (count <= kRankSortedEntries) return;
+          if (count <= rank_sorted) return;
           for (int64_t j = first; j < first + count; ++j) entries[j] = unsorted[j];
           sort_entries(entries.data + first, count);
         });

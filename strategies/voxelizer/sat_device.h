@@ -11,6 +11,12 @@
 // contraction, so the CPU and CUDA grids are identical. The result is the set of voxels that
 // pass sat_voxel_passes(); the work split below only enumerates candidate supersets of it.
 //
+// Registers, not local memory: on the device a SatTriangle subscripted by a run-time axis or
+// corner index lives in the thread's stack (440 bytes, every edge test a local load). So the
+// setup picks axes and corners by selects, and the walks are templates on the walk axis,
+// reached through one switch (sat_work_item, sat_all_work_items): inside, every subscript is a
+// constant and the test stays in registers.
+//
 // Work split (large triangles must not serialise on one thread; small ones, most triangles of a
 // fine mesh, run all their work items on one thread with sat_all_work_items):
 //   non-degenerate: one work item per voxel column of the bounding range seen along the
@@ -49,10 +55,29 @@ struct SatTriangle {
 };
 
 DV_HD inline int sat_dominant_axis(const dvec3& d) {
+  const double x2 = d.x * d.x, y2 = d.y * d.y;
+  double most = d.z * d.z;
   int axis = 2;
-  if (d.y * d.y > d[axis] * d[axis]) axis = 1;
-  if (d.x * d.x > d[axis] * d[axis]) axis = 0;
+  if (y2 > most) {
+    axis = 1;
+    most = y2;
+  }
+  if (x2 > most) axis = 0;
   return axis;
+}
+
+// Component `axis` of v, or v0 / v1 / v2 by `index`, through selects (see the header comment).
+DV_HD inline double sat_component(const dvec3& v, int axis) {
+  return axis == 0 ? v.x : (axis == 1 ? v.y : v.z);
+}
+DV_HD inline int64_t sat_range_count(const VoxelRange (&range)[3], int axis) {
+  const int64_t x = range[0].count(), y = range[1].count(), z = range[2].count();
+  return axis == 0 ? x : (axis == 1 ? y : z);
+}
+DV_HD inline dvec3 sat_corner(const dvec3& v0, const dvec3& v1, const dvec3& v2, int index) {
+  return dvec3(index == 0 ? v0.x : (index == 1 ? v1.x : v2.x),
+               index == 0 ? v0.y : (index == 1 ? v1.y : v2.y),
+               index == 0 ? v0.z : (index == 1 ? v1.z : v2.z));
 }
 
 // Builds the test for triangle (v0, v1, v2) in grid coordinates of a `res` grid; false when it
@@ -92,24 +117,25 @@ DV_HD inline bool sat_setup(const dvec3& v0, const dvec3& v1, const dvec3& v2, c
 
   if (!t.degenerate) {
     t.axis = sat_dominant_axis(t.n);
-    t.work_items = int64_t(t.range[(t.axis + 1) % 3].count()) * t.range[(t.axis + 2) % 3].count();
+    t.work_items =
+        sat_range_count(t.range, (t.axis + 1) % 3) * sat_range_count(t.range, (t.axis + 2) % 3);
     return true;
   }
   // The segment a degenerate triangle collapses to: its longest edge (the third corner lies
-  // within kDegenerateRatio * length of it, between its ends).
+  // within kDegenerateRatio * length of it, between its ends); the first of equal ones.
+  const double len0 = squared_length(v1 - v0), len1 = squared_length(v2 - v1),
+               len2 = squared_length(v0 - v2);
   int longest = 0;
-  double best = -1.0;
-  for (int i = 0; i < 3; ++i) {
-    const double len2 = squared_length(t.v[(i + 1) % 3] - t.v[i]);
-    if (len2 > best) {
-      best = len2;
-      longest = i;
-    }
+  double most = len0;
+  if (len1 > most) {
+    longest = 1;
+    most = len1;
   }
-  t.seg_p = t.v[longest];
-  t.seg_q = t.v[(longest + 1) % 3];
+  if (len2 > most) longest = 2;
+  t.seg_p = sat_corner(v0, v1, v2, longest);
+  t.seg_q = sat_corner(v0, v1, v2, (longest + 1) % 3);
   t.axis = sat_dominant_axis(t.seg_q - t.seg_p);
-  t.work_items = t.range[t.axis].count();
+  t.work_items = sat_range_count(t.range, t.axis);
   return true;
 }
 
@@ -138,23 +164,23 @@ DV_HD inline int sat_clamp_index(double x, int lo, int hi) {
   return int(x);
 }
 
-// Non-degenerate: the column along a = t.axis at p[(a+1)%3] = pu, p[(a+2)%3] = pw.
+// Non-degenerate: the column along A = t.axis at p[(A+1)%3] = pu, p[(A+2)%3] = pw.
+template <int A>
 DV_HD inline void sat_column_at(const SatTriangle& t, int pu, int pw, const VoxelGridView& grid) {
-  const int a = t.axis, u = (a + 1) % 3, w = (a + 2) % 3;
+  constexpr int u = (A + 1) % 3, w = (A + 2) % 3;
   ivec3 p;
   p[u] = pu;
   p[w] = pw;
-  if (!sat_projection_passes(t, p, a)) return;
+  if (!sat_projection_passes(t, p, A)) return;
   // Where along the column the plane test can pass, widened by a voxel for rounding; the
   // per-voxel test below decides.
   const double base = t.n[u] * double(p[u]) + t.n[w] * double(p[w]);
-  const double t1 = -(base + t.d_min) / t.n[a], t2 = -(base + t.d_max) / t.n[a];
+  const double t1 = -(base + t.d_min) / t.n[A], t2 = -(base + t.d_max) / t.n[A];
   const int first =
-      sat_clamp_index(::floor(min_value(t1, t2)) - 1.0, t.range[a].first, t.range[a].last);
+      sat_clamp_index(::floor(min_value(t1, t2)) - 1.0, t.range[A].first, t.range[A].last);
   const int last =
-      sat_clamp_index(::ceil(max_value(t1, t2)) + 1.0, t.range[a].first, t.range[a].last);
-  const int b1 = u, b2 = w;  // the other two projections
-  if (a == 2) {
+      sat_clamp_index(::ceil(max_value(t1, t2)) + 1.0, t.range[A].first, t.range[A].last);
+  if constexpr (A == 2) {
     // Walking z: collect the bits of each 32-slice word and OR them in once.
     int word = first >> 5;
     uint32_t mask = 0;
@@ -164,76 +190,99 @@ DV_HD inline void sat_column_at(const SatTriangle& t, int pu, int pw, const Voxe
         word = p.z >> 5;
         mask = 0;
       }
-      if (sat_plane_passes(t, p) && sat_projection_passes(t, p, b1) &&
-          sat_projection_passes(t, p, b2))
+      if (sat_plane_passes(t, p) && sat_projection_passes(t, p, u) &&
+          sat_projection_passes(t, p, w))
         mask |= 1u << (p.z & 31);
     }
     grid.set_bits(p.x, p.y, word, mask);
-    return;
+  } else {
+    for (p[A] = first; p[A] <= last; ++p[A])
+      if (sat_plane_passes(t, p) && sat_projection_passes(t, p, u) &&
+          sat_projection_passes(t, p, w))
+        grid.set(p.x, p.y, p.z);
   }
-  for (p[a] = first; p[a] <= last; ++p[a])
-    if (sat_plane_passes(t, p) && sat_projection_passes(t, p, b1) &&
-        sat_projection_passes(t, p, b2))
-      grid.set(p.x, p.y, p.z);
 }
 
-// Degenerate work item `local`: one slice across the segment's dominant axis.
+// The range of voxels along axis b that the segment's part between parameters lam_lo and
+// lam_hi can touch, widened by a voxel (rounding, and the third corner of a sliver).
+template <int B>
+DV_HD inline VoxelRange sat_segment_window(const SatTriangle& t, const dvec3& d, double lam_lo,
+                                           double lam_hi) {
+  const double c0 = t.seg_p[B] + lam_lo * d[B], c1 = t.seg_p[B] + lam_hi * d[B];
+  VoxelRange r = voxel_range(min_value(c0, c1), max_value(c0, c1), t.range[B].last + 1, 1.0);
+  r.first = max_value(r.first, t.range[B].first);
+  r.last = min_value(r.last, t.range[B].last);
+  return r;
+}
+
+// Degenerate work item `local`: one slice across the segment's dominant axis A = t.axis.
+template <int A>
 DV_HD inline void sat_segment_slice(const SatTriangle& t, int64_t local,
                                     const VoxelGridView& grid) {
-  const int a = t.axis, u = (a + 1) % 3, w = (a + 2) % 3;
-  const int slice = t.range[a].first + int(local);
+  constexpr int u = (A + 1) % 3, w = (A + 2) % 3;
+  const int slice = t.range[A].first + int(local);
   const dvec3 d = t.seg_q - t.seg_p;
   double lam_lo = 0.0, lam_hi = 1.0;
-  if (d[a] != 0.0) {
-    const double l0 = (double(slice) - t.seg_p[a]) / d[a];
-    const double l1 = (double(slice + 1) - t.seg_p[a]) / d[a];
+  if (d[A] != 0.0) {
+    const double l0 = (double(slice) - t.seg_p[A]) / d[A];
+    const double l1 = (double(slice + 1) - t.seg_p[A]) / d[A];
     lam_lo = clamp_value(min_value(l0, l1), 0.0, 1.0);
     lam_hi = clamp_value(max_value(l0, l1), 0.0, 1.0);
   }
-  // The window the segment's part in this slice can touch, widened by a voxel (rounding, and
-  // the third corner of a sliver).
-  VoxelRange window[2];
-  const int axes[2] = {u, w};
-  for (int i = 0; i < 2; ++i) {
-    const int b = axes[i];
-    const double c0 = t.seg_p[b] + lam_lo * d[b], c1 = t.seg_p[b] + lam_hi * d[b];
-    VoxelRange r = voxel_range(min_value(c0, c1), max_value(c0, c1), t.range[b].last + 1, 1.0);
-    r.first = max_value(r.first, t.range[b].first);
-    r.last = min_value(r.last, t.range[b].last);
-    window[i] = r;
-  }
+  const VoxelRange window_u = sat_segment_window<u>(t, d, lam_lo, lam_hi);
+  const VoxelRange window_w = sat_segment_window<w>(t, d, lam_lo, lam_hi);
   ivec3 p;
-  p[a] = slice;
-  for (p[w] = window[1].first; p[w] <= window[1].last; ++p[w])
-    for (p[u] = window[0].first; p[u] <= window[0].last; ++p[u])
+  p[A] = slice;
+  for (p[w] = window_w.first; p[w] <= window_w.last; ++p[w])
+    for (p[u] = window_u.first; p[u] <= window_u.last; ++p[u])
       if (sat_voxel_passes(t, p)) grid.set(p.x, p.y, p.z);
 }
 
-// Non-degenerate work item `local`: one column of the range across t.axis, rows along u.
-DV_HD inline void sat_column(const SatTriangle& t, int64_t local, const VoxelGridView& grid) {
-  const int a = t.axis, u = (a + 1) % 3, w = (a + 2) % 3;
+// Work item `local` of a triangle walking along A: a slice of a degenerate one, else a column
+// of the range across A, rows along (A+1)%3.
+template <int A>
+DV_HD inline void sat_work_item_along(const SatTriangle& t, int64_t local,
+                                      const VoxelGridView& grid) {
+  if (t.degenerate) return sat_segment_slice<A>(t, local, grid);
+  constexpr int u = (A + 1) % 3, w = (A + 2) % 3;
   const int64_t count_u = t.range[u].count();
-  sat_column_at(t, t.range[u].first + int(local % count_u), t.range[w].first + int(local / count_u),
-                grid);
+  sat_column_at<A>(t, t.range[u].first + int(local % count_u),
+                   t.range[w].first + int(local / count_u), grid);
 }
 
 DV_HD inline void sat_work_item(const SatTriangle& t, int64_t local, const VoxelGridView& grid) {
-  if (t.degenerate)
-    sat_segment_slice(t, local, grid);
-  else
-    sat_column(t, local, grid);
+  switch (t.axis) {
+    case 0:
+      return sat_work_item_along<0>(t, local, grid);
+    case 1:
+      return sat_work_item_along<1>(t, local, grid);
+    default:
+      return sat_work_item_along<2>(t, local, grid);
+  }
 }
 
 // Every work item of `t` on the calling thread (the small triangles' route): the same voxels as
 // sat_work_item for local = 0 .. t.work_items - 1, without the per-item index arithmetic.
-DV_HD inline void sat_all_work_items(const SatTriangle& t, const VoxelGridView& grid) {
+template <int A>
+DV_HD inline void sat_all_work_items_along(const SatTriangle& t, const VoxelGridView& grid) {
   if (t.degenerate) {
-    for (int64_t local = 0; local < t.work_items; ++local) sat_segment_slice(t, local, grid);
+    for (int64_t local = 0; local < t.work_items; ++local) sat_segment_slice<A>(t, local, grid);
     return;
   }
-  const int u = (t.axis + 1) % 3, w = (t.axis + 2) % 3;
+  constexpr int u = (A + 1) % 3, w = (A + 2) % 3;
   for (int pw = t.range[w].first; pw <= t.range[w].last; ++pw)
-    for (int pu = t.range[u].first; pu <= t.range[u].last; ++pu) sat_column_at(t, pu, pw, grid);
+    for (int pu = t.range[u].first; pu <= t.range[u].last; ++pu) sat_column_at<A>(t, pu, pw, grid);
+}
+
+DV_HD inline void sat_all_work_items(const SatTriangle& t, const VoxelGridView& grid) {
+  switch (t.axis) {
+    case 0:
+      return sat_all_work_items_along<0>(t, grid);
+    case 1:
+      return sat_all_work_items_along<1>(t, grid);
+    default:
+      return sat_all_work_items_along<2>(t, grid);
+  }
 }
 
 }  // namespace dv

@@ -1,4 +1,4 @@
-// The `sat` conservative voxelizer's passes (test and work split in sat_kernels.h), one source
+// The `sat` conservative voxelizer's passes (test and work split in sat_device.h), one source
 // for both backends (nvcc compiles this file when CUDA is on):
 //   clear    a fresh zeroed grid, the zeroed counters and the large triangles' list;
 //   upload   the triangles' corners;
@@ -7,8 +7,8 @@
 //            `small_items` of them is voxelized right there, a larger one stores its grid
 //            corners (in place) and is appended to the large list (work_items.h's
 //            PackedWorkList: entry and first item from one atomic add, no scan);
-//   large    a fixed number of threads loops over the large triangles' work items (the count
-//            is read on the device, never by the host): each finds its triangle by binary
+//   large    one wave of persistent threads loops over the large triangles' work items (the
+//            count is read on the device, never by the host): each finds its triangle by binary
 //            search over the list's first items, rebuilds the triangle's test when the triangle
 //            changes and ORs one column's (or slice's) voxels into the grid.
 // The counters (small work items, degenerate triangles, the list's packed count) are read back
@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "core/atomic.h"
-#include "core/parallel.h"
+#include "cuda/execute.h"
 #include "cuda/pass_timer.h"
 #include "strategies/voxelizer/sat_device.h"
 #include "strategies/voxelizer/work_items.h"
@@ -33,11 +33,8 @@ namespace dv {
 
 namespace {
 
-// Threads of the large pass: enough to fill the GPU, few enough that an empty list costs little
-// (on CPU threads, a few loops per worker).
-int64_t sat_large_threads(Backend backend) {
-  return backend == Backend::cuda ? int64_t(1) << 16 : int64_t(cpu_thread_count()) * 64;
-}
+// Consecutive work items of the large pass taken by 32 threads together (see its comment).
+constexpr int64_t kSatLargeChunk = 256;
 
 // counters[kSmallItems]: work items of the small triangles; [kDegenerate]: degenerate triangles
 // with work; [kFirstList + b]: the packed count of batch b's large list.
@@ -140,23 +137,31 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
   {
     PassTimer timer(backend);
     const View<const dvec3> in = corners.const_view();
-    const int64_t threads = sat_large_threads(backend);
     for (int64_t b = 0; b < batches; ++b) {
       const PackedWorkList list = list_of(b);
-      parallel_for(
-          backend, "sat_large", threads, DV_KERNEL_LAMBDA(int64_t i) {
+      parallel_for_resident(
+          backend, "sat_large", DV_KERNEL_LAMBDA(int64_t i, int64_t threads) {
             const int64_t items = list.items();
             const View<const int64_t> first = list.firsts();
-            int64_t owner = -1;
+            // Each group of 32 threads takes chunks of kSatLargeChunk consecutive items, its
+            // threads interleaved, and the groups' chunks interleave: a thread rebuilds a test
+            // only where its chunk enters another triangle (its items only increase), and the
+            // chunks in flight at once are neighbours in the list, so are their voxels.
+            const int64_t group = i / 32, lane = i % 32, groups = threads / 32;
+            int64_t owner = -1, owner_end = 0;
             SatTriangle t;
-            for (int64_t k = i; k < items; k += threads) {
-              const int64_t e = work_item_owner(first, first.size, k);
-              if (e != owner) {
-                owner = e;
-                const int64_t tri = list.primitive[e];
-                sat_setup(in[3 * tri], in[3 * tri + 1], in[3 * tri + 2], res, t);
+            for (int64_t chunk = group * kSatLargeChunk; chunk < items;
+                 chunk += groups * kSatLargeChunk) {
+              const int64_t end = min_value(items, chunk + kSatLargeChunk);
+              for (int64_t k = chunk + lane; k < end; k += 32) {
+                if (k >= owner_end) {
+                  owner = work_item_owner(first, first.size, k);
+                  owner_end = owner + 1 < first.size ? first[owner + 1] : items;
+                  const int64_t tri = list.primitive[owner];
+                  sat_setup(in[3 * tri], in[3 * tri + 1], in[3 * tri + 2], res, t);
+                }
+                sat_work_item(t, k - first[owner], grid);
               }
-              sat_work_item(t, k - first[e], grid);
             }
           });
     }

@@ -90,7 +90,7 @@ TEST_F(Cli, StrategyDocsAreTheRegisteredTables) {
   EXPECT_EQ(committed.str(), r.output)
       << "regenerate: build/bin/deepvox list --markdown > docs/strategies.md";
   for (const char* row : {"| `eps` | 0.02 | >= 0 |", "| `storage.KEY` |", "| `slices` | 64 |",
-                          "| `small` | 64 | an integer [0, 1048576] |"})
+                          "| `small` | 256 | an integer [0, 1048576] |"})
     EXPECT_NE(r.output.find(row), std::string::npos) << row;
   const CommandResult text = run("list");
   EXPECT_NE(text.output.find("res=1024"), std::string::npos) << text.output;

@@ -78,14 +78,15 @@ TriangleSoup mixed_sizes_soup() {
 
 // Classification by footprint (small triangles whole on one thread, large ones column by
 // column from the large list, in one list or in batches) never changes the grid or the work
-// counted: every route against the default split.
+// counted: every route against a mixed split (at most 64 columns on one thread: the cube's
+// faces large, the bunny's triangles small at both grids).
 TEST(SatWorkSplit, GridDoesNotDependOnTheSplit) {
   const TriangleSoup soup = mixed_sizes_soup();
   const int64_t triangles = soup.triangle_count();
   const Aabb bounds = cubic_bounds(soup.bounds(), "mixed");
   for (const ivec3 res : {ivec3(64, 64, 64), ivec3(100, 37, 96)}) {
     const GridSpec spec = make_box_grid(res, bounds);
-    const VoxelizeResult split = voxelize_sat(Backend::cpu, soup, spec);
+    const VoxelizeResult split = voxelize_sat(Backend::cpu, soup, spec, 64);
     const int64_t large = split.counters["large_triangles"].get<int64_t>();
     EXPECT_GE(large, 12) << "the cube's faces are large";
     EXPECT_LT(large, triangles / 10) << "the bunny's triangles are small";
