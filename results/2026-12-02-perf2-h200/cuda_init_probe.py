@@ -1,0 +1,16 @@
+# Times the CUDA driver's own start-up in a fresh process: dlopen, cuInit, primary context.
+import ctypes, sys, time
+t0 = time.perf_counter()
+cuda = ctypes.CDLL("libcuda.so.1")
+t1 = time.perf_counter()
+rc = cuda.cuInit(0)
+t2 = time.perf_counter()
+dev = ctypes.c_int()
+cuda.cuDeviceGet(ctypes.byref(dev), 0)
+ctx = ctypes.c_void_p()
+rc2 = cuda.cuDevicePrimaryCtxRetain(ctypes.byref(ctx), dev)
+cuda.cuCtxSetCurrent(ctx)
+free = ctypes.c_size_t(); total = ctypes.c_size_t()
+cuda.cuMemGetInfo_v2(ctypes.byref(free), ctypes.byref(total))
+t3 = time.perf_counter()
+print(f"dlopen_ms {1e3*(t1-t0):.1f} cuInit_ms {1e3*(t2-t1):.1f} primary_context_ms {1e3*(t3-t2):.1f} rc {rc} {rc2}")
