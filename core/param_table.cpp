@@ -29,13 +29,6 @@ std::string joined(const std::vector<std::string>& items, const char* separator)
   return out;
 }
 
-// A finite number, or nothing when `text` is not one.
-bool parse_number(const std::string& text, double& v) {
-  char* end = nullptr;
-  v = std::strtod(text.c_str(), &end);
-  return end != text.c_str() && *end == '\0' && std::isfinite(v);
-}
-
 ParamSpec make(std::string key, ParamSpec::Type type, std::string fallback,
                std::string description) {
   ParamSpec s;
@@ -47,6 +40,21 @@ ParamSpec make(std::string key, ParamSpec::Type type, std::string fallback,
 }
 
 }  // namespace
+
+bool parse_param_number(const std::string& text, double& v) {
+  char* end = nullptr;
+  v = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && *end == '\0' && std::isfinite(v);
+}
+
+bool is_param_integer(double v) {
+  return v == std::floor(v) && std::abs(v) <= 2e9;
+}
+
+bool is_nested_key(const std::string& key, const std::string& prefix) {
+  return key.size() > prefix.size() + 1 && key.compare(0, prefix.size(), prefix) == 0 &&
+         key[prefix.size()] == '.';
+}
 
 const std::string& ParamSpec::check(const std::string& value, const std::string& where) const {
   const auto fail = [&](const std::string& why) {
@@ -64,9 +72,9 @@ const std::string& ParamSpec::check(const std::string& value, const std::string&
       break;
   }
   double v = 0.0;
-  if (!parse_number(value, v)) fail(type == Type::integer ? "an integer" : "a number");
+  if (!parse_param_number(value, v)) fail(type == Type::integer ? "an integer" : "a number");
   if (type == Type::integer) {
-    if (v != std::floor(v) || std::abs(v) > 2e9) fail("an integer");
+    if (!is_param_integer(v)) fail("an integer");
     if (!allowed.empty()) {
       if (std::find(allowed.begin(), allowed.end(), number_text(v)) == allowed.end())
         fail(range_text());
@@ -82,8 +90,8 @@ const std::string& ParamSpec::check(const std::string& value, const std::string&
 
 nlohmann::json ParamSpec::typed(const std::string& value) const {
   double v = 0.0;
-  if (type == Type::integer && parse_number(value, v)) return int64_t(v);
-  if (type == Type::number && parse_number(value, v)) return v;
+  if (type == Type::integer && parse_param_number(value, v)) return int64_t(v);
+  if (type == Type::number && parse_param_number(value, v)) return v;
   return value;
 }
 

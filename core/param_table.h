@@ -39,6 +39,13 @@ struct ParamSpec {
   std::string range_text() const;
 };
 
+// The one number parser of parameter values: true and `v` when `text` is a finite number.
+bool parse_param_number(const std::string& text, double& v);
+// True when a parsed value is a whole number an int holds (within +-2e9).
+bool is_param_integer(double v);
+// True when `key` is "prefix.NAME": an item passed on by the nested parameter `prefix`.
+bool is_nested_key(const std::string& key, const std::string& prefix);
+
 using ParamTable = std::vector<ParamSpec>;
 
 ParamSpec number_param(std::string key, double fallback, double lo, double hi,

@@ -30,9 +30,7 @@ StrategyParams StrategyParams::resolved(const ParamTable& table, const std::stri
     for (const ParamSpec& spec : table) {
       const bool nested = spec.type == ParamSpec::Type::nested;
       if (!nested && key == spec.key) return &spec;
-      if (nested && key.size() > spec.key.size() + 1 &&
-          key.compare(0, spec.key.size(), spec.key) == 0 && key[spec.key.size()] == '.')
-        return &spec;
+      if (nested && is_nested_key(key, spec.key)) return &spec;
     }
     return nullptr;
   };
@@ -87,17 +85,15 @@ std::string StrategyParams::string(const std::string& key) const {
 
 double StrategyParams::number(const std::string& key) const {
   const std::string value = string(key);
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (end == value.c_str() || *end != '\0' || !std::isfinite(v))
+  double v = 0.0;
+  if (!parse_param_number(value, v))
     throw InputError("--param " + key, "expected a number, got '" + value + "'");
   return v;
 }
 
 int StrategyParams::integer(const std::string& key) const {
   const double v = number(key);
-  if (v != std::floor(v) || std::abs(v) > 2e9)
-    throw InputError("--param " + key, "expected an integer");
+  if (!is_param_integer(v)) throw InputError("--param " + key, "expected an integer");
   return int(v);
 }
 
@@ -121,10 +117,9 @@ int StrategyParams::integer(const std::string& key, int fallback) const {
 
 StrategyParams StrategyParams::prefixed(const std::string& prefix) const {
   std::map<std::string, std::string> inner;
-  const std::string head = prefix + ".";
   for (const auto& [key, value] : values_)
-    if (key.size() > head.size() && key.compare(0, head.size(), head) == 0) {
-      inner[key.substr(head.size())] = value;
+    if (is_nested_key(key, prefix)) {
+      inner[key.substr(prefix.size() + 1)] = value;
       read_.insert(key);
     }
   return StrategyParams(std::move(inner));

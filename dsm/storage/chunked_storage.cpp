@@ -72,10 +72,9 @@ class ChunkedStorage final : public DsmStorage {
     // refused (the race differs each time; growing only to what it took left a retry short now
     // and then, and the maps then differed between runs: HardDeterminism on an H200) or the
     // pool reaches its 32-bit limit, where the overflow is reported.
-    const int32_t most = int32_t(double((int64_t(1) << 31) - 1) / chunk_layers_);
     for (;;) {
       write_pool(c, wanted);
-      if (!counted || taken_ <= capacity_ || capacity_ >= most) break;
+      if (!counted || taken_ <= capacity_ || capacity_ >= int32_t(max_pool_chunks())) break;
       wanted = 2.0 * double(taken_);
     }
   }
@@ -110,12 +109,15 @@ class ChunkedStorage final : public DsmStorage {
   }
 
  private:
-  // Writes every texel's nodes into a pool of `wanted` chunks (capped to 32-bit entry indices)
-  // and packs the allocated chunks.
+  // The most chunks a pool may hold: their entries are indexed by 32-bit ints.
+  double max_pool_chunks() const { return double((int64_t(1) << 31) - 1) / chunk_layers_; }
+
+  // Writes every texel's nodes into a pool of `wanted` chunks (at most max_pool_chunks) and
+  // packs the allocated chunks.
   void write_pool(const DsmGenerationContext& c, double wanted) {
     const DsmGenerator& g = c.generator;
     const Memory memory = memory_of(c.backend);
-    capacity_ = int32_t(std::min(wanted, double((int64_t(1) << 31) - 1) / chunk_layers_));
+    capacity_ = int32_t(std::min(wanted, max_pool_chunks()));
     const int64_t pool_entries = int64_t(capacity_) * chunk_layers_;
     ensure_buffer(depth_, memory, pool_entries, "dsm chunk depths");
     ensure_buffer(visibility_, memory, pool_entries, "dsm chunk visibilities");
