@@ -54,22 +54,25 @@ struct SatTriangle {
   int64_t work_items = 0;
 };
 
-DV_HD inline int sat_dominant_axis(const dvec3& d) {
-  const double x2 = d.x * d.x, y2 = d.y * d.y;
-  double most = d.z * d.z;
-  int axis = 2;
-  if (y2 > most) {
-    axis = 1;
-    most = y2;
+// 0, 1 or 2: which of a, b, c is largest, the first of equal ones.
+DV_HD inline int sat_first_largest(double a, double b, double c) {
+  int index = 0;
+  double most = a;
+  if (b > most) {
+    index = 1;
+    most = b;
   }
-  if (x2 > most) axis = 0;
-  return axis;
+  if (c > most) index = 2;
+  return index;
 }
 
-// Component `axis` of v, or v0 / v1 / v2 by `index`, through selects (see the header comment).
-DV_HD inline double sat_component(const dvec3& v, int axis) {
-  return axis == 0 ? v.x : (axis == 1 ? v.y : v.z);
+// The axis along which d is longest; ties go to z, then y.
+DV_HD inline int sat_dominant_axis(const dvec3& d) {
+  return 2 - sat_first_largest(d.z * d.z, d.y * d.y, d.x * d.x);
 }
+
+// The range count of `axis`, or corner v0 / v1 / v2 by `index`, through selects (see the
+// header comment).
 DV_HD inline int64_t sat_range_count(const VoxelRange (&range)[3], int axis) {
   const int64_t x = range[0].count(), y = range[1].count(), z = range[2].count();
   return axis == 0 ? x : (axis == 1 ? y : z);
@@ -123,15 +126,8 @@ DV_HD inline bool sat_setup(const dvec3& v0, const dvec3& v1, const dvec3& v2, c
   }
   // The segment a degenerate triangle collapses to: its longest edge (the third corner lies
   // within kDegenerateRatio * length of it, between its ends); the first of equal ones.
-  const double len0 = squared_length(v1 - v0), len1 = squared_length(v2 - v1),
-               len2 = squared_length(v0 - v2);
-  int longest = 0;
-  double most = len0;
-  if (len1 > most) {
-    longest = 1;
-    most = len1;
-  }
-  if (len2 > most) longest = 2;
+  const int longest =
+      sat_first_largest(squared_length(v1 - v0), squared_length(v2 - v1), squared_length(v0 - v2));
   t.seg_p = sat_corner(v0, v1, v2, longest);
   t.seg_q = sat_corner(v0, v1, v2, (longest + 1) % 3);
   t.axis = sat_dominant_axis(t.seg_q - t.seg_p);
