@@ -1,5 +1,6 @@
 // Bit counting for packed bit masks (voxel columns, occupancy slices) on both sides: the
-// hardware population count in device code, std::popcount on the host.
+// hardware population count in device code, std::popcount on the host; and the 32 x 32 bit
+// transpose that turns 32 words of 32 slices into 32 masks of one slice (binvox writing).
 #pragma once
 
 #include <bit>
@@ -20,6 +21,18 @@ DV_HD inline int bit_count(uint32_t v) {
 // The bits of `word` below bit `n` (n in [0, 32]).
 DV_HD inline uint32_t bits_below(uint32_t word, int n) {
   return n >= 32 ? word : word & ((1u << n) - 1u);
+}
+
+// Transposes a 32 x 32 bit matrix in place: afterwards bit j of a[i] is what bit i of a[j]
+// was (five rounds of block swaps, Hacker's Delight §7-3 with the low bit first).
+DV_HD inline void transpose_bits32(uint32_t a[32]) {
+  uint32_t mask = 0x0000FFFFu;
+  for (int j = 16; j != 0; j >>= 1, mask ^= mask << j)
+    for (int k = 0; k < 32; k = (k + j + 1) & ~j) {
+      const uint32_t t = ((a[k] >> j) ^ a[k + j]) & mask;
+      a[k] ^= t << j;
+      a[k + j] ^= t;
+    }
 }
 
 }  // namespace dv

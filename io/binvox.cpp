@@ -2,26 +2,45 @@
 #include "io/binvox.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <vector>
 
+#include "core/bits.h"
 #include "core/error.h"
 
 namespace dv {
 
 namespace {
 
-// Run-length encoder over the voxel stream.
+// binvox's encoding of the voxel stream: (value, count) byte pairs, count 1..255.
 class RunWriter {
  public:
   explicit RunWriter(std::vector<char>& out) : out_(out) {}
-  void push(bool value) {
+  // Appends `count` voxels of `value`.
+  void push(bool value, int64_t count) {
     const uint8_t v = value ? 1 : 0;
-    if (count_ > 0 && (v != value_ || count_ == 255)) flush();
+    if (count_ > 0 && v != value_) flush();
     value_ = v;
-    ++count_;
+    while (count > 0) {
+      const int64_t take = std::min<int64_t>(count, 255 - count_);
+      count_ += int(take);
+      count -= take;
+      if (count_ == 255) flush();
+    }
+  }
+  // Appends the first `count` bits of `bits` (low bit of word 0 first).
+  void push_bits(const uint32_t* bits, int count) {
+    for (int pos = 0; pos < count;) {
+      const uint32_t rest = bits[pos / 32] >> (pos % 32);
+      const bool value = rest & 1u;
+      const int run = std::min(
+          {value ? std::countr_one(rest) : std::countr_zero(rest), 32 - pos % 32, count - pos});
+      push(value, run);
+      pos += run;
+    }
   }
   void flush() {
     if (count_ == 0) return;
@@ -35,6 +54,34 @@ class RunWriter {
   uint8_t value_ = 0;
   int count_ = 0;
 };
+
+// Appends one x of the grid, voxels in z, then y order. Word (k, y) of that x is
+// slabs[(k * height + y) * stride]: each slab's y column is bit-transposed 32 words at a time
+// into one y mask per slice, whose runs are found a word at a time; a slab with no bit at all
+// is one run of 32 H empty voxels.
+void encode_x(const uint32_t* slabs, size_t stride, int height, int slab_count, RunWriter& out) {
+  const int mask_words = (height + 31) / 32;
+  std::vector<uint32_t> masks(size_t(32) * mask_words);  // (slice bit, y / 32)
+  for (int k = 0; k < slab_count; ++k) {
+    const uint32_t* column = slabs + size_t(k) * height * stride;
+    uint32_t any = 0;
+    for (int m = 0; m < mask_words; ++m) {
+      uint32_t t[32];
+      for (int i = 0; i < 32; ++i) {
+        const int y = m * 32 + i;
+        t[i] = y < height ? column[size_t(y) * stride] : 0u;
+        any |= t[i];
+      }
+      transpose_bits32(t);
+      for (int bit = 0; bit < 32; ++bit) masks[size_t(bit) * mask_words + m] = t[bit];
+    }
+    if (!any) {
+      out.push(false, int64_t(32) * height);
+      continue;
+    }
+    for (int bit = 0; bit < 32; ++bit) out.push_bits(&masks[size_t(bit) * mask_words], height);
+  }
+}
 
 std::string number(double v) {
   char text[32];
@@ -57,13 +104,23 @@ void write_binvox(const std::string& path, const VoxelGrid& grid) {
          << "scale " << number(scale) << "\n"
          << "data\n";
 
-  const std::vector<uint32_t> words = grid.words();
-  const VoxelGridView view{const_cast<uint32_t*>(words.data()), r.x, r.y, r.z};
+  // binvox order is x, then z, then y (fastest); the grid's words run x fastest. So the words
+  // are read 16 x at a time (a cache line of each row; one x at a time would touch a page per
+  // word) into a block in (k, y, x) order, and each x is encoded from it.
+  std::vector<uint32_t> device_words;
+  if (grid.memory() == Memory::device) device_words = grid.words();
+  const uint32_t* words = device_words.empty() ? grid.view().words : device_words.data();
+  const int slab_count = r.z / 32;
+  const size_t row = size_t(slab_count) * r.y;  // words per x, in (k, y) order
+  constexpr int kBlock = 16;
+  std::vector<uint32_t> block(row * kBlock);
   std::vector<char> data;
   RunWriter runs(data);
-  for (int x = 0; x < r.x; ++x)
-    for (int z = 0; z < r.z; ++z)
-      for (int y = 0; y < r.y; ++y) runs.push(view.get(x, y, z));
+  for (int x0 = 0; x0 < r.x; x0 += kBlock) {
+    const int width = std::min(kBlock, r.x - x0);
+    for (size_t w = 0; w < row; ++w) std::copy_n(&words[w * r.x + x0], width, &block[w * kBlock]);
+    for (int dx = 0; dx < width; ++dx) encode_x(&block[size_t(dx)], kBlock, r.y, slab_count, runs);
+  }
   runs.flush();
 
   std::ofstream out(path, std::ios::binary);

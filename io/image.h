@@ -21,6 +21,7 @@ void write_image(const std::string& path, const Image& image);
 // Throws the InputError write_image would throw for this path (type, directory, permission;
 // io/output_path.h), without writing.
 void check_image_path(const std::string& path);
+// 8-bit sRGB of the linear image (through io/display_encoding.h: exactly srgb_byte per channel).
 void write_png(const std::string& path, const Image& image);
 // 8-bit sRGB bytes, 3 per pixel, rows from the top, as write_png stores them.
 void write_png_bytes(const std::string& path, int width, int height,

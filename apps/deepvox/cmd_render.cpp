@@ -10,6 +10,7 @@
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
+#include "core/wall_phases.h"
 #include "cuda/kernel_timing.h"
 #include "experiments/harness/run_metadata.h"
 #include "frame/raster_render.h"
@@ -81,10 +82,13 @@ Runner add_render(CLI::App& app) {
   return [opt] {
     check_image_path(opt->out);  // before any work: an unwritable output would lose the render
     if (!opt->stats.empty()) check_output_path(opt->stats, {".json"}, "stats JSON");
+    auto method = make_shadow_method(opt->shadows);
+    // The scene loads first, while the CUDA driver starts in the background (main.cpp): the
+    // backend query below waits for the driver.
+    Scene scene = load_scene(opt->scene);
+    mark_wall_phase("scene loaded");
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
-    auto method = make_shadow_method(opt->shadows);
-    Scene scene = load_scene(opt->scene);
     if (opt->ground) add_ground_plane(scene);
     const DisplayTransform display{opt->exposure, parse_tone_curve(opt->tonemap)};
     if (opt->width) scene.camera.width = opt->width;
@@ -95,6 +99,7 @@ Runner add_render(CLI::App& app) {
           scene.camera, {opt->view[0], opt->view[1], opt->view[2], opt->view[3], opt->view[4]});
     }
     const SceneData data(scene, memory_of(backend));
+    mark_wall_phase("scene data built");
     nlohmann::json stats = {
         // Run metadata (a git call, the device query) only for a stats file that holds it.
         {"meta", opt->stats.empty() ? nlohmann::json::object() : run_metadata(backend)},
@@ -118,8 +123,10 @@ Runner add_render(CLI::App& app) {
         frame = r.stats();
         frame["renderer"] = "raytrace";
       }
+      mark_wall_phase("frame " + std::to_string(f) + " rendered");
       const std::string path = frame_path(opt->out, f, opt->frames);
       write_image(path, r.image, display);
+      mark_wall_phase("frame " + std::to_string(f) + " written");
       frame["image"] = path;
       if (const nlohmann::json plan = method->plan(); !plan.is_null()) frame["plan"] = plan;
       explain_shadows(opt->shadows, *method, "frame " + std::to_string(f));
@@ -137,6 +144,7 @@ Runner add_render(CLI::App& app) {
       }
       stats["shadows"]["stats"] = method->stats();
       if (kernel_timing_enabled()) stats["kernels"] = kernel_timings_json();
+      stats["wall_ms"] = wall_phases_json();
       if (!opt->stats.empty()) {  // rewrite after every frame: nothing computed is lost
         std::ofstream out(opt->stats);
         if (!out) throw InputError(opt->stats, "cannot write stats file");

@@ -33,11 +33,13 @@ Runner add_voxelize(CLI::App& app) {
                 "also run `exact` on the CPU and report missing/extra voxels");
   return [job] {
     // Run metadata (a git call, the device query) only for a stats file that holds it.
-    nlohmann::json meta;
-    if (!job->stats.empty()) {
-      meta = run_metadata(voxelize_job_backend(*job));
-      if (voxelize_job_uses_gl(*job)) meta["backend"] = "gl";
-    }
+    RunMetadataSource meta;
+    if (!job->stats.empty())
+      meta = [job](Backend backend) {
+        nlohmann::json m = run_metadata(backend);
+        if (voxelize_job_uses_gl(*job)) m["backend"] = "gl";
+        return m;
+      };
     const nlohmann::json stats = run_voxelize_job(*job, meta);
     log_info("voxelize: " + stats["method"].get<std::string>() + " on " +
              stats["backend"].get<std::string>() + ": " +

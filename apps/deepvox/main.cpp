@@ -5,18 +5,36 @@
 #include <cstdlib>
 #include <exception>
 #include <map>
+#include <set>
 #include <string>
 
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/usage_errors.h"
 #include "core/error.h"
+#include "core/wall_phases.h"
+#include "cuda/device_warmup.h"
 #include "experiments/harness/run_metadata.h"
 #if DEEPVOX_WITH_GL
 #include "gl/gl_voxelizers.h"
 #include "strategies/voxelizer/voxelizer.h"
 #endif
 
+namespace {
+
+// Whether the parsed subcommand may run on the GPU: it has a --backend option that is unset
+// (cuda when a GPU is present) or says cuda.
+bool may_use_cuda(CLI::App& sub) {
+  static const std::set<std::string> kDeviceCommands{"render", "voxelize", "dsm", "probe"};
+  if (!kDeviceCommands.count(sub.get_name())) return false;
+  const CLI::Option* backend = sub.get_option_no_throw("--backend");
+  if (!backend || backend->count() == 0) return true;
+  return backend->as<std::string>() == "cuda";
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  dv::start_wall_phases();
   // Load each CUDA kernel on its first launch, not all of them at context creation (the default
   // since CUDA 12.2; older runtimes loaded eagerly). A value set by the user wins.
   setenv("CUDA_MODULE_LOADING", "LAZY", 0);
@@ -42,14 +60,18 @@ int main(int argc, char** argv) {
 #endif
   if (const int parse_exit = dv::cli::parse_command_line(app, argc, argv); parse_exit >= 0)
     return parse_exit;
+  dv::mark_wall_phase("arguments parsed");
+  CLI::App* sub = app.get_subcommands().at(0);
+  const dv::CudaWarmup warmup(may_use_cuda(*sub));  // overlaps the command's input loading
+  int exit_code = 0;
   try {
-    for (CLI::App* sub : app.get_subcommands()) return runners.at(sub->get_name())();
+    exit_code = runners.at(sub->get_name())();
   } catch (const dv::InputError& e) {
     std::fprintf(stderr, "deepvox: error: %s\n", e.what());
-    return 2;
+    exit_code = 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "deepvox: error: %s\n", e.what());
-    return 1;
+    exit_code = 1;
   }
-  return 0;
+  return exit_code;
 }

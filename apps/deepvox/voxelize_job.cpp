@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/wall_phases.h"
 #include "cuda/execute.h"
 #include "cuda/kernel_timing.h"
 #include "io/binvox.h"
@@ -42,30 +43,36 @@ Backend voxelize_job_backend(const VoxelizeJob& job) {
   return job.backend.empty() ? default_backend() : parse_backend(job.backend);
 }
 
-nlohmann::json run_voxelize_job(const VoxelizeJob& job, const nlohmann::json& meta) {
+nlohmann::json run_voxelize_job(const VoxelizeJob& job, const RunMetadataSource& meta) {
   if (!job.out.empty()) check_output_path(job.out, {".binvox"}, "binvox grid");  // before work
   if (!job.stats.empty()) check_output_path(job.stats, {".json"}, "stats JSON");
   const bool gl = voxelize_job_uses_gl(job);
-  const Backend backend = voxelize_job_backend(job);
   const Registry<Voxelizer>& registry = gl ? gl_voxelizer_registry() : voxelizer_registry();
   if (gl && registry.names().empty())
     throw InputError("--backend",
                      "gl: this program has no OpenGL voxelizers (built without "
                      "DEEPVOX_GL, or EGL/OpenGL missing at build time)");
   auto method = registry.create(job.method, StrategyParams::parse(job.params));
+  const ivec3 res = parse_voxel_resolution(job.res);
+  const Aabb given = job.bounds.empty() ? Aabb{} : parse_voxel_bounds(job.bounds);
+
+  // The input loads while the CUDA driver starts in the background (main.cpp); the backend
+  // query below waits for the driver.
+  const Scene scene = load_scene(job.input);
+  const TriangleSoup soup = triangle_soup(scene);
+  mark_wall_phase("input loaded");
+  const Backend backend = voxelize_job_backend(job);
   if (!method->supports(backend))
     throw InputError("--backend", "voxelizer '" + method->name() + "' does not run on " +
                                       to_string(backend) + " in this build");
   require_backend(backend);
-  const ivec3 res = parse_voxel_resolution(job.res);
-  const Aabb given = job.bounds.empty() ? Aabb{} : parse_voxel_bounds(job.bounds);
-
-  const Scene scene = load_scene(job.input);
-  const TriangleSoup soup = triangle_soup(scene);
   const Aabb bounds = job.bounds.empty() ? cubic_bounds(soup.bounds(), job.input) : given;
   const GridSpec spec = make_box_grid(res, bounds, "--bounds");
 
   VoxelizeResult result = method->voxelize(backend, soup, spec);
+  mark_wall_phase("voxelized");
+  // One read-back serves the count, the comparison and the file (each would copy a device grid).
+  if (result.grid.memory() == Memory::device) result.grid = result.grid.copy_to(Memory::host);
   const int64_t filled = result.grid.popcount();
   nlohmann::json stats = {{"input", job.input},
                           {"method", method->name()},
@@ -79,7 +86,7 @@ nlohmann::json run_voxelize_job(const VoxelizeJob& job, const nlohmann::json& me
                           {"passes", result.passes_json()},
                           {"total_ms", result.total_milliseconds()},
                           {"counters", result.counters}};
-  if (!meta.empty()) stats["meta"] = meta;
+  if (meta) stats["meta"] = meta(backend);
   if (kernel_timing_enabled()) stats["kernels"] = kernel_timings_json();
   if (job.compare_exact) {
     const ExactVoxelization exact = voxelize_exact(soup, spec, true);
@@ -88,10 +95,12 @@ nlohmann::json run_voxelize_job(const VoxelizeJob& job, const nlohmann::json& me
   }
   if (!job.out.empty()) {
     write_binvox(job.out, result.grid);
+    mark_wall_phase("binvox written");
     const int max_dim = std::max({res.x, res.y, res.z});
     stats["binvox"] = {
         {"path", job.out}, {"translate", vec(bounds.lo)}, {"scale", spec.voxel_size().x * max_dim}};
   }
+  stats["wall_ms"] = wall_phases_json();
   if (!job.stats.empty()) write_json(job.stats, stats);
   return stats;
 }

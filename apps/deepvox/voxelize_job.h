@@ -3,6 +3,7 @@
 // it against `exact`, write the binvox grid and the stats JSON.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,12 @@ bool voxelize_job_uses_gl(const VoxelizeJob& job);
 // (InputError for unknown names) or the default backend.
 Backend voxelize_job_backend(const VoxelizeJob& job);
 
-// Runs the job and returns its stats (also written to job.stats with `meta` under "meta").
-nlohmann::json run_voxelize_job(const VoxelizeJob& job,
-                                const nlohmann::json& meta = nlohmann::json::object());
+// Run metadata for the stats, asked for once the input is loaded (the device query in it waits
+// for the CUDA driver, which starts while the input loads); nullptr: none.
+using RunMetadataSource = std::function<nlohmann::json(Backend)>;
+
+// Runs the job and returns its stats (also written to job.stats, with `meta`'s answer under
+// "meta").
+nlohmann::json run_voxelize_job(const VoxelizeJob& job, const RunMetadataSource& meta = nullptr);
 
 }  // namespace dv

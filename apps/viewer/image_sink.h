@@ -17,7 +17,7 @@ struct SinkFrame {
   // sRGB bytes, 3 a pixel, rows from the top (what the window shows): always given.
   const unsigned char* bytes = nullptr;
   // CUDA: the same picture before encoding, linear rgb in device memory, or null; the CUDA
-  // sink encodes it through `transform` (display_encoding.h) instead of uploading `bytes`.
+  // sink encodes it through `transform` (io/display_encoding.h) instead of uploading `bytes`.
   const float* device_rgb = nullptr;
   DisplayTransform transform;
 };

@@ -1,6 +1,6 @@
 // The CUDA-GL interop sink (see image_sink.h), compiled only in CUDA builds: a GL pixel buffer
 // object registered once with cudaGraphicsGLRegisterBuffer; per frame it is mapped, a kernel
-// encodes the renderer's device image into it (display_encoding.h: the bytes of `render`'s PNG),
+// encodes the renderer's device image into it (io/display_encoding.h: the bytes of `render`'s PNG),
 // it is unmapped (which orders the kernel before GL's use on the default stream), and the
 // texture is filled from it by upload_pixel_buffer. Frames without a device image (coarse
 // frames, the error view) take the CPU path's upload.
@@ -11,9 +11,9 @@
 #include <GL/glext.h>
 #include <cuda_gl_interop.h>
 
-#include "apps/viewer/display_encoding.h"
 #include "cuda/cuda_check.h"
 #include "cuda/execute.h"
+#include "io/display_encoding.h"
 
 namespace dv::viewer {
 

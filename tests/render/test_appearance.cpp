@@ -1,15 +1,24 @@
-// What makes pictures a user would trust: the tone curves and exposure of 8-bit output, the
+// What makes pictures a user would trust: the tone curves, exposure and sRGB bytes of 8-bit
+// output (the display encoding that PNG writing and the viewer share), the
 // KHR_lights_punctual cone falloff and range window, and the default staging of scenes that
 // bring no camera or lights (three-quarter view, key light above and beside it, ground plane).
 #include <gtest/gtest.h>
 
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
+
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "frame/shading.h"
+#include "io/display_encoding.h"
+#include "io/image.h"
 #include "io/tone_mapping.h"
 #include "renderer/camera_rays.h"
 #include "scene/default_staging.h"
 #include "tests/support/scene_builder.h"
+#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -58,6 +67,55 @@ double spot_arrival(const Light& light, double angle_deg) {
   const LightView view = make_light_view(light);
   const dvec3 p = 2.0 * dvec3(std::sin(angle_deg * kDeg), -std::cos(angle_deg * kDeg), 0.0);
   return light_arrival(view, p).intensity;
+}
+
+TEST(DisplayEncoding, BytesEqualRenderPngBytes) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> value(-0.1f, 1.5f);
+  std::vector<float> samples = {0.0f, -0.0f, 1.0f, 0.0031308f, 2.0f, -1.0f};
+  for (int i = 0; i < 200000; ++i) samples.push_back(value(rng));
+  for (const DisplayTransform transform :
+       {DisplayTransform{}, DisplayTransform{1.5, ToneCurve::none},
+        DisplayTransform{-0.5, ToneCurve::reinhard}, DisplayTransform{0.0, ToneCurve::aces}}) {
+    const DisplayEncoding encoding = make_display_encoding(transform);
+    for (int b = 0; b < 255; ++b) {  // the thresholds themselves and their neighbours
+      const float at = encoding.thresholds[b];
+      samples.push_back(at);
+      samples.push_back(std::nextafter(at, 0.0f));
+    }
+    Image linear(int(samples.size() + 2) / 3, 1);
+    for (size_t i = 0; i < samples.size(); ++i) linear.rgb[i] = samples[i];
+    const Image shown = apply_display_transform(linear, transform);
+    int wrong = 0;
+    for (size_t i = 0; i < linear.rgb.size(); ++i)
+      wrong += encoding.byte(linear.rgb[i]) != srgb_byte(shown.rgb[i]);
+    EXPECT_EQ(wrong, 0) << to_string(transform.curve) << " " << transform.exposure_ev;
+  }
+}
+
+TEST(DisplayEncoding, PngFilesHoldSrgbBytesOfTheShownValues) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> value(-0.2f, 1.7f);
+  Image linear(97, 61);
+  for (float& v : linear.rgb) v = value(rng);
+  linear.rgb[0] = 0.0031308f;
+  linear.rgb[1] = 1.0f;
+  for (const DisplayTransform transform :
+       {DisplayTransform{}, DisplayTransform{0.7, ToneCurve::reinhard},
+        DisplayTransform{-1.0, ToneCurve::aces}}) {
+    const std::string path = (test::scratch_dir("render_scratch") / "encoded.png").string();
+    write_image(path, linear, transform);
+    int width = 0, height = 0, channels = 0;
+    unsigned char* read = stbi_load(path.c_str(), &width, &height, &channels, 3);
+    ASSERT_NE(read, nullptr) << path;
+    ASSERT_EQ(width, linear.width);
+    ASSERT_EQ(height, linear.height);
+    const Image shown = apply_display_transform(linear, transform);
+    int wrong = 0;
+    for (size_t i = 0; i < shown.rgb.size(); ++i) wrong += read[i] != srgb_byte(shown.rgb[i]);
+    stbi_image_free(read);
+    EXPECT_EQ(wrong, 0) << to_string(transform.curve) << " " << transform.exposure_ev;
+  }
 }
 
 TEST(GltfLights, SpotConeFallsOffAsTheSpecSays) {

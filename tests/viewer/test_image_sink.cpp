@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "apps/viewer/display_encoding.h"
 #include "apps/viewer/image_sink.h"
 #include "cuda/buffer.h"
 #include "cuda/device_memory.h"
+#include "io/display_encoding.h"
 #include "tests/gl/gl_test_support.h"
 
 namespace dv::viewer {

@@ -1,13 +1,11 @@
 // The viewer's overlays without a window: the error view (E) is |T' - T| at each pixel's
 // visible surface, equal to an independent computation through `deepvox probe`; the voxel grid
 // overlay (G) holds one point per set voxel of the transmittance slicemap's grids, each inside
-// its voxel; the CUDA path's display encoding gives the bytes of `render`'s PNG.
+// its voxel.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
-#include "apps/viewer/display_encoding.h"
 #include "apps/viewer/viewer_state.h"
 #include "load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
@@ -128,30 +126,6 @@ TEST(ViewerVoxelOverlay, MethodWithoutGridsIsAMessage) {
   state.update();
   EXPECT_EQ(state.voxel_points(), nullptr);
   EXPECT_NE(state.message().find("has no voxel grids"), std::string::npos) << state.message();
-}
-
-TEST(DisplayEncoding, BytesEqualRenderPngBytes) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> value(-0.1f, 1.5f);
-  std::vector<float> samples = {0.0f, -0.0f, 1.0f, 0.0031308f, 2.0f, -1.0f};
-  for (int i = 0; i < 200000; ++i) samples.push_back(value(rng));
-  for (const DisplayTransform transform :
-       {DisplayTransform{}, DisplayTransform{1.5, ToneCurve::none},
-        DisplayTransform{-0.5, ToneCurve::reinhard}, DisplayTransform{0.0, ToneCurve::aces}}) {
-    const DisplayEncoding encoding = make_display_encoding(transform);
-    for (int b = 0; b < 255; ++b) {  // the thresholds themselves and their neighbours
-      const float at = encoding.thresholds[b];
-      samples.push_back(at);
-      samples.push_back(std::nextafter(at, 0.0f));
-    }
-    Image linear(int(samples.size() + 2) / 3, 1);
-    for (size_t i = 0; i < samples.size(); ++i) linear.rgb[i] = samples[i];
-    const Image shown = apply_display_transform(linear, transform);
-    int wrong = 0;
-    for (size_t i = 0; i < linear.rgb.size(); ++i)
-      wrong += encoding.byte(linear.rgb[i]) != srgb_byte(shown.rgb[i]);
-    EXPECT_EQ(wrong, 0) << to_string(transform.curve) << " " << transform.exposure_ev;
-  }
 }
 
 }  // namespace

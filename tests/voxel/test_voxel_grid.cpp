@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 
 #include "core/error.h"
@@ -161,6 +162,48 @@ TEST(Binvox, LongRunsSplitAt255) {
   const std::string path = scratch_file("full.binvox");
   write_binvox(path, grid);
   EXPECT_EQ(read_binvox(path).grid.popcount(), 16 * 16 * 32);
+}
+
+// The writer works a word slab at a time (bit transposes, whole-word runs); its bytes must be
+// those of the format's definition: every voxel in x, z, y order, runs cut at 255. Sizes off
+// its 16-wide blocks and 32-row transposes, empty and full slabs, long and short runs.
+TEST(Binvox, WriterBytesMatchTheVoxelByVoxelEncoding) {
+  for (const ivec3 res : {ivec3{37, 45, 96}, ivec3{16, 32, 32}, ivec3{1, 300, 64}}) {
+    VoxelGrid grid(test::unit_grid(res), Memory::host);
+    std::mt19937 rng(uint32_t(res.x * 7 + res.y));
+    for (int i = 0; i < res.x * res.y; ++i)
+      grid.set(int(rng() % res.x), int(rng() % res.y), int(rng() % res.z));
+    for (int x = 0; x < res.x; x += 3)  // full slices and a full slab
+      for (int y = 0; y < res.y; ++y) {
+        grid.set(x, y, res.z - 1);
+        for (int z = 0; z < 32; ++z)
+          if (x % 2 == 0) grid.set(x, y, z);
+      }
+    std::string expected;
+    int value = -1, count = 0;
+    auto flush = [&] {
+      if (count) expected += {char(value), char(count)};
+      count = 0;
+    };
+    for (int x = 0; x < res.x; ++x)
+      for (int z = 0; z < res.z; ++z)
+        for (int y = 0; y < res.y; ++y) {
+          const int v = grid.get(x, y, z) ? 1 : 0;
+          if (count && (v != value || count == 255)) flush();
+          value = v;
+          ++count;
+        }
+    flush();
+    const std::string path = scratch_file("bytes.binvox");
+    write_binvox(path, grid);
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    for (int i = 0; i < 5; ++i) std::getline(in, line);  // the header's five lines
+    ASSERT_EQ(line, "data");
+    const std::string data{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_EQ(data.size(), expected.size()) << res.x << "x" << res.y << "x" << res.z;
+    EXPECT_TRUE(data == expected) << res.x << "x" << res.y << "x" << res.z;
+  }
 }
 
 TEST(Binvox, MalformedFilesAreInputErrorsNamingTheFile) {

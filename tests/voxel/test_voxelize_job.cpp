@@ -74,7 +74,9 @@ TEST(VoxelizeJob, MeshFileToBinvoxAndStats) {
   job.out = scratch_file("bunny.binvox");
   job.stats = scratch_file("bunny.json");
   job.compare_exact = true;
-  const nlohmann::json stats = run_voxelize_job(job, {{"tool", "test"}});
+  const nlohmann::json stats = run_voxelize_job(job, [](Backend) {
+    return nlohmann::json{{"tool", "test"}};
+  });
   EXPECT_EQ(stats["method"], "sat");
   EXPECT_EQ(stats["backend"], "cpu");
   EXPECT_EQ(stats["res"], nlohmann::json({64, 64, 64}));

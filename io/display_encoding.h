@@ -1,8 +1,8 @@
-// The display transform and sRGB encoding of io/ (exposure, tone curve, then srgb_byte) as
-// host/device code, so that the viewer's CUDA path turns the renderer's device image into the
-// window's bytes on the GPU and gets exactly the bytes of `render`'s PNG. srgb_byte uses
-// pow and lround, which differ between the host and device math libraries; here the byte is
-// found instead by comparing the value with 255 thresholds computed once on the host with
+// The display transform and sRGB encoding (exposure, tone curve, then srgb_byte) as host/device
+// code: write_png encodes a frame through it, and the viewer's CUDA path turns the renderer's
+// device image into the window's bytes on the GPU with it, so both give exactly the same bytes.
+// srgb_byte uses pow and lround, which differ between the host and device math libraries; here the
+// byte is found instead by comparing the value with 255 thresholds computed once on the host with
 // srgb_byte itself (threshold b: the smallest float that srgb_byte maps above b), so the
 // device performs no transcendental in this discrete decision.
 #pragma once
@@ -10,7 +10,7 @@
 #include "core/hd.h"
 #include "io/tone_mapping.h"
 
-namespace dv::viewer {
+namespace dv {
 
 struct DisplayEncoding {
   double scale = 1.0;  // 2^exposure
@@ -35,4 +35,4 @@ struct DisplayEncoding {
 
 DisplayEncoding make_display_encoding(const DisplayTransform& transform);
 
-}  // namespace dv::viewer
+}  // namespace dv

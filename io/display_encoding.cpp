@@ -1,5 +1,5 @@
 // The sRGB thresholds of the display encoding (see display_encoding.h).
-#include "apps/viewer/display_encoding.h"
+#include "io/display_encoding.h"
 
 #include <bit>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "io/image.h"
 
-namespace dv::viewer {
+namespace dv {
 
 DisplayEncoding make_display_encoding(const DisplayTransform& transform) {
   DisplayEncoding e;
@@ -31,4 +31,4 @@ DisplayEncoding make_display_encoding(const DisplayTransform& transform) {
   return e;
 }
 
-}  // namespace dv::viewer
+}  // namespace dv
