@@ -1,6 +1,7 @@
 // Bit counting for packed bit masks (voxel columns, occupancy slices) on both sides: the
-// hardware population count in device code, std::popcount on the host; and the 32 x 32 bit
-// transpose that turns 32 words of 32 slices into 32 masks of one slice (binvox writing).
+// hardware population count in device code, std::popcount on the host; float bit patterns (for
+// atomic maxima of non-negative floats); and the 32 x 32 bit transpose that turns 32 words of
+// 32 slices into 32 masks of one slice (binvox writing).
 #pragma once
 
 #include <bit>
@@ -21,6 +22,23 @@ DV_HD inline int bit_count(uint32_t v) {
 // The bits of `word` below bit `n` (n in [0, 32]).
 DV_HD inline uint32_t bits_below(uint32_t word, int n) {
   return n >= 32 ? word : word & ((1u << n) - 1u);
+}
+
+// The bit pattern of a float, and the float of a bit pattern. Non-negative floats order like
+// their patterns, so an integer atomic max of patterns is a max of the values.
+DV_HD inline uint32_t float_bits(float v) {
+#if DV_IN_DEVICE_CODE
+  return __float_as_uint(v);
+#else
+  return std::bit_cast<uint32_t>(v);
+#endif
+}
+DV_HD inline float bits_float(uint32_t bits) {
+#if DV_IN_DEVICE_CODE
+  return __uint_as_float(bits);
+#else
+  return std::bit_cast<float>(bits);
+#endif
 }
 
 // Transposes a 32 x 32 bit matrix in place: afterwards bit j of a[i] is what bit i of a[j]

@@ -142,8 +142,8 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
   ensure_buffer(records_, memory_of(backend), g.texel_count(), "dsm texel records");
   const DsmGenerationContext context{backend, g, settings_.eps, records_.view(), &passes_};
   storage_->generate(context);
-  host_records_ = records_.to_vector();
-  figures_ = dsm_figures(*storage_, host_records_);
+  host_records_stale_ = true;
+  figures_ = dsm_figures(*storage_, backend, records_.const_view());
   const SceneView& s = scene.view();
   const View<const LightView> lights =
       settings_.light < 0 ? s.lights : View<const LightView>{s.lights.data + settings_.light, 1};
@@ -156,6 +156,14 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
                       settings_.slope_bias,
                       settings_.bilinear};
   ++generations_;
+}
+
+const std::vector<DsmTexelRecord>& DeepShadowMaps::records() const {
+  if (host_records_stale_) {
+    host_records_ = records_.to_vector();
+    host_records_stale_ = false;
+  }
+  return host_records_;
 }
 
 double DeepShadowMaps::generation_milliseconds() const {

@@ -76,7 +76,9 @@ class DeepShadowMaps {
   const LightMapLayout& layout() const { return generation_->layout(); }
   const std::vector<DsmPass>& passes() const { return passes_; }
   double generation_milliseconds() const;  // all passes, rasterization included
-  const std::vector<DsmTexelRecord>& records() const { return host_records_; }
+  // The per-texel records on the host (copied from the backend on the first call after a
+  // generation; figures() needs no copy).
+  const std::vector<DsmTexelRecord>& records() const;
   const nlohmann::json& figures() const { return figures_; }
   int64_t fragments() const { return generation_->fragments(); }
   int generations() const { return generations_; }
@@ -86,7 +88,8 @@ class DeepShadowMaps {
   std::unique_ptr<DsmStorage> storage_;
   std::unique_ptr<DsmGeneration> generation_;
   Buffer<DsmTexelRecord> records_;
-  std::vector<DsmTexelRecord> host_records_;
+  mutable std::vector<DsmTexelRecord> host_records_;  // records() fills it when stale
+  mutable bool host_records_stale_ = true;
   std::vector<DsmPass> passes_;
   nlohmann::json figures_;
   DsmSource source_{};

@@ -6,16 +6,20 @@
 // an animated scene pays per frame and what no suite measures; fresh_pass_ms and fresh_wall_ms
 // are the suite's own measurement of a first generation (experiments/harness/shadow_measure.h,
 // the seeds experiment dsm-resolution's generate.generation_ms and generate_ms), called, not
-// copied. Counters: every pass, the memory figures and Knecht 2011 §5.8's formulas (texture3d
-// d^2 * 64 layers * 64 bit, chunked nodes * 128 bit + d^2 * 64 bit). render_bilinear: the
-// bilinear-filtered frame per storage through the harness's timed frame (the suite's
-// render_ms). lights32: every light's maps of scenes/knecht-32-lights.json plus one bilinear
-// frame (no suite runs it), through the same harness functions. Bandwidth floor
+// copied; wall_ms is the regeneration's wall clock on the host (passes, the host work between
+// them and the figures' read-back); records_copy_ms the copy of the per-texel records to the
+// host that each generation made until the figures were summed on the device. Counters: every
+// pass, the memory figures and Knecht 2011 §5.8's
+// formulas (texture3d d^2 * 64 layers * 64 bit, chunked nodes * 128 bit + d^2 * 64 bit).
+// render_bilinear: the bilinear-filtered frame per storage through the harness's timed frame (the
+// suite's render_ms). lights32: every light's maps of scenes/knecht-32-lights.json plus one
+// bilinear frame (no suite runs it), through the same harness functions. Bandwidth floor
 // (bandwidth_floor.h): copy_GBps measured once in the run; per modelled generation pass
 // PASS_floor_ms (its fewest bytes over that bandwidth) and PASS_floor_x = PASS_ms / floor_ms.
 // Run: build/bin/bench_dsm --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <optional>
 #include <string>
 #include <vector>
@@ -90,10 +94,20 @@ void dsm_generate(benchmark::State& state, std::string storage, Backend backend)
                        backend, scene.camera);
   DeepShadowMaps maps(fresh.method->deep_shadow_maps()->settings());
   maps.generate(data, backend);  // warm-up: allocations, first touch
+  double wall_ms = 0.0;
   for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
     maps.generate(data, backend);
+    wall_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     state.SetIterationTime(maps.generation_milliseconds() / 1e3);
   }
+  state.counters["wall_ms"] = wall_ms / double(state.iterations());
+  const auto copy_start = std::chrono::steady_clock::now();
+  maps.records();  // the host copy every generation made before figures() summed on the device
+  state.counters["records_copy_ms"] =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - copy_start)
+          .count();
   state.counters["fresh_pass_ms"] = fresh.pass_milliseconds();
   state.counters["fresh_wall_ms"] = fresh.milliseconds;
   report_figures(state, maps, backend);

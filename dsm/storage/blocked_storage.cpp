@@ -56,13 +56,9 @@ class BlockedStorage final : public DsmStorage {
     layout_ = {tile_, (res + tile_ - 1) / tile_, res, layers_ / kBlockLayers, int64_t(res) * res};
     tiles_ = g.faces.size * int64_t(layout_.tiles_per_side) * layout_.tiles_per_side;
     const int64_t block_entries = int64_t(kBlockLayers) * tile_ * tile_;
-    double wanted = pool_ > 0 ? double(pool_) : pool_per_tile_ * double(tiles_);
-    if (pool_ == 0 && sizing_ == PoolSizing::counted) {
-      wanted = 0.0;
-      for (int32_t deepest :
-           count_nodes_per_group(c, {NodeCountGroups::tile, true, layout_}, tiles_))
-        wanted += double(units_needed(deepest, kBlockLayers, layout_.blocks_per_tile));
-    }
+    const double wanted = pool_units_wanted(c, sizing_, pool_, pool_per_tile_ * double(tiles_),
+                                            {NodeCountGroups::tile, true, layout_}, tiles_,
+                                            kBlockLayers, layout_.blocks_per_tile);
     capacity_ = int32_t(std::min(wanted, 2147483647.0));
     ensure_buffer(indirection_, memory, tiles_ * layout_.blocks_per_tile, "dsm block indirection");
     ensure_buffer(used_, memory, 1, "dsm blocks used");

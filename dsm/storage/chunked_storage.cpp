@@ -60,13 +60,9 @@ class ChunkedStorage final : public DsmStorage {
   void generate(const DsmGenerationContext& c) override {
     blocks_ = c.generator.thread_count() / (kDsmBlockSide * kDsmBlockSide);
     const bool counted = pool_ == 0 && sizing_ == PoolSizing::counted;
-    double wanted = pool_ > 0 ? double(pool_) : pool_per_block_ * double(blocks_);
-    if (counted) {
-      wanted = 0.0;
-      for (int32_t nodes :
-           count_nodes_per_group(c, {NodeCountGroups::generation_block, false}, blocks_))
-        wanted += double(units_needed(nodes, chunk_layers_, block_limit_));
-    }
+    double wanted = pool_units_wanted(c, sizing_, pool_, pool_per_block_ * double(blocks_),
+                                      {NodeCountGroups::generation_block, false}, blocks_,
+                                      chunk_layers_, block_limit_);
     // The racing allocation (alloc=thesis) loses chunks to the race, so a counted pool may run
     // out: it then doubles what the race took and the maps are written again, until no node is
     // refused (the race differs each time; growing only to what it took left a retry short now

@@ -77,10 +77,12 @@ class DsmStorage {
 
 Registry<DsmStorage>& storage_registry();
 
-// Figures shared by all strategies, from the host copy of the per-texel records: bytes allocated,
+// Figures shared by all strategies, summed over the per-texel records where they live (one pass
+// of atomics on `backend`, a few counters read back: no copy of the records): bytes allocated,
 // bytes holding nodes, nodes, mean and max layers per texel, overflowed texels (with those a
 // fixed-node storage approximated) and the largest error they reached, recompressed texels,
 // walk overflows.
-nlohmann::json dsm_figures(const DsmStorage& storage, const std::vector<DsmTexelRecord>& records);
+nlohmann::json dsm_figures(const DsmStorage& storage, Backend backend,
+                           View<const DsmTexelRecord> records);
 
 }  // namespace dv

@@ -45,4 +45,15 @@ std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
   return buffer.to_vector();
 }
 
+double pool_units_wanted(const DsmGenerationContext& c, PoolSizing sizing, int64_t pool,
+                         double thesis_units, const NodeCountGroups& groups, int64_t group_count,
+                         int64_t per_unit, int64_t limit) {
+  if (pool > 0) return double(pool);
+  if (sizing != PoolSizing::counted) return thesis_units;
+  double wanted = 0.0;
+  for (int32_t nodes : count_nodes_per_group(c, groups, group_count))
+    wanted += double(units_needed(nodes, per_unit, limit));
+  return wanted;
+}
+
 }  // namespace dv

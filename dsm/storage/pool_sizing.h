@@ -50,4 +50,12 @@ inline int64_t units_needed(int64_t nodes, int64_t per_unit, int64_t limit) {
   return units < limit ? units : limit;
 }
 
+// How many pool units (chunks, blocks) to reserve: an explicit `pool` (> 0) as given; else with
+// counted sizing the sum over the groups of what each group's count needs (units_needed at
+// `per_unit` nodes a unit, at most `limit` a group; the counting pass runs); else
+// `thesis_units`, the papers' formula.
+double pool_units_wanted(const DsmGenerationContext& c, PoolSizing sizing, int64_t pool,
+                         double thesis_units, const NodeCountGroups& groups, int64_t group_count,
+                         int64_t per_unit, int64_t limit);
+
 }  // namespace dv

@@ -1,8 +1,9 @@
-// The bit helpers of core/bits.h against plain per-bit loops: counting, masking and the 32 x 32
-// transpose that binvox writing relies on.
+// The bit helpers of core/bits.h against plain per-bit loops: counting, masking, float patterns
+// and the 32 x 32 transpose that binvox writing relies on.
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <iterator>
 #include <random>
 
 #include "core/bits.h"
@@ -21,6 +22,14 @@ TEST(Bits, TransposeMovesBitJOfWordIToBitIOfWordJ) {
         ASSERT_EQ((out[i] >> j) & 1u, (in[j] >> i) & 1u) << "word " << i << " bit " << j;
     transpose_bits32(out);
     for (int i = 0; i < 32; ++i) EXPECT_EQ(out[i], in[i]) << "twice is the identity, word " << i;
+  }
+}
+
+TEST(Bits, FloatPatternsRoundTripAndOrderLikeNonNegativeValues) {
+  const float values[] = {0.0f, 1e-30f, 0.02f, 0.5f, 1.0f, 3.5f, 1e30f};
+  for (size_t i = 0; i < std::size(values); ++i) {
+    EXPECT_EQ(bits_float(float_bits(values[i])), values[i]);
+    if (i > 0) EXPECT_LT(float_bits(values[i - 1]), float_bits(values[i])) << values[i];
   }
 }
 

@@ -43,14 +43,21 @@ struct Generated {
   std::unique_ptr<DeepShadowMaps> maps;
 };
 
-inline Generated generate(const Scene& scene, Backend backend, const std::string& storage,
-                          const std::vector<std::string>& params = {}, float eps = 0.02f,
-                          int res = 32) {
+// Map settings for `storage` with its parameters, `res` texels per side and error bound `eps`.
+inline DsmSettings storage_settings(const std::string& storage,
+                                    const std::vector<std::string>& params, float eps, int res) {
   DsmSettings s;
   s.storage = storage;
   s.storage_params = StrategyParams::parse(params);
   s.resolution = res;
   s.eps = eps;
+  return s;
+}
+
+inline Generated generate(const Scene& scene, Backend backend, const std::string& storage,
+                          const std::vector<std::string>& params = {}, float eps = 0.02f,
+                          int res = 32) {
+  const DsmSettings s = storage_settings(storage, params, eps, res);
   Generated g;
   g.data = std::make_unique<SceneData>(scene, memory_of(backend));
   g.maps = std::make_unique<DeepShadowMaps>(s);

@@ -22,11 +22,7 @@ namespace {
 std::unique_ptr<DeepShadowMaps> unbiased_maps(const SceneData& data, const std::string& storage,
                                               const std::vector<std::string>& params, int res,
                                               float eps = 0.0f) {
-  DsmSettings s;
-  s.storage = storage;
-  s.storage_params = StrategyParams::parse(params);
-  s.resolution = res;
-  s.eps = eps;
+  DsmSettings s = test::storage_settings(storage, params, eps, res);
   s.bias = 0.0;
   s.slope_bias = 0.0;
   auto maps = std::make_unique<DeepShadowMaps>(s);

@@ -2,12 +2,15 @@
 // no overflow they return the same attenuation as `compact` (the yardstick) for the same
 // lookups and hold the same nodes; overflow of each fixed-size structure is detected, reported
 // with the error reached, and never written out of bounds; chunked allocation waste (thesis
-// against aggregated); CPU and CUDA give the same node counts per texel.
+// against aggregated); CPU and CUDA give the same node counts per texel; the shared figures are
+// the sums over the records.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "cuda/device_memory.h"
 #include "dsm/deep_shadow_maps.h"
@@ -303,6 +306,45 @@ TEST(StorageParams, BadValuesAreRejected) {
                InputError);
   EXPECT_NO_THROW(shadow_registry().create(
       "dsm", StrategyParams::parse({"storage=chunked", "storage.alloc=thesis"})));
+}
+
+// figures() sums the records on their backend (atomics, no copy): the same numbers as a plain
+// loop over the host copy, with overflows, recompressions and errors among them.
+TEST(StorageBackends, FiguresEqualSumsOverTheHostRecords) {
+  std::vector<Backend> backends = {Backend::cpu};
+  if (cuda_device_available()) backends.push_back(Backend::cuda);
+  const Scene scene = test::scene_file("demo.json");
+  for (const Backend backend : backends)
+    for (const auto& [name, params] :
+         {std::pair<std::string, std::vector<std::string>>{"compact", {}},
+          {"texture3d", {"layers=3"}},
+          {"chunked", {"pool=3", "chunk=4"}}}) {
+      const Generated g = generate(scene, backend, name, params, 0.001f);
+      const nlohmann::json& f = g.maps->figures();
+      int64_t nodes = 0, needed = 0, max_layers = 0, overflowed = 0, recompressed = 0;
+      double max_error = 0.0, overflow_error = 0.0;
+      for (const DsmTexelRecord& r : g.maps->records()) {
+        nodes += r.stored;
+        needed += r.nodes;
+        max_layers = std::max<int64_t>(max_layers, r.stored);
+        max_error = std::max<double>(max_error, r.error);
+        if (r.flags & (kDsmStorageOverflow | kDsmRecompressed | kDsmNodesMerged)) {
+          ++overflowed;
+          overflow_error = std::max<double>(overflow_error, r.error);
+        }
+        recompressed += (r.flags & kDsmRecompressed) != 0;
+      }
+      const std::string where = name + " on " + to_string(backend);
+      EXPECT_EQ(f["nodes"].get<int64_t>(), nodes) << where;
+      EXPECT_EQ(f["nodes_needed"].get<int64_t>(), needed) << where;
+      EXPECT_EQ(f["max_layers"].get<int64_t>(), max_layers) << where;
+      EXPECT_EQ(f["max_error"].get<double>(), max_error) << where;
+      EXPECT_EQ(f["overflowed_texels"].get<int64_t>(), overflowed) << where;
+      EXPECT_EQ(f["overflow_max_error"].get<double>(), overflow_error) << where;
+      EXPECT_EQ(f["recompressed_texels"].get<int64_t>(), recompressed) << where;
+      EXPECT_EQ(f["texels"].get<int64_t>(), int64_t(g.maps->records().size())) << where;
+      if (name != "compact") EXPECT_GT(overflowed, 0) << where << ": the case must overflow";
+    }
 }
 
 TEST(StorageBackends, CpuAndCudaNodeCountsAgree) {
