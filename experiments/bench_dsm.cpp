@@ -9,8 +9,8 @@
 // copied; wall_ms is the regeneration's wall clock on the host (passes, the host work between
 // them and the figures' read-back); records_copy_ms the copy of the per-texel records to the
 // host that each generation made until the figures were summed on the device. Counters: every
-// pass, the memory figures and Knecht 2011 §5.8's
-// formulas (texture3d d^2 * 64 layers * 64 bit, chunked nodes * 128 bit + d^2 * 64 bit).
+// pass, the memory figures and Knecht 2011 §5.8's formulas (texture3d d^2 * 64 layers * 64 bit,
+// chunked nodes * 128 bit + d^2 * 64 bit).
 // render_bilinear: the bilinear-filtered frame per storage through the harness's timed frame (the
 // suite's render_ms). lights32: every light's maps of scenes/knecht-32-lights.json plus one
 // bilinear frame (no suite runs it), through the same harness functions. Bandwidth floor

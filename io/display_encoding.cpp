@@ -1,10 +1,12 @@
-// The sRGB thresholds of the display encoding (see display_encoding.h).
+// The sRGB thresholds of the display encoding, and an image's bytes through them (see
+// display_encoding.h).
 #include "io/display_encoding.h"
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
 
+#include "core/parallel.h"
 #include "io/image.h"
 
 namespace dv {
@@ -29,6 +31,15 @@ DisplayEncoding make_display_encoding(const DisplayTransform& transform) {
     e.thresholds[b] = std::bit_cast<float>(hi);
   }
   return e;
+}
+
+std::vector<unsigned char> srgb_bytes(const Image& image, const DisplayTransform& display) {
+  const DisplayEncoding encoding = make_display_encoding(display);
+  std::vector<unsigned char> bytes(image.rgb.size());
+  cpu_parallel_for_chunks(int64_t(bytes.size()), int64_t(1) << 16, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) bytes[size_t(i)] = encoding.byte(image.rgb[size_t(i)]);
+  });
+  return bytes;
 }
 
 }  // namespace dv

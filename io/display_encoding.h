@@ -4,13 +4,18 @@
 // srgb_byte uses pow and lround, which differ between the host and device math libraries; here the
 // byte is found instead by comparing the value with 255 thresholds computed once on the host with
 // srgb_byte itself (threshold b: the smallest float that srgb_byte maps above b), so the
-// device performs no transcendental in this discrete decision.
+// device performs no transcendental in this discrete decision. srgb_bytes serves the host
+// (PNG files, the viewer's textures).
 #pragma once
+
+#include <vector>
 
 #include "core/hd.h"
 #include "io/tone_mapping.h"
 
 namespace dv {
+
+struct Image;
 
 struct DisplayEncoding {
   double scale = 1.0;  // 2^exposure
@@ -34,5 +39,10 @@ struct DisplayEncoding {
 };
 
 DisplayEncoding make_display_encoding(const DisplayTransform& transform);
+
+// The bytes of `image` shown through `display`, 3 per pixel, rows from the top, as a PNG holds
+// them: exactly srgb_byte of the transformed values (not NaN), without a pow per channel, on the
+// CPU threads.
+std::vector<unsigned char> srgb_bytes(const Image& image, const DisplayTransform& display);
 
 }  // namespace dv

@@ -3,7 +3,6 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "core/parallel.h"
 #include "core/text.h"
 #include "io/display_encoding.h"
 #include "io/image.h"
@@ -22,23 +21,8 @@ void write_png_bytes(const std::string& path, int width, int height,
     throw InputError(path, "cannot write PNG file");
 }
 
-namespace {
-
-// The bytes of `image` shown through `display`: the encoding's threshold search gives exactly
-// srgb_byte of the transformed value without a pow per channel, on the CPU threads.
-void write_png_shown(const std::string& path, const Image& image, const DisplayTransform& display) {
-  const DisplayEncoding encoding = make_display_encoding(display);
-  std::vector<unsigned char> bytes(image.rgb.size());
-  cpu_parallel_for_chunks(int64_t(bytes.size()), int64_t(1) << 16, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i) bytes[size_t(i)] = encoding.byte(image.rgb[size_t(i)]);
-  });
-  write_png_bytes(path, image.width, image.height, bytes);
-}
-
-}  // namespace
-
 void write_png(const std::string& path, const Image& image) {
-  write_png_shown(path, image, DisplayTransform{});
+  write_png_bytes(path, image.width, image.height, srgb_bytes(image, DisplayTransform{}));
 }
 
 void check_image_path(const std::string& path) {
@@ -49,7 +33,8 @@ void check_image_path(const std::string& path) {
 
 void write_image(const std::string& path, const Image& image, const DisplayTransform& display) {
   check_image_path(path);
-  if (lowercase_extension(path) == ".png") return write_png_shown(path, image, display);
+  if (lowercase_extension(path) == ".png")
+    return write_png_bytes(path, image.width, image.height, srgb_bytes(image, display));
   write_exr(path, image);
 }
 

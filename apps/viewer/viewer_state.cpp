@@ -14,6 +14,7 @@
 #include "dsm/deep_shadow_maps.h"
 #include "dsm/storage/dsm_storage.h"
 #include "frame/raster_render.h"
+#include "io/display_encoding.h"
 #include "io/dsm_export.h"
 #include "io/layer_heatmap.h"
 #include "load/scene_loader.h"
@@ -55,12 +56,6 @@ std::string short_text(const nlohmann::json& value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value.get<double>());
   return text;
-}
-
-std::vector<unsigned char> srgb_bytes(const Image& image) {
-  std::vector<unsigned char> bytes(image.rgb.size());
-  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(image.rgb[i]);
-  return bytes;
 }
 
 }  // namespace
@@ -239,7 +234,7 @@ bool ViewerState::update(bool coarse) {
   display_ = apply_display_transform(image_, transform_);
   error_ = TransmittanceError();
   if (error_view_ && !coarse) render_error_view(cam);
-  bytes_ = srgb_bytes(display_);
+  bytes_ = srgb_bytes(display_, DisplayTransform{});
   ++renders_;
   heat_stale_ = grid_stale_ = true;  // the method may have built its maps and grids just now
   if (heatmap_on_) {

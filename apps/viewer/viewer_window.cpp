@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/gl_program.h"
+#include "io/display_encoding.h"
 #include "io/image.h"
 
 namespace dv::viewer {
@@ -299,8 +300,7 @@ class Window {
 
  private:
   unsigned upload_linear(std::unique_ptr<ImageTexture>& texture, const Image& image) {
-    std::vector<unsigned char> bytes(image.rgb.size());
-    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = srgb_byte(image.rgb[i]);
+    const std::vector<unsigned char> bytes = srgb_bytes(image, DisplayTransform{});
     if (!texture) texture = std::make_unique<ImageTexture>();
     upload_bytes(*texture, image.width, image.height, bytes.data());
     return texture->id();

@@ -13,15 +13,15 @@
 //
 // Registers, not local memory: on the device a SatTriangle subscripted by a run-time axis or
 // corner index lives in the thread's stack (440 bytes, every edge test a local load). So the
-// setup picks axes and corners by selects, and the walks are templates on the walk axis,
-// reached through one switch (sat_work_item, sat_all_work_items): inside, every subscript is a
+// setup and the walk (SatWalk) pick axes, corners and edges by selects: every subscript is a
 // constant and the test stays in registers.
 //
 // Work split (large triangles must not serialise on one thread; small ones, most triangles of a
 // fine mesh, run all their work items on one thread with sat_all_work_items):
 //   non-degenerate: one work item per voxel column of the bounding range seen along the
 //     dominant normal axis a; the item checks the column against the projection along a, then
-//     walks the few voxels along a that the plane can reach (at most about 7).
+//     walks the few voxels along a that the plane can reach (at most about 5), stopping
+//     after the run that passes.
 //   degenerate: one work item per slice of the bounding range across the segment's dominant
 //     axis; the item tests the small window (at most 4 x 4 voxels) the segment crosses there.
 #pragma once
@@ -136,15 +136,21 @@ DV_HD inline bool sat_setup(const dvec3& v0, const dvec3& v1, const dvec3& v2, c
 }
 
 // The per-voxel decision (the voxel must lie in t.range; callers only enumerate those).
+DV_HD inline bool sat_plane_passes(const dvec3& n, double d_min, double d_max, const ivec3& p) {
+  const double np = n.x * double(p.x) + n.y * double(p.y) + n.z * double(p.z);
+  return np + d_min <= 0.0 && np + d_max >= 0.0;
+}
 DV_HD inline bool sat_plane_passes(const SatTriangle& t, const ivec3& p) {
-  const double np = t.n.x * double(p.x) + t.n.y * double(p.y) + t.n.z * double(p.z);
-  return np + t.d_min <= 0.0 && np + t.d_max >= 0.0;
+  return sat_plane_passes(t.n, t.d_min, t.d_max, p);
+}
+
+// One projection's three edges at box corner (pu, pv).
+DV_HD inline bool sat_edges_pass(const SatEdge (&e)[3], double pu, double pv) {
+  return e[0].inside(pu, pv) && e[1].inside(pu, pv) && e[2].inside(pu, pv);
 }
 
 DV_HD inline bool sat_projection_passes(const SatTriangle& t, const ivec3& p, int a) {
-  const double pu = double(p[(a + 1) % 3]), pv = double(p[(a + 2) % 3]);
-  return t.edges[a][0].inside(pu, pv) && t.edges[a][1].inside(pu, pv) &&
-         t.edges[a][2].inside(pu, pv);
+  return sat_edges_pass(t.edges[a], double(p[(a + 1) % 3]), double(p[(a + 2) % 3]));
 }
 
 DV_HD inline bool sat_voxel_passes(const SatTriangle& t, const ivec3& p) {
@@ -160,124 +166,176 @@ DV_HD inline int sat_clamp_index(double x, int lo, int hi) {
   return int(x);
 }
 
-// Non-degenerate: the column along A = t.axis at p[(A+1)%3] = pu, p[(A+2)%3] = pw.
-template <int A>
-DV_HD inline void sat_column_at(const SatTriangle& t, int pu, int pw, const VoxelGridView& grid) {
-  constexpr int u = (A + 1) % 3, w = (A + 2) % 3;
-  ivec3 p;
-  p[u] = pu;
-  p[w] = pw;
-  if (!sat_projection_passes(t, p, A)) return;
-  // Where along the column the plane test can pass, widened by a voxel for rounding; the
-  // per-voxel test below decides.
-  const double base = t.n[u] * double(p[u]) + t.n[w] * double(p[w]);
-  const double t1 = -(base + t.d_min) / t.n[A], t2 = -(base + t.d_max) / t.n[A];
-  const int first =
-      sat_clamp_index(::floor(min_value(t1, t2)) - 1.0, t.range[A].first, t.range[A].last);
-  const int last =
-      sat_clamp_index(::ceil(max_value(t1, t2)) + 1.0, t.range[A].first, t.range[A].last);
-  if constexpr (A == 2) {
-    // Walking z: collect the bits of each 32-slice word and OR them in once.
-    int word = first >> 5;
-    uint32_t mask = 0;
-    for (p.z = first; p.z <= last; ++p.z) {
-      if ((p.z >> 5) != word) {
-        grid.set_bits(p.x, p.y, word, mask);
-        word = p.z >> 5;
-        mask = 0;
-      }
-      if (sat_plane_passes(t, p) && sat_projection_passes(t, p, u) &&
-          sat_projection_passes(t, p, w))
-        mask |= 1u << (p.z & 31);
-    }
-    grid.set_bits(p.x, p.y, word, mask);
-  } else {
-    for (p[A] = first; p[A] <= last; ++p[A])
-      if (sat_plane_passes(t, p) && sat_projection_passes(t, p, u) &&
-          sat_projection_passes(t, p, w))
-        grid.set(p.x, p.y, p.z);
-  }
+// x, y or z of `axis` by a select (see the header comment).
+template <class T>
+DV_HD inline T sat_pick(int axis, T x, T y, T z) {
+  return axis == 0 ? x : (axis == 1 ? y : z);
+}
+DV_HD inline SatEdge sat_pick_edge(int axis, const SatEdge& x, const SatEdge& y, const SatEdge& z) {
+  return SatEdge{sat_pick(axis, x.nu, y.nu, z.nu), sat_pick(axis, x.nv, y.nv, z.nv),
+                 sat_pick(axis, x.d, y.d, z.d)};
+}
+DV_HD inline VoxelRange sat_pick_range(int axis, const VoxelRange (&r)[3]) {
+  VoxelRange picked;
+  picked.first = sat_pick(axis, r[0].first, r[1].first, r[2].first);
+  picked.last = sat_pick(axis, r[0].last, r[1].last, r[2].last);
+  return picked;
 }
 
-// The range of voxels along axis b that the segment's part between parameters lam_lo and
-// lam_hi can touch, widened by a voxel (rounding, and the third corner of a sliver).
-template <int B>
-DV_HD inline VoxelRange sat_segment_window(const SatTriangle& t, const dvec3& d, double lam_lo,
-                                           double lam_hi) {
-  const double c0 = t.seg_p[B] + lam_lo * d[B], c1 = t.seg_p[B] + lam_hi * d[B];
-  VoxelRange r = voxel_range(min_value(c0, c1), max_value(c0, c1), t.range[B].last + 1, 1.0);
-  r.first = max_value(r.first, t.range[B].first);
-  r.last = min_value(r.last, t.range[B].last);
+// A triangle's walk, its axes named for it: a = t.axis along the walk (a column, or across a
+// degenerate triangle's slices), u = (a + 1) % 3 and w = (a + 2) % 3 across it. Picked once per
+// triangle by selects, so one code path serves the three walk axes: a warp whose lanes walk
+// along different axes runs one walk, not three one after another, and the walk needs nothing
+// else. The tests read the numbers sat_voxel_passes reads, in the same order, so they decide the
+// same.
+struct SatWalk {
+  int axis = 2;
+  bool degenerate = false;
+  SatEdge across[3];   // t.edges[a]: at corner (u, w)
+  SatEdge along_u[3];  // t.edges[u]: at corner (w, a)
+  SatEdge along_w[3];  // t.edges[w]: at corner (a, u)
+  VoxelRange range_a, range_u, range_w;
+  // Non-degenerate: the plane, and its components across the walk.
+  dvec3 n{0.0};
+  double d_min = 0.0, d_max = 0.0;
+  double n_u = 0.0, n_w = 0.0, inv_n_a = 0.0;
+  // Degenerate: the segment's start and direction, components (a, u, w).
+  dvec3 seg_p{0.0}, seg_d{0.0};
+};
+
+DV_HD inline SatWalk sat_walk(const SatTriangle& t) {
+  SatWalk c;
+  const int a = t.axis, u = (a + 1) % 3, w = (a + 2) % 3;
+  c.axis = a;
+  c.degenerate = t.degenerate;
+  for (int i = 0; i < 3; ++i) {
+    c.across[i] = sat_pick_edge(a, t.edges[0][i], t.edges[1][i], t.edges[2][i]);
+    c.along_u[i] = sat_pick_edge(u, t.edges[0][i], t.edges[1][i], t.edges[2][i]);
+    c.along_w[i] = sat_pick_edge(w, t.edges[0][i], t.edges[1][i], t.edges[2][i]);
+  }
+  c.range_a = sat_pick_range(a, t.range);
+  c.range_u = sat_pick_range(u, t.range);
+  c.range_w = sat_pick_range(w, t.range);
+  if (t.degenerate) {
+    const dvec3 d = t.seg_q - t.seg_p;
+    c.seg_p = dvec3(sat_pick(a, t.seg_p.x, t.seg_p.y, t.seg_p.z),
+                    sat_pick(u, t.seg_p.x, t.seg_p.y, t.seg_p.z),
+                    sat_pick(w, t.seg_p.x, t.seg_p.y, t.seg_p.z));
+    c.seg_d =
+        dvec3(sat_pick(a, d.x, d.y, d.z), sat_pick(u, d.x, d.y, d.z), sat_pick(w, d.x, d.y, d.z));
+    return c;
+  }
+  c.n = t.n;
+  c.d_min = t.d_min;
+  c.d_max = t.d_max;
+  c.n_u = sat_pick(u, t.n.x, t.n.y, t.n.z);
+  c.n_w = sat_pick(w, t.n.x, t.n.y, t.n.z);
+  c.inv_n_a = 1.0 / sat_pick(a, t.n.x, t.n.y, t.n.z);  // the dominant component: not 0
+  return c;
+}
+
+// The grid voxel at walk coordinate s and corner (pu, pw) across it.
+DV_HD inline ivec3 sat_walk_voxel(const SatWalk& c, int s, int pu, int pw) {
+  return ivec3(sat_pick(c.axis, s, pw, pu), sat_pick(c.axis, pu, s, pw),
+               sat_pick(c.axis, pw, pu, s));
+}
+
+// The projections along u and w at voxel (s, pu, pw) (the one along a is the column's test).
+DV_HD inline bool sat_walk_side_tests_pass(const SatWalk& c, int s, int pu, int pw) {
+  return sat_edges_pass(c.along_u, double(pw), double(s)) &&
+         sat_edges_pass(c.along_w, double(s), double(pu));
+}
+
+// Non-degenerate: the column at (pu, pw). Where along it the plane test can pass is the
+// interval between s1 and s2; [floor, ceil] of it holds every voxel the per-voxel test can
+// pass (the rounding of s1, s2 and of the test is about 1e-13 voxel, and a voxel outside lies
+// a whole voxel beyond), and the per-voxel test decides. Each test is monotone in the walk
+// coordinate (a rounded product by a constant, then rounded sums with constants), so the
+// voxels that pass are one run: the walk stops at the first failure after it.
+DV_HD inline void sat_column(const SatWalk& c, int pu, int pw, const VoxelGridView& grid) {
+  if (!sat_edges_pass(c.across, double(pu), double(pw))) return;
+  const double base = c.n_u * double(pu) + c.n_w * double(pw);
+  const double s1 = -(base + c.d_min) * c.inv_n_a, s2 = -(base + c.d_max) * c.inv_n_a;
+  const int first = sat_clamp_index(::floor(min_value(s1, s2)), c.range_a.first, c.range_a.last);
+  const int last = sat_clamp_index(::ceil(max_value(s1, s2)), c.range_a.first, c.range_a.last);
+  // The set voxels' bits, gathered per grid word (a column along z fills words of 32).
+  int64_t word = -1;
+  uint32_t mask = 0;
+  for (int s = first; s <= last; ++s) {
+    const ivec3 p = sat_walk_voxel(c, s, pu, pw);
+    if (!(sat_plane_passes(c.n, c.d_min, c.d_max, p) && sat_walk_side_tests_pass(c, s, pu, pw))) {
+      if (mask) break;
+      continue;
+    }
+    const int64_t index = grid.word_index(p.x, p.y, p.z >> 5);
+    if (index != word) {
+      grid.or_word(word, mask);
+      word = index;
+      mask = 0;
+    }
+    mask |= 1u << (p.z & 31);
+  }
+  grid.or_word(word, mask);
+}
+
+// The range of voxels across the walk that the segment's part between parameters lam_lo and
+// lam_hi can touch, widened by a voxel (rounding, and the third corner of a sliver); p and d
+// are the segment's start and direction along that axis, `range` the triangle's range there.
+DV_HD inline VoxelRange sat_segment_window(double p, double d, double lam_lo, double lam_hi,
+                                           const VoxelRange& range) {
+  const double c0 = p + lam_lo * d, c1 = p + lam_hi * d;
+  VoxelRange r = voxel_range(min_value(c0, c1), max_value(c0, c1), range.last + 1, 1.0);
+  r.first = max_value(r.first, range.first);
+  r.last = min_value(r.last, range.last);
   return r;
 }
 
-// Degenerate work item `local`: one slice across the segment's dominant axis A = t.axis.
-template <int A>
-DV_HD inline void sat_segment_slice(const SatTriangle& t, int64_t local,
-                                    const VoxelGridView& grid) {
-  constexpr int u = (A + 1) % 3, w = (A + 2) % 3;
-  const int slice = t.range[A].first + int(local);
-  const dvec3 d = t.seg_q - t.seg_p;
+// Degenerate: the slice at walk coordinate s, across the segment's dominant axis.
+DV_HD inline void sat_segment_slice(const SatWalk& c, int s, const VoxelGridView& grid) {
   double lam_lo = 0.0, lam_hi = 1.0;
-  if (d[A] != 0.0) {
-    const double l0 = (double(slice) - t.seg_p[A]) / d[A];
-    const double l1 = (double(slice + 1) - t.seg_p[A]) / d[A];
+  if (c.seg_d.x != 0.0) {
+    const double l0 = (double(s) - c.seg_p.x) / c.seg_d.x;
+    const double l1 = (double(s + 1) - c.seg_p.x) / c.seg_d.x;
     lam_lo = clamp_value(min_value(l0, l1), 0.0, 1.0);
     lam_hi = clamp_value(max_value(l0, l1), 0.0, 1.0);
   }
-  const VoxelRange window_u = sat_segment_window<u>(t, d, lam_lo, lam_hi);
-  const VoxelRange window_w = sat_segment_window<w>(t, d, lam_lo, lam_hi);
-  ivec3 p;
-  p[A] = slice;
-  for (p[w] = window_w.first; p[w] <= window_w.last; ++p[w])
-    for (p[u] = window_u.first; p[u] <= window_u.last; ++p[u])
-      if (sat_voxel_passes(t, p)) grid.set(p.x, p.y, p.z);
+  const VoxelRange window_u = sat_segment_window(c.seg_p.y, c.seg_d.y, lam_lo, lam_hi, c.range_u);
+  const VoxelRange window_w = sat_segment_window(c.seg_p.z, c.seg_d.z, lam_lo, lam_hi, c.range_w);
+  for (int pw = window_w.first; pw <= window_w.last; ++pw)
+    for (int pu = window_u.first; pu <= window_u.last; ++pu)
+      if (sat_edges_pass(c.across, double(pu), double(pw)) &&
+          sat_walk_side_tests_pass(c, s, pu, pw)) {
+        const ivec3 p = sat_walk_voxel(c, s, pu, pw);
+        grid.set(p.x, p.y, p.z);
+      }
 }
 
-// Work item `local` of a triangle walking along A: a slice of a degenerate one, else a column
-// of the range across A, rows along (A+1)%3.
-template <int A>
-DV_HD inline void sat_work_item_along(const SatTriangle& t, int64_t local,
-                                      const VoxelGridView& grid) {
-  if (t.degenerate) return sat_segment_slice<A>(t, local, grid);
-  constexpr int u = (A + 1) % 3, w = (A + 2) % 3;
-  const int64_t count_u = t.range[u].count();
-  sat_column_at<A>(t, t.range[u].first + int(local % count_u),
-                   t.range[w].first + int(local / count_u), grid);
+// Work item `local` of a triangle: a slice of a degenerate one, else a column of the range
+// across its walk axis, rows along u.
+DV_HD inline void sat_work_item(const SatWalk& c, int64_t local, const VoxelGridView& grid) {
+  if (c.degenerate) return sat_segment_slice(c, c.range_a.first + int(local), grid);
+  const int64_t count_u = c.range_u.count();
+  sat_column(c, c.range_u.first + int(local % count_u), c.range_w.first + int(local / count_u),
+             grid);
 }
 
-DV_HD inline void sat_work_item(const SatTriangle& t, int64_t local, const VoxelGridView& grid) {
-  switch (t.axis) {
-    case 0:
-      return sat_work_item_along<0>(t, local, grid);
-    case 1:
-      return sat_work_item_along<1>(t, local, grid);
-    default:
-      return sat_work_item_along<2>(t, local, grid);
-  }
-}
-
-// Every work item of `t` on the calling thread (the small triangles' route): the same voxels as
-// sat_work_item for local = 0 .. t.work_items - 1, without the per-item index arithmetic.
-template <int A>
-DV_HD inline void sat_all_work_items_along(const SatTriangle& t, const VoxelGridView& grid) {
-  if (t.degenerate) {
-    for (int64_t local = 0; local < t.work_items; ++local) sat_segment_slice<A>(t, local, grid);
+// Every work item of a triangle on the calling thread (the small triangles' route): the same
+// voxels as sat_work_item for every item, without the per-item index arithmetic. One loop over
+// the columns, not a loop over rows of columns: a warp's lanes walk triangles of different
+// shapes, and nested loops would make the warp run its most rows times its longest row.
+DV_HD inline void sat_all_work_items(const SatWalk& c, const VoxelGridView& grid) {
+  if (c.degenerate) {
+    for (int s = c.range_a.first; s <= c.range_a.last; ++s) sat_segment_slice(c, s, grid);
     return;
   }
-  constexpr int u = (A + 1) % 3, w = (A + 2) % 3;
-  for (int pw = t.range[w].first; pw <= t.range[w].last; ++pw)
-    for (int pu = t.range[u].first; pu <= t.range[u].last; ++pu) sat_column_at<A>(t, pu, pw, grid);
-}
-
-DV_HD inline void sat_all_work_items(const SatTriangle& t, const VoxelGridView& grid) {
-  switch (t.axis) {
-    case 0:
-      return sat_all_work_items_along<0>(t, grid);
-    case 1:
-      return sat_all_work_items_along<1>(t, grid);
-    default:
-      return sat_all_work_items_along<2>(t, grid);
+  const int64_t columns = c.range_u.count() * c.range_w.count();
+  int pu = c.range_u.first, pw = c.range_w.first;
+  for (int64_t k = 0; k < columns; ++k) {
+    sat_column(c, pu, pw, grid);
+    if (++pu > c.range_u.last) {
+      pu = c.range_u.first;
+      ++pw;
+    }
   }
 }
 

@@ -119,7 +119,7 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
             if (sat_setup(p0, p1, p2, res, t) && t.work_items > 0) {
               degenerate = t.degenerate ? 1 : 0;
               if (t.work_items <= small_items) {
-                sat_all_work_items(t, grid);
+                sat_all_work_items(sat_walk(t), grid);
                 small = static_cast<unsigned long long>(t.work_items);
               } else {
                 corner[3 * i] = p0;
@@ -149,7 +149,7 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
             // chunks in flight at once are neighbours in the list, so are their voxels.
             const int64_t group = i / 32, lane = i % 32, groups = threads / 32;
             int64_t owner = -1, owner_end = 0;
-            SatTriangle t;
+            SatWalk walk;
             for (int64_t chunk = group * kSatLargeChunk; chunk < items;
                  chunk += groups * kSatLargeChunk) {
               const int64_t end = min_value(items, chunk + kSatLargeChunk);
@@ -158,9 +158,11 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
                   owner = work_item_owner(first, first.size, k);
                   owner_end = owner + 1 < first.size ? first[owner + 1] : items;
                   const int64_t tri = list.primitive[owner];
+                  SatTriangle t;
                   sat_setup(in[3 * tri], in[3 * tri + 1], in[3 * tri + 2], res, t);
+                  walk = sat_walk(t);
                 }
-                sat_work_item(t, k - first[owner], grid);
+                sat_work_item(walk, k - first[owner], grid);
               }
             }
           });

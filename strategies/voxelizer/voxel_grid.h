@@ -120,8 +120,9 @@ struct VoxelGridView {
   DV_HD void set(int x, int y, int z) const {
     atomic_or(&words[word_index(x, y, z >> 5)], 1u << (z & 31));
   }
-  DV_HD void set_bits(int x, int y, int k, uint32_t mask) const {
-    if (mask) atomic_or(&words[word_index(x, y, k)], mask);
+  // ORs `mask` into word `index` (word_index); an empty mask writes nothing.
+  DV_HD void or_word(int64_t index, uint32_t mask) const {
+    if (mask) atomic_or(&words[index], mask);
   }
   // Set voxels of column (x, y) in slices 0 .. z-1 (z in [0, depth]).
   DV_HD int count_below(int x, int y, int z) const {
