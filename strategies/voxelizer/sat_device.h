@@ -138,15 +138,18 @@ DV_HD inline bool sat_setup(const dvec3& v0, const dvec3& v1, const dvec3& v2, c
 // The per-voxel decision (the voxel must lie in t.range; callers only enumerate those).
 DV_HD inline bool sat_plane_passes(const dvec3& n, double d_min, double d_max, const ivec3& p) {
   const double np = n.x * double(p.x) + n.y * double(p.y) + n.z * double(p.z);
-  return np + d_min <= 0.0 && np + d_max >= 0.0;
+  return (np + d_min <= 0.0) & (np + d_max >= 0.0);
 }
 DV_HD inline bool sat_plane_passes(const SatTriangle& t, const ivec3& p) {
   return sat_plane_passes(t.n, t.d_min, t.d_max, p);
 }
 
-// One projection's three edges at box corner (pu, pv).
+// One projection's three edges at box corner (pu, pv). The walk's per-voxel tests combine with &
+// rather than && (here, in sat_plane_passes and sat_walk_side_tests_pass): each is a short chain
+// of arithmetic, and evaluating all of them without a branch keeps the independent chains in
+// flight together; the walk is bound by latency (results/2026-12-02-perf4-h200).
 DV_HD inline bool sat_edges_pass(const SatEdge (&e)[3], double pu, double pv) {
-  return e[0].inside(pu, pv) && e[1].inside(pu, pv) && e[2].inside(pu, pv);
+  return e[0].inside(pu, pv) & e[1].inside(pu, pv) & e[2].inside(pu, pv);
 }
 
 DV_HD inline bool sat_projection_passes(const SatTriangle& t, const ivec3& p, int a) {
@@ -242,7 +245,7 @@ DV_HD inline ivec3 sat_walk_voxel(const SatWalk& c, int s, int pu, int pw) {
 
 // The projections along u and w at voxel (s, pu, pw) (the one along a is the column's test).
 DV_HD inline bool sat_walk_side_tests_pass(const SatWalk& c, int s, int pu, int pw) {
-  return sat_edges_pass(c.along_u, double(pw), double(s)) &&
+  return sat_edges_pass(c.along_u, double(pw), double(s)) &
          sat_edges_pass(c.along_w, double(s), double(pu));
 }
 
@@ -263,7 +266,7 @@ DV_HD inline void sat_column(const SatWalk& c, int pu, int pw, const VoxelGridVi
   uint32_t mask = 0;
   for (int s = first; s <= last; ++s) {
     const ivec3 p = sat_walk_voxel(c, s, pu, pw);
-    if (!(sat_plane_passes(c.n, c.d_min, c.d_max, p) && sat_walk_side_tests_pass(c, s, pu, pw))) {
+    if (!(sat_plane_passes(c.n, c.d_min, c.d_max, p) & sat_walk_side_tests_pass(c, s, pu, pw))) {
       if (mask) break;
       continue;
     }
