@@ -71,16 +71,28 @@ DV_HD inline int sat_dominant_axis(const dvec3& d) {
   return 2 - sat_first_largest(d.z * d.z, d.y * d.y, d.x * d.x);
 }
 
-// The range count of `axis`, or corner v0 / v1 / v2 by `index`, through selects (see the
-// header comment).
-DV_HD inline int64_t sat_range_count(const VoxelRange (&range)[3], int axis) {
-  const int64_t x = range[0].count(), y = range[1].count(), z = range[2].count();
+// Picks by a run-time index through selects, never by subscript (see the header comment): x, y
+// or z for `axis` 0, 1 or 2; component `axis` of v; the range of `axis`; an edge; a corner.
+template <class T>
+DV_HD inline T sat_pick(int axis, T x, T y, T z) {
   return axis == 0 ? x : (axis == 1 ? y : z);
 }
+DV_HD inline double sat_component(const dvec3& v, int axis) {
+  return sat_pick(axis, v.x, v.y, v.z);
+}
+DV_HD inline VoxelRange sat_pick_range(int axis, const VoxelRange (&r)[3]) {
+  VoxelRange picked;
+  picked.first = sat_pick(axis, r[0].first, r[1].first, r[2].first);
+  picked.last = sat_pick(axis, r[0].last, r[1].last, r[2].last);
+  return picked;
+}
+DV_HD inline SatEdge sat_pick_edge(int axis, const SatEdge& x, const SatEdge& y, const SatEdge& z) {
+  return SatEdge{sat_pick(axis, x.nu, y.nu, z.nu), sat_pick(axis, x.nv, y.nv, z.nv),
+                 sat_pick(axis, x.d, y.d, z.d)};
+}
 DV_HD inline dvec3 sat_corner(const dvec3& v0, const dvec3& v1, const dvec3& v2, int index) {
-  return dvec3(index == 0 ? v0.x : (index == 1 ? v1.x : v2.x),
-               index == 0 ? v0.y : (index == 1 ? v1.y : v2.y),
-               index == 0 ? v0.z : (index == 1 ? v1.z : v2.z));
+  return dvec3(sat_pick(index, v0.x, v1.x, v2.x), sat_pick(index, v0.y, v1.y, v2.y),
+               sat_pick(index, v0.z, v1.z, v2.z));
 }
 
 // Builds the test for triangle (v0, v1, v2) in grid coordinates of a `res` grid; false when it
@@ -120,8 +132,8 @@ DV_HD inline bool sat_setup(const dvec3& v0, const dvec3& v1, const dvec3& v2, c
 
   if (!t.degenerate) {
     t.axis = sat_dominant_axis(t.n);
-    t.work_items =
-        sat_range_count(t.range, (t.axis + 1) % 3) * sat_range_count(t.range, (t.axis + 2) % 3);
+    t.work_items = int64_t(sat_pick_range((t.axis + 1) % 3, t.range).count()) *
+                   sat_pick_range((t.axis + 2) % 3, t.range).count();
     return true;
   }
   // The segment a degenerate triangle collapses to: its longest edge (the third corner lies
@@ -131,7 +143,7 @@ DV_HD inline bool sat_setup(const dvec3& v0, const dvec3& v1, const dvec3& v2, c
   t.seg_p = sat_corner(v0, v1, v2, longest);
   t.seg_q = sat_corner(v0, v1, v2, (longest + 1) % 3);
   t.axis = sat_dominant_axis(t.seg_q - t.seg_p);
-  t.work_items = sat_range_count(t.range, t.axis);
+  t.work_items = sat_pick_range(t.axis, t.range).count();
   return true;
 }
 
@@ -167,22 +179,6 @@ DV_HD inline int sat_clamp_index(double x, int lo, int hi) {
   if (!(x >= double(lo))) return lo;
   if (x > double(hi)) return hi;
   return int(x);
-}
-
-// x, y or z of `axis` by a select (see the header comment).
-template <class T>
-DV_HD inline T sat_pick(int axis, T x, T y, T z) {
-  return axis == 0 ? x : (axis == 1 ? y : z);
-}
-DV_HD inline SatEdge sat_pick_edge(int axis, const SatEdge& x, const SatEdge& y, const SatEdge& z) {
-  return SatEdge{sat_pick(axis, x.nu, y.nu, z.nu), sat_pick(axis, x.nv, y.nv, z.nv),
-                 sat_pick(axis, x.d, y.d, z.d)};
-}
-DV_HD inline VoxelRange sat_pick_range(int axis, const VoxelRange (&r)[3]) {
-  VoxelRange picked;
-  picked.first = sat_pick(axis, r[0].first, r[1].first, r[2].first);
-  picked.last = sat_pick(axis, r[0].last, r[1].last, r[2].last);
-  return picked;
 }
 
 // A triangle's walk, its axes named for it: a = t.axis along the walk (a column, or across a
@@ -221,19 +217,17 @@ DV_HD inline SatWalk sat_walk(const SatTriangle& t) {
   c.range_w = sat_pick_range(w, t.range);
   if (t.degenerate) {
     const dvec3 d = t.seg_q - t.seg_p;
-    c.seg_p = dvec3(sat_pick(a, t.seg_p.x, t.seg_p.y, t.seg_p.z),
-                    sat_pick(u, t.seg_p.x, t.seg_p.y, t.seg_p.z),
-                    sat_pick(w, t.seg_p.x, t.seg_p.y, t.seg_p.z));
-    c.seg_d =
-        dvec3(sat_pick(a, d.x, d.y, d.z), sat_pick(u, d.x, d.y, d.z), sat_pick(w, d.x, d.y, d.z));
+    c.seg_p =
+        dvec3(sat_component(t.seg_p, a), sat_component(t.seg_p, u), sat_component(t.seg_p, w));
+    c.seg_d = dvec3(sat_component(d, a), sat_component(d, u), sat_component(d, w));
     return c;
   }
   c.n = t.n;
   c.d_min = t.d_min;
   c.d_max = t.d_max;
-  c.n_u = sat_pick(u, t.n.x, t.n.y, t.n.z);
-  c.n_w = sat_pick(w, t.n.x, t.n.y, t.n.z);
-  c.inv_n_a = 1.0 / sat_pick(a, t.n.x, t.n.y, t.n.z);  // the dominant component: not 0
+  c.n_u = sat_component(t.n, u);
+  c.n_w = sat_component(t.n, w);
+  c.inv_n_a = 1.0 / sat_component(t.n, a);  // the dominant component: not 0
   return c;
 }
 
@@ -331,7 +325,7 @@ DV_HD inline void sat_all_work_items(const SatWalk& c, const VoxelGridView& grid
     for (int s = c.range_a.first; s <= c.range_a.last; ++s) sat_segment_slice(c, s, grid);
     return;
   }
-  const int64_t columns = c.range_u.count() * c.range_w.count();
+  const int64_t columns = int64_t(c.range_u.count()) * c.range_w.count();
   int pu = c.range_u.first, pw = c.range_w.first;
   for (int64_t k = 0; k < columns; ++k) {
     sat_column(c, pu, pw, grid);
