@@ -40,18 +40,25 @@ DV_HD inline double squared_length(const dvec3& d) {
   return d.x * d.x + d.y * d.y + d.z * d.z;
 }
 
+// Both sides of the comparison are fourth powers of the coordinates, which overflow beyond
+// about 1e77 grid units; a triangle that long first has n and longest^2 scaled by 2^-400, a
+// power of two, so the comparison is the unscaled one (exact below, finite above).
 DV_HD inline bool is_degenerate_triangle(const dvec3& v0, const dvec3& v1, const dvec3& v2,
                                          const dvec3& n) {
-  const double longest2 = max_value(squared_length(v1 - v0),
-                                    max_value(squared_length(v2 - v1), squared_length(v0 - v2)));
+  double longest2 = max_value(squared_length(v1 - v0),
+                              max_value(squared_length(v2 - v1), squared_length(v0 - v2)));
+  const double scale = longest2 > 0x1p400 ? 0x1p-400 : 1.0;
+  longest2 *= scale;
   const double limit = kDegenerateRatio * longest2;
-  return squared_length(n) <= limit * limit;
+  return squared_length(n * scale) <= limit * limit;
 }
 
+// Grid coordinates the tests accept: every product they form stays finite. The largest is the
+// plane offset n . (c - v), a sum of three terms of at most 2 (2 big)^2 (big + 1) = 8e300 for
+// big = 1e100 (n's components are cross products of edges up to 2 big long); edge tests form
+// products of two coordinates. NaN fails every comparison, so it is rejected too.
 DV_HD inline bool is_finite_point(const dvec3& p) {
-  // NaN fails every comparison; magnitudes of 1e300 and more (infinities included) would
-  // overflow the products of the tests, so they count as not finite too.
-  const double big = 1.0e300;
+  const double big = 1.0e100;
   return p.x == p.x && p.y == p.y && p.z == p.z && p.x > -big && p.x < big && p.y > -big &&
          p.y < big && p.z > -big && p.z < big;
 }

@@ -2,8 +2,9 @@
 // closed-form voxel sets: faces exactly on voxel boundaries (a closed voxel box touching a face
 // is set, so a face on the plane between slices 31 and 32 sets both, in two different words),
 // vertices on grid corners, triangles far smaller than a voxel, triangles covering the whole
-// grid, a non-cubic grid with non-cubic voxels, depths 1024 and 2048, and a grid of more than
-// 2^31 voxels (16384 x 4100 x 32, 269 MB of words) where an int32 voxel index would overflow.
+// grid (also 1e90 voxels wide), a non-cubic grid with non-cubic voxels, depths 1024 and 2048, and a
+// grid of more than 2^31 voxels (16384 x 4100 x 32, 269 MB of words) where an int32 voxel index
+// would overflow.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -93,6 +94,25 @@ TEST_P(HardVoxelizers, TriangleCoveringTheWholeGridDiagonally) {
   const std::vector<dvec3> plane = {{-10, -10, -10}, {20, 20, -10}, {20, 20, 80},
                                     {-10, -10, -10}, {20, 20, 80},  {-10, -10, 80}};
   expect_voxels(plane, unit_grid(res), expected, "x = y");
+}
+
+// Triangles reaching 1e90 voxels beyond a small grid: their squared edges and normal (about
+// 1e361) overflow a double, so the degenerate rule compares scaled quantities; these are fat
+// triangles, each a whole slice of the grid and none degenerate.
+TEST_P(HardVoxelizers, TrianglesFarLargerThanTheGrid) {
+  const ivec3 res{6, 5, 64};
+  const double b = 1e90;
+  const std::vector<dvec3> horizontal = {{-b, -b, 2.5}, {b, -b, 2.5}, {b, b, 2.5},
+                                         {-b, -b, 2.5}, {b, b, 2.5},  {-b, b, 2.5}};
+  expect_voxels(horizontal, unit_grid(res), whole_slices(res, {2}), "z = 2.5, 1e90 wide");
+  VoxelSet column_slice;
+  for (int z = 0; z < res.z; ++z)
+    for (int y = 0; y < res.y; ++y) column_slice.insert({3, y, z});
+  const std::vector<dvec3> vertical = {{3.5, -b, -b}, {3.5, b, -b}, {3.5, b, b},
+                                       {3.5, -b, -b}, {3.5, b, b},  {3.5, -b, b}};
+  expect_voxels(vertical, unit_grid(res), column_slice, "x = 3.5, 1e90 wide");
+  const VoxelizeResult r = voxelize_sat(GetParam(), soup_of(vertical), unit_grid(res));
+  EXPECT_EQ(r.counters["degenerate_triangles"].get<int64_t>(), 0);
 }
 
 TEST_P(HardVoxelizers, NonCubicGridAndVoxels) {
