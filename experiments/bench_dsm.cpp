@@ -16,6 +16,8 @@
 // bilinear frame (no suite runs it), through the same harness functions. Bandwidth floor
 // (bandwidth_floor.h): copy_GBps measured once in the run; per modelled generation pass
 // PASS_floor_ms (its fewest bytes over that bandwidth) and PASS_floor_x = PASS_ms / floor_ms.
+// With DEEPVOX_KERNEL_TIMING=1 the generate and render_bilinear cases add a counter per kernel
+// (experiments/kernel_counters.h).
 // Run: build/bin/bench_dsm --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
@@ -28,6 +30,7 @@
 #include "dsm/deep_shadow_maps.h"
 #include "experiments/bandwidth_floor.h"
 #include "experiments/harness/shadow_measure.h"
+#include "experiments/kernel_counters.h"
 #include "load/scene_loader.h"
 #include "tests/support/paths.h"
 
@@ -95,6 +98,7 @@ void dsm_generate(benchmark::State& state, std::string storage, Backend backend)
   DeepShadowMaps maps(fresh.method->deep_shadow_maps()->settings());
   maps.generate(data, backend);  // warm-up: allocations, first touch
   double wall_ms = 0.0;
+  start_kernel_counters();
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     maps.generate(data, backend);
@@ -102,6 +106,7 @@ void dsm_generate(benchmark::State& state, std::string storage, Backend backend)
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     state.SetIterationTime(maps.generation_milliseconds() / 1e3);
   }
+  add_kernel_counters(state);
   state.counters["wall_ms"] = wall_ms / double(state.iterations());
   const auto copy_start = std::chrono::steady_clock::now();
   maps.records();  // the host copy every generation made before figures() summed on the device
@@ -124,12 +129,14 @@ void dsm_render(benchmark::State& state, std::string storage) {
       data, Backend::cuda, scene.camera);
   timed_frame(Backend::cuda, data, scene.camera, *g.method, scene.background);  // warm-up
   double fragment_ms = 0.0;
+  start_kernel_counters();
   for (auto _ : state) {
     const TimedFrame f =
         timed_frame(Backend::cuda, data, scene.camera, *g.method, scene.background);
     state.SetIterationTime(f.milliseconds / 1e3);
     fragment_ms += f.result.fragment_ms;
   }
+  add_kernel_counters(state);
   state.counters["fragment_ms"] = fragment_ms / double(state.iterations());
   state.counters["maps_built"] = g.method->stats()["maps_built"].get<double>();
   state.SetLabel(cuda_device_name());

@@ -6,6 +6,7 @@
 // Knecht 2011 reports 43 ms without shadows on a GTX 480.
 // Bandwidth floor (bandwidth_floor.h): fragment_floor_ms is the image written once over the
 // device copy bandwidth measured in the run (copy_GBps), fragment_floor_x the pass's multiple.
+// With DEEPVOX_KERNEL_TIMING=1 each case adds a counter per kernel (experiments/kernel_counters.h).
 // Run: build/bin/bench_renderer --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
@@ -15,6 +16,7 @@
 #include "cuda/device_memory.h"
 #include "experiments/bandwidth_floor.h"
 #include "experiments/harness/shadow_measure.h"
+#include "experiments/kernel_counters.h"
 #include "load/scene_loader.h"
 #include "tests/support/paths.h"
 
@@ -31,12 +33,14 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
   const TimedGeneration g = timed_generation(shadows, {}, data, backend, scene.camera);
   timed_frame(backend, data, scene.camera, *g.method, scene.background);  // warm-up
   double raster_ms = 0.0, fragment_ms = 0.0;
+  start_kernel_counters();
   for (auto _ : state) {
     const TimedFrame f = timed_frame(backend, data, scene.camera, *g.method, scene.background);
     state.SetIterationTime(f.milliseconds / 1e3);
     raster_ms += f.result.raster_ms;
     fragment_ms += f.result.fragment_ms;
   }
+  add_kernel_counters(state);
   state.counters["raster_ms"] = raster_ms / double(state.iterations());
   state.counters["fragment_ms"] = fragment_ms / double(state.iterations());
   if (backend == Backend::cuda) {

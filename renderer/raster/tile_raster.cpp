@@ -1,11 +1,15 @@
 // The passes of the tile rasterizer (see tile_raster.h), each a parallel_for that runs on CPU
 // threads or as a CUDA kernel (nvcc compiles this file when CUDA is on):
 //   setup   one thread per source triangle: clip, snap, orient; the first piece goes to the
-//           triangle's own record, further pieces of clipped triangles are counted;
+//           triangle's own record, further pieces of clipped triangles are counted, and so
+//           are the tiles of every piece's box;
 //   extras  only if clipping made extra pieces: they are set up again and appended;
-//   count   per record, a few threads (a warp on CUDA) share the tiles of its box: per tile a
-//           coverage mask; non-zero ones are counted per tile (atomic);
-//   scan    on the host over the per-tile counts (the array is small), with the entry limit;
+//   items   every tile of every record's box is one work item: the records' box sizes, scanned
+//           on the device, give each record its first item;
+//   count   one thread per item: the tile's coverage mask; non-zero ones are counted per tile
+//           (atomic);
+//   offsets the per-tile counts scanned on the device, then cut at the entry limit; the host
+//           reads back only the totals;
 //   write   the same masks again, each stored at its tile's next free slot (atomic cursor) of
 //           a scratch copy;
 //   sort    entries ordered by (triangle, mask) into the lists, so the arbitrary order of the
@@ -20,6 +24,7 @@
 #include "core/atomic.h"
 #include "core/error.h"
 #include "cuda/device_memory.h"
+#include "cuda/scan.h"
 #include "renderer/raster/tile_raster.h"
 
 namespace dv {
@@ -32,6 +37,7 @@ struct SetupCounters {
   unsigned long long clipped, clipped_near, clipped_guard;
   unsigned long long culled_behind, culled_offscreen, culled_degenerate, culled_invalid;
   unsigned long long extra_pieces;
+  unsigned long long box_tiles;  // over every piece, the extra ones included
 };
 
 // Sets up source triangle t of the view (indices checked: a bad one culls it as invalid).
@@ -51,7 +57,7 @@ DV_HD inline unsigned long long one_if(bool b) {
 }
 
 // Every thread adds to the same counters (zero where its flag is not set): combined per warp.
-DV_HD inline void tally(SetupCounters* c, uint32_t flags, int pieces) {
+DV_HD inline void tally(SetupCounters* c, uint32_t flags, int pieces, int64_t box_tiles) {
   const bool culled = (flags & kSetupCulledAny) != 0;
   atomic_add_combined(&c->culled_behind, one_if(flags & kSetupCulledBehind));
   atomic_add_combined(&c->culled_offscreen, one_if(flags & kSetupCulledOffscreen));
@@ -63,6 +69,20 @@ DV_HD inline void tally(SetupCounters* c, uint32_t flags, int pieces) {
   atomic_add_combined(&c->clipped_guard, one_if(!culled && (flags & kSetupClippedGuard)));
   atomic_add_combined(&c->extra_pieces,
                       (unsigned long long)(!culled && pieces > 1 ? pieces - 1 : 0));
+  atomic_add_combined(&c->box_tiles, (unsigned long long)(box_tiles));
+}
+
+// What the host reads back of the tile lists' sizes. tiles_from_first_dropped is tiles - t for
+// the first tile t whose list does not fit, 0 if every list fits (so zeroed memory starts it).
+struct ListTotals {
+  unsigned long long stored, needed, most_per_tile, dropped_tiles, tiles_from_first_dropped;
+};
+
+// Tiles of a record's box (0 for an empty record); at most 2^26 (kMaxRasterSide / kTileSide
+// squared).
+DV_HD inline int64_t box_tile_count(const RasterTriangle& t) {
+  if (t.tile_x0 > t.tile_x1 || t.tile_y0 > t.tile_y1) return 0;
+  return int64_t(t.tile_x1 - t.tile_x0 + 1) * (t.tile_y1 - t.tile_y0 + 1);
 }
 
 // The records: one per source triangle (possibly empty), then the extra pieces.
@@ -74,21 +94,34 @@ struct Records {
   }
 };
 
-// The tiles of a record's box, shared among `lanes` consecutive threads (a warp on CUDA) so
-// that one large triangle does not hold up a whole launch: lane l takes tiles l, l + lanes, ...
-template <class Visit>
-DV_HD void for_each_box_tile(const RasterTriangle& t, int lane, int lanes, Visit&& visit) {
-  if (t.tile_x0 > t.tile_x1 || t.tile_y0 > t.tile_y1) return;
-  const int64_t columns = t.tile_x1 - t.tile_x0 + 1;
-  const int64_t count = columns * (t.tile_y1 - t.tile_y0 + 1);
-  for (int64_t k = lane; k < count; k += lanes)
-    visit(t.tile_x0 + int(k % columns), t.tile_y0 + int(k / columns));
+// The last index i in [0, count) with sorted[i] <= value, for non-decreasing `sorted` whose
+// first value is <= value: of equal values, the last.
+template <class T>
+DV_HD int64_t last_index_at_most(View<const T> sorted, int64_t count, int64_t value) {
+  int64_t lo = 0, hi = count - 1;
+  while (lo < hi) {
+    const int64_t mid = (lo + hi + 1) / 2;
+    if (int64_t(sorted[mid]) <= value)
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  return lo;
 }
 
-// CPU threads take chunks of consecutive indices, so a few lanes there spread large boxes too
-// (and CI exercises the striding).
-int box_lanes(Backend backend) {
-  return backend == Backend::cuda ? 32 : 4;
+// Work item `item` of the records: tile item - starts[r] of record r's box, row by row, where
+// starts holds each record's first item (records without tiles share the next one's, and the
+// search takes the last of equal starts). One thread per item spreads a large triangle over
+// the whole GPU: the floor of knecht-fig56 covers all 16,384 tiles of a 1024^2 light view, and
+// one warp per record walked them in 512 steps while the pass waited.
+template <class Visit>
+DV_HD void visit_box_tile(const Records& records, View<const int64_t> starts, int64_t item,
+                          Visit&& visit) {
+  const int64_t r = last_index_at_most(starts, records.size(), item);
+  const RasterTriangle& t = records[r];
+  const int columns = t.tile_x1 - t.tile_x0 + 1;
+  const int k = int(item - starts[r]);
+  visit(t, t.tile_x0 + k % columns, t.tile_y0 + k / columns);
 }
 
 DV_HD inline bool entry_less(const TileEntry& a, const TileEntry& b) {
@@ -114,19 +147,6 @@ DV_HD inline void sift_down(TileEntry* e, int64_t root, int64_t end) {
 // sort faster alone.
 int64_t rank_sorted_entries(Backend backend) {
   return backend == Backend::cuda ? 4096 : 64;
-}
-
-// The tile whose entries [range[t], range[t + 1]) hold entry e (the last t with range[t] <= e).
-DV_HD inline int64_t tile_of_entry(const View<const uint32_t>& range, int64_t tiles, int64_t e) {
-  int64_t lo = 0, hi = tiles - 1;
-  while (lo < hi) {
-    const int64_t mid = (lo + hi + 1) / 2;
-    if (int64_t(range[mid]) <= e)
-      lo = mid;
-    else
-      hi = mid - 1;
-  }
-  return lo;
 }
 
 // Insertion sort for short lists, heap sort (n log n, no extra memory) for long ones.
@@ -180,13 +200,15 @@ SetupResult setup_records(Backend backend, const RasterView& view) {
       backend, "raster_setup", n, DV_KERNEL_LAMBDA(int64_t i) {
         RasterTriangle head = empty_raster_triangle(uint32_t(i));
         int pieces = 0;
+        int64_t box_tiles = 0;
         const uint32_t flags = setup_source(view, i, [&](const RasterTriangle& t) {
           if (pieces == 0) head = t;
           ++pieces;
+          box_tiles += box_tile_count(t);
         });
         first[i] = head;
         pieces_of[i] = uint8_t(pieces);
-        tally(c, flags, pieces);
+        tally(c, flags, pieces, box_tiles);
       });
   out.counters = counters.to_vector()[0];
   const int64_t extra_count = int64_t(out.counters.extra_pieces);
@@ -228,48 +250,72 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   lists.tiles_y = (height + kTileSide - 1) / kTileSide;
   const int64_t tiles = lists.tile_count();
   const int tiles_x = lists.tiles_x;
-  const int lanes = box_lanes(backend);
 
   const SetupResult setup = setup_records(backend, view);
   const Records records{setup.first.const_view(), setup.extra.const_view()};
+  const int64_t items = int64_t(setup.counters.box_tiles);
+  Buffer<int64_t> record_starts(memory, records.size() + 1, "raster record starts");
+  const View<int64_t> starts_out = record_starts.view();
+  parallel_for(
+      backend, "raster_box_sizes", records.size() + 1, DV_KERNEL_LAMBDA(int64_t r) {
+        starts_out[r] = r < records.size() ? box_tile_count(records[r]) : 0;
+      });
+  exclusive_scan_queued(backend, starts_out);
+  const View<const int64_t> starts = record_starts.const_view();
 
   Buffer<uint32_t> tile_counts(memory, tiles, "raster tile counts");
   tile_counts.fill_zero();
   uint32_t* counts = tile_counts.data();
   parallel_for(
-      backend, "raster_count", records.size() * lanes, DV_KERNEL_LAMBDA(int64_t i) {
-        const RasterTriangle& t = records[i / lanes];
-        for_each_box_tile(t, int(i % lanes), lanes, [&](int tx, int ty) {
+      backend, "raster_count", items, DV_KERNEL_LAMBDA(int64_t i) {
+        visit_box_tile(records, starts, i, [&](const RasterTriangle& t, int tx, int ty) {
           if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
             atomic_add(counts + (int64_t(ty) * tiles_x + tx), 1u);
         });
       });
 
-  // Exclusive scan on the host; tiles whose list does not fit under the limit (and all tiles
-  // after the first such one) keep empty ranges.
-  const std::vector<uint32_t> needed_per_tile = tile_counts.to_vector();
+  // The offsets on the device: the counts scanned, then tiles whose list does not fit under
+  // the limit (and all tiles after the first such one) keep empty ranges. One small read-back
+  // brings the totals the host needs to size the entries.
   const uint64_t limit = uint64_t(std::min<int64_t>(options.max_entries, int64_t(UINT32_MAX)));
-  std::vector<uint32_t> offsets(size_t(tiles) + 1);
-  uint64_t stored = 0, needed = 0;
+  Buffer<int64_t> tile_starts(memory, tiles + 1, "raster tile starts");
+  const View<int64_t> tile_start = tile_starts.view();
+  const View<const uint32_t> counted = tile_counts.const_view();
+  parallel_for(
+      backend, "raster_tile_sizes", tiles + 1,
+      DV_KERNEL_LAMBDA(int64_t t) { tile_start[t] = t < tiles ? int64_t(counted[t]) : 0; });
+  exclusive_scan_queued(backend, tile_start);
+  Buffer<ListTotals> totals_buffer(memory, 1, "raster list totals");
+  totals_buffer.fill_zero();
+  ListTotals* totals = totals_buffer.data();
+  parallel_for(
+      backend, "raster_list_limit", tiles, DV_KERNEL_LAMBDA(int64_t t) {
+        const unsigned long long count = counted[t];
+        const bool dropped = count > 0 && uint64_t(tile_start[t + 1]) > limit;
+        atomic_max_combined(&totals->most_per_tile, count);
+        atomic_add_combined(&totals->dropped_tiles, (unsigned long long)(dropped));
+        atomic_max_combined(&totals->tiles_from_first_dropped,
+                            (unsigned long long)(dropped ? tiles - t : 0));
+      });
+  lists.offsets = Buffer<uint32_t>(memory, tiles + 1, "raster tile offsets");
+  const View<uint32_t> offsets = lists.offsets.view();
+  parallel_for(
+      backend, "raster_offsets", tiles + 1, DV_KERNEL_LAMBDA(int64_t t) {
+        const int64_t first_dropped = tiles - int64_t(totals->tiles_from_first_dropped);
+        const int64_t stored = tile_start[first_dropped];
+        offsets[t] = uint32_t(min_value(tile_start[t], stored));
+        if (t == tiles) {
+          totals->stored = (unsigned long long)(stored);
+          totals->needed = (unsigned long long)(tile_start[tiles]);
+        }
+      });
+  const ListTotals sums = totals_buffer.to_vector()[0];
+  const uint64_t stored = sums.stored, needed = sums.needed;
   RasterStats& s = lists.stats;
-  s.first_incomplete_tile = tiles;
-  for (int64_t t = 0; t < tiles; ++t) {
-    const uint64_t count = needed_per_tile[size_t(t)];
-    offsets[size_t(t)] = uint32_t(stored);
-    needed += count;
-    s.max_entries_per_tile = std::max<int64_t>(s.max_entries_per_tile, int64_t(count));
-    if (count == 0) continue;
-    if (!s.overflow && stored + count <= limit) {
-      stored += count;
-    } else {
-      if (!s.overflow) s.first_incomplete_tile = t;
-      s.overflow = true;
-      ++s.dropped_tiles;
-    }
-  }
-  offsets[size_t(tiles)] = uint32_t(stored);
-  lists.offsets =
-      Buffer<uint32_t>(memory, std::span<const uint32_t>(offsets), "raster tile offsets");
+  s.max_entries_per_tile = int64_t(sums.most_per_tile);
+  s.dropped_tiles = int64_t(sums.dropped_tiles);
+  s.first_incomplete_tile = tiles - int64_t(sums.tiles_from_first_dropped);
+  s.overflow = s.dropped_tiles > 0;
   lists.entries = Buffer<TileEntry>(memory, int64_t(stored), "raster tile entries");
 
   Buffer<uint32_t> tile_fill(memory, tiles, "raster tile cursors");
@@ -279,9 +325,8 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   Buffer<TileEntry> unsorted_entries(memory, int64_t(stored), "raster unsorted tile entries");
   const View<TileEntry> unsorted = unsorted_entries.view();
   parallel_for(
-      backend, "raster_write", records.size() * lanes, DV_KERNEL_LAMBDA(int64_t i) {
-        const RasterTriangle& t = records[i / lanes];
-        for_each_box_tile(t, int(i % lanes), lanes, [&](int tx, int ty) {
+      backend, "raster_write", items, DV_KERNEL_LAMBDA(int64_t i) {
+        visit_box_tile(records, starts, i, [&](const RasterTriangle& t, int tx, int ty) {
           const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
           if (mask == 0) return;
           const int64_t tile = int64_t(ty) * tiles_x + tx;
@@ -294,7 +339,7 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   const int64_t rank_sorted = rank_sorted_entries(backend);
   parallel_for(
       backend, "raster_rank_sort", int64_t(stored), DV_KERNEL_LAMBDA(int64_t e) {
-        const int64_t tile = tile_of_entry(range, tiles, e);
+        const int64_t tile = last_index_at_most(range, tiles, e);
         const int64_t first = range[tile], end = range[tile + 1];
         if (end - first > rank_sorted) return;
         const TileEntry mine = unsorted[e];
