@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/math.h"
 #include "dsm/dsm_generator.h"
+#include "renderer/raster/tile_raster.h"
 #include "strategies/voxelizer/atlas_packing.h"
 
 #if defined(DEEPVOX_WITH_CUDA)
@@ -68,8 +69,16 @@ std::optional<double> pass_floor_bytes(const std::string& method, const std::str
   return std::nullopt;
 }
 
+double tile_binning_floor_bytes(int64_t triangles, int64_t vertices, int views, int64_t entries,
+                                int64_t tiles) {
+  const double scene = sizeof(u32vec3) * double(triangles) + sizeof(dvec3) * double(vertices);
+  return double(views) * scene + sizeof(TileEntry) * double(entries) +
+         sizeof(uint32_t) * double(tiles + views);
+}
+
 std::optional<double> dsm_pass_floor_bytes(const std::string& pass, const DsmFloorInputs& in) {
   const double texels = double(in.texels);
+  if (pass == "raster" && in.raster_bytes > 0) return in.raster_bytes;
   if (pass == "count") return sizeof(int64_t) * texels;
   if (pass == "scan") return 2.0 * sizeof(int64_t) * texels;
   if (pass == "range") return 2.0 * sizeof(float) * texels;

@@ -28,16 +28,23 @@ struct FloorInputs {
 std::optional<double> pass_floor_bytes(const std::string& method, const std::string& pass,
                                        const FloorInputs& in);
 
+// The fewest bytes of binning a scene into tile lists (renderer/raster/tile_raster.h) `views`
+// times (a light's faces, or the camera once): every view reads the triangles' indices and
+// their vertices once; the lists' entries and the tiles' offsets are written once.
+double tile_binning_floor_bytes(int64_t triangles, int64_t vertices, int views, int64_t entries,
+                                int64_t tiles);
+
 // What the byte counts of a deep-shadow-map generation depend on (DeepShadowMaps::figures()).
 struct DsmFloorInputs {
   int64_t texels = 0;         // texels of every map (faces and clusters included)
   double bytes_in_nodes = 0;  // bytes the storage holds in nodes (its payload)
+  double raster_bytes = 0;    // tile_binning_floor_bytes of the light views (0: not modelled)
 };
 
 // The fewest bytes DSM generation pass `pass` must move: count (one int64 per texel written),
 // scan (read and written), range (a depth range per texel), write (the nodes and the texel
-// records), relayout / rewrite / shrink (the nodes read and written). Empty for the light-view
-// rasterization and clustering passes, whose bytes follow the fragment lists that no figure holds.
+// records), relayout / rewrite / shrink (the nodes read and written), raster (the light views'
+// tile binning, when raster_bytes is given). Empty for the clustering passes.
 std::optional<double> dsm_pass_floor_bytes(const std::string& pass, const DsmFloorInputs& in);
 
 // The fewest bytes of a rasterized frame's fragment pass: its image written once (3 floats a

@@ -15,7 +15,8 @@
 // suite's render_ms). lights32: every light's maps of scenes/knecht-32-lights.json plus one
 // bilinear frame (no suite runs it), through the same harness functions. Bandwidth floor
 // (bandwidth_floor.h): copy_GBps measured once in the run; per modelled generation pass
-// PASS_floor_ms (its fewest bytes over that bandwidth) and PASS_floor_x = PASS_ms / floor_ms.
+// PASS_floor_ms (its fewest bytes over that bandwidth; raster: the scene read per light view,
+// the tile lists written) and PASS_floor_x = PASS_ms / floor_ms.
 // With DEEPVOX_KERNEL_TIMING=1 the generate and render_bilinear cases add a counter per kernel
 // (experiments/kernel_counters.h).
 // Run: build/bin/bench_dsm --benchmark_repetitions=5
@@ -32,6 +33,7 @@
 #include "experiments/harness/shadow_measure.h"
 #include "experiments/kernel_counters.h"
 #include "load/scene_loader.h"
+#include "renderer/raster/tile_raster.h"
 #include "tests/support/paths.h"
 
 namespace dv {
@@ -58,7 +60,8 @@ bool skip_without_device(benchmark::State& state, Backend backend) {
 }
 
 // The storage's memory figures beside Knecht's formulas, and every pass of the last generation.
-void report_figures(benchmark::State& state, const DeepShadowMaps& maps, Backend backend) {
+void report_figures(benchmark::State& state, const DeepShadowMaps& maps, const SceneData& scene,
+                    Backend backend) {
   const nlohmann::json& f = maps.figures();
   const double d2 = double(maps.settings().resolution) * maps.settings().resolution;
   state.counters["MB_allocated"] = f["bytes_allocated"].get<double>() / 1e6;
@@ -76,7 +79,13 @@ void report_figures(benchmark::State& state, const DeepShadowMaps& maps, Backend
   }
   for (const DsmPass& p : maps.passes()) state.counters[p.name + "_ms"] = p.milliseconds;
   if (backend != Backend::cuda) return;
-  const DsmFloorInputs floor{f["texels"].get<int64_t>(), f["bytes_in_nodes"].get<double>()};
+  const int views = int(maps.layout().faces.size());
+  const int64_t tiles_per_view = int64_t((maps.resolution() + kTileSide - 1) / kTileSide) *
+                                 ((maps.resolution() + kTileSide - 1) / kTileSide);
+  const DsmFloorInputs floor{
+      f["texels"].get<int64_t>(), f["bytes_in_nodes"].get<double>(),
+      tile_binning_floor_bytes(scene.view().triangles.size, scene.view().vertices.size, views,
+                               maps.fragments(), views * tiles_per_view)};
   static const double bytes_per_ms = measure_copy_bandwidth();
   state.counters["copy_GBps"] = bytes_per_ms / 1e6;
   for (const DsmPass& p : maps.passes()) {
@@ -115,7 +124,7 @@ void dsm_generate(benchmark::State& state, std::string storage, Backend backend)
           .count();
   state.counters["fresh_pass_ms"] = fresh.pass_milliseconds();
   state.counters["fresh_wall_ms"] = fresh.milliseconds;
-  report_figures(state, maps, backend);
+  report_figures(state, maps, data, backend);
   state.SetLabel(backend == Backend::cuda ? cuda_device_name() : "cpu");
 }
 

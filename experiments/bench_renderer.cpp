@@ -5,7 +5,9 @@
 // separately with CUDA events on the GPU, per shadow method (the method generated once before).
 // Knecht 2011 reports 43 ms without shadows on a GTX 480.
 // Bandwidth floor (bandwidth_floor.h): fragment_floor_ms is the image written once over the
-// device copy bandwidth measured in the run (copy_GBps), fragment_floor_x the pass's multiple.
+// device copy bandwidth measured in the run (copy_GBps), fragment_floor_x the pass's multiple;
+// raster_floor_ms / raster_floor_x the same for the tile binning (the scene read, the lists
+// written).
 // With DEEPVOX_KERNEL_TIMING=1 each case adds a counter per kernel (experiments/kernel_counters.h).
 // Run: build/bin/bench_renderer --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
@@ -18,6 +20,7 @@
 #include "experiments/harness/shadow_measure.h"
 #include "experiments/kernel_counters.h"
 #include "load/scene_loader.h"
+#include "renderer/raster/tile_raster.h"
 #include "tests/support/paths.h"
 
 namespace dv {
@@ -33,11 +36,13 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
   const TimedGeneration g = timed_generation(shadows, {}, data, backend, scene.camera);
   timed_frame(backend, data, scene.camera, *g.method, scene.background);  // warm-up
   double raster_ms = 0.0, fragment_ms = 0.0;
+  int64_t entries = 0;
   start_kernel_counters();
   for (auto _ : state) {
     const TimedFrame f = timed_frame(backend, data, scene.camera, *g.method, scene.background);
     state.SetIterationTime(f.milliseconds / 1e3);
     raster_ms += f.result.raster_ms;
+    entries = f.result.raster.entries;
     fragment_ms += f.result.fragment_ms;
   }
   add_kernel_counters(state);
@@ -50,6 +55,14 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
     state.counters["copy_GBps"] = bytes_per_ms / 1e6;
     state.counters["fragment_floor_ms"] = floor_ms;
     state.counters["fragment_floor_x"] = state.counters["fragment_ms"] / floor_ms;
+    const int64_t tiles = int64_t((scene.camera.width + kTileSide - 1) / kTileSide) *
+                          ((scene.camera.height + kTileSide - 1) / kTileSide);
+    const double raster_floor_ms =
+        tile_binning_floor_bytes(data.view().triangles.size, data.view().vertices.size, 1, entries,
+                                 tiles) /
+        bytes_per_ms;
+    state.counters["raster_floor_ms"] = raster_floor_ms;
+    state.counters["raster_floor_x"] = state.counters["raster_ms"] / raster_floor_ms;
   }
   state.SetLabel(backend == Backend::cuda ? cuda_device_name() : "cpu");
 }
