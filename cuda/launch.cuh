@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 
+#include "core/error.h"
 #include "cuda/cuda_check.h"
 #include "cuda/kernel_timing.h"
 
@@ -71,6 +73,9 @@ void cuda_parallel_for(const char* name, int64_t n, F body) {
   if (n <= 0) return;
   const int block_size = spread_block_size(n, occupancy_block_size<F>());
   const int64_t blocks = (n + block_size - 1) / block_size;
+  if (blocks > int64_t(INT32_MAX))  // the grid's x limit: past it the launch would fail or wrap
+    throw Error(std::string(name) + ": " + std::to_string(n) +
+                " threads need more blocks than one launch can hold (2^31 - 1)");
   KernelTimingScope timing(name, block_size);
   parallel_for_kernel<<<unsigned(blocks), block_size>>>(n, body);
   check_cuda(cudaGetLastError(), name, __FILE__, __LINE__);

@@ -16,7 +16,8 @@
 // bilinear frame (no suite runs it), through the same harness functions. Bandwidth floor
 // (bandwidth_floor.h): copy_GBps measured once in the run; per modelled generation pass
 // PASS_floor_ms (its fewest bytes over that bandwidth; raster: the scene read per light view,
-// the tile lists written) and PASS_floor_x = PASS_ms / floor_ms.
+// the tile lists written, while its time is all of DsmGeneration's set-up: faces, uploads, the
+// tile binning, the ray media) and PASS_floor_x = PASS_ms / floor_ms.
 // With DEEPVOX_KERNEL_TIMING=1 the generate and render_bilinear cases add a counter per kernel
 // (experiments/kernel_counters.h).
 // Run: build/bin/bench_dsm --benchmark_repetitions=5

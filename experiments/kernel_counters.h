@@ -1,7 +1,8 @@
 // Per-kernel counters for the GPU benchmarks: run a benchmark with DEEPVOX_KERNEL_TIMING=1
-// (cuda/kernel_timing.h) and every kernel launched in its timed loop appears as a counter
-// `k_<kernel>_ms`, its milliseconds per iteration, so a pass's time can be split into kernels
-// and the rest (host work, read-backs, allocations between them). Timing each launch waits
+// (cuda/kernel_timing.h) and every parallel_for kernel launched in its timed loop appears as a
+// counter `k_<kernel>_ms`, its milliseconds per iteration, so a pass's time can be split into
+// kernels and the rest (host work, read-backs, allocations, CUB's scans and memsets between
+// them). Timing each launch waits
 // for it, so the benchmark's own times in such a run are not the ones to quote.
 #pragma once
 

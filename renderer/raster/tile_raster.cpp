@@ -119,9 +119,10 @@ DV_HD void visit_box_tile(const Records& records, View<const int64_t> starts, in
                           Visit&& visit) {
   const int64_t r = last_index_at_most(starts, records.size(), item);
   const RasterTriangle& t = records[r];
+  const int64_t k = item - starts[r];
+  if (k >= box_tile_count(t)) return;  // only if the items and the starts disagreed
   const int columns = t.tile_x1 - t.tile_x0 + 1;
-  const int k = int(item - starts[r]);
-  visit(t, t.tile_x0 + k % columns, t.tile_y0 + k / columns);
+  visit(t, t.tile_x0 + int(k % columns), t.tile_y0 + int(k / columns));
 }
 
 DV_HD inline bool entry_less(const TileEntry& a, const TileEntry& b) {

@@ -36,9 +36,9 @@
 //     band (clipped_guard); pieces: rasterizable triangles after clipping (records set up).
 //   entries_needed: (mask, triangle) pairs with a non-zero mask; entries: pairs stored;
 //   max_entries_per_tile: the most pairs any tile needed.
-//   overflow: entries_needed exceeded RasterOptions::max_entries. Lists are then complete for
-//     tiles [0, first_incomplete_tile) and empty from there on (dropped_tiles of them needed
-//     entries); nothing is written beyond the stored entries.
+//   overflow: entries_needed exceeded RasterOptions::max_entries (taken as at most 2^32 - 1).
+//     Lists are then complete for tiles [0, first_incomplete_tile) and empty from there on
+//     (dropped_tiles of them needed entries); nothing is written beyond the stored entries.
 // A tile's entries are sorted by (triangle, mask), so the lists are identical on every backend.
 // A clipped triangle's pieces may give it more than one entry in a tile (with disjoint masks).
 #pragma once

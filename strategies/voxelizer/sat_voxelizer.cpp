@@ -1,7 +1,7 @@
 // The `sat` conservative voxelizer's passes (test and work split in sat_device.h), one source
 // for both backends (nvcc compiles this file when CUDA is on):
+//   upload   the triangles' corners (timed alone: a copy the host waits for);
 //   clear    a fresh zeroed grid, the zeroed counters and the large triangles' list;
-//   upload   the triangles' corners;
 //   small    one thread per triangle: corners to grid coordinates, the triangle's test and its
 //            work items (voxel columns, or slices of a degenerate one); a triangle with at most
 //            `small_items` of them is voxelized right there, a larger one stores its grid
@@ -11,10 +11,11 @@
 //            count is read on the device, never by the host): each finds its triangle by binary
 //            search over the list's first items, rebuilds the triangle's test when the triangle
 //            changes and ORs one column's (or slice's) voxels into the grid.
-// The counters (small work items, degenerate triangles, the list's packed count) are read back
-// once, after the last pass. Every route sets exactly the voxels that pass sat_voxel_passes, so
-// the grid does not depend on the split. Per call the backend memory holds the grid, the corners
-// and two int64 per triangle for the list.
+// clear, small and large are queued back to back and timed by one PassTimeline, with no wait
+// between them. The counters (small work items, degenerate triangles, the list's packed count)
+// are read back once, after the last pass. Every route sets exactly the voxels that pass
+// sat_voxel_passes, so the grid does not depend on the split. Per call the backend memory holds the
+// grid, the corners and two int64 per triangle for the list.
 #include "strategies/voxelizer/sat_voxelizer.h"
 
 #include <algorithm>
@@ -70,29 +71,32 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
   if (max_batch > 0) batch = std::min(batch, max_batch);
   const int64_t batches = triangles == 0 ? 0 : (triangles + batch - 1) / batch;
   VoxelizeResult result;
-  Buffer<unsigned long long> counters;
-  Buffer<int64_t> large_triangle, large_first;
-  {
-    PassTimer timer(backend);
-    result.grid = VoxelGrid(spec, memory);
-    counters = Buffer<unsigned long long>(memory, kFirstList + batches, "sat counters");
-    counters.fill_zero();
-    large_triangle = Buffer<int64_t>(memory, triangles, "sat large triangles");
-    large_first = Buffer<int64_t>(memory, triangles, "sat large first items");
-    result.passes.push_back({"clear", timer.stop()});
-  }
   result.counters["triangles"] = triangles;
+  Buffer<dvec3> corners;
+  if (triangles > 0) {
+    PassTimer upload_timer(backend);
+    corners = Buffer<dvec3>(
+        memory, std::span<const dvec3>(soup.corners.data(), size_t(3 * triangles)), "sat corners");
+    result.passes.push_back({"upload", upload_timer.stop()});
+  }
+  // After the upload the passes run back to back, timed with one wait at the end.
+  PassTimeline timeline(backend);
+  const auto take_passes = [&] {
+    for (auto& [name, ms] : timeline.finish()) result.passes.push_back({name, ms});
+  };
+  result.grid = VoxelGrid(spec, memory);
+  Buffer<unsigned long long> counters(memory, kFirstList + batches, "sat counters");
+  counters.fill_zero();
+  Buffer<int64_t> large_triangle(memory, triangles, "sat large triangles");
+  Buffer<int64_t> large_first(memory, triangles, "sat large first items");
+  timeline.mark("clear");
   if (triangles == 0) {
+    take_passes();
     result.counters["work_items"] = 0;
     result.counters["large_triangles"] = 0;
     result.counters["degenerate_triangles"] = 0;
     return result;
   }
-
-  PassTimer upload_timer(backend);
-  Buffer<dvec3> corners(memory, std::span<const dvec3>(soup.corners.data(), size_t(3 * triangles)),
-                        "sat corners");
-  result.passes.push_back({"upload", upload_timer.stop()});
 
   const GridTransform to_grid = grid_transform(spec);
   const VoxelGridView grid = result.grid.view();
@@ -102,7 +106,6 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
                           large_first.data() + b * batch, item_bits};
   };
   {
-    PassTimer timer(backend);
     const View<dvec3> corner = corners.view();
     unsigned long long* const small_count = counters.data() + kSmallItems;
     unsigned long long* const degenerate_count = counters.data() + kDegenerate;
@@ -132,10 +135,9 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
             atomic_add_combined(degenerate_count, degenerate);
           });
     }
-    result.passes.push_back({"small", timer.stop()});
+    timeline.mark("small");
   }
   {
-    PassTimer timer(backend);
     const View<const dvec3> in = corners.const_view();
     for (int64_t b = 0; b < batches; ++b) {
       const PackedWorkList list = list_of(b);
@@ -167,8 +169,9 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
             }
           });
     }
-    result.passes.push_back({"large", timer.stop()});
+    timeline.mark("large");
   }
+  take_passes();
 
   std::vector<unsigned long long> counts = counters.to_vector();
   int64_t work_items = int64_t(counts[kSmallItems]), large = 0;

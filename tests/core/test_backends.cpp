@@ -1,10 +1,12 @@
 // The two executors: the CPU parallel-for covers every index once, atomics and buffers work on
 // the host, and the CUDA smoke test runs the same lambda as a kernel (skipped with the reason
-// where no GPU can be used).
+// where no GPU can be used); kernel timing and pass timelines.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 #include "core/atomic.h"
@@ -12,6 +14,7 @@
 #include "cuda/device_memory.h"
 #include "cuda/execute.h"
 #include "cuda/kernel_timing.h"
+#include "cuda/pass_timer.h"
 
 namespace dv {
 namespace {
@@ -170,6 +173,30 @@ TEST(Backends, KernelTimingCountsLaunchesByName) {
   EXPECT_GE(timings[0].block_size, 32);
   EXPECT_LE(timings[0].block_size, 1024);
   EXPECT_EQ(visits, 1ull << 16);
+}
+
+// A timeline of passes: each marked pass comes back in order, named, with a positive time (a
+// kernel's on CUDA); on the CPU the pass around a 3 ms sleep takes at least 3 ms.
+TEST(Backends, PassTimelineTimesEachMarkedPass) {
+  for (Backend backend : {Backend::cpu, Backend::cuda}) {
+    std::string why;
+    if (backend == Backend::cuda && !cuda_device_available(&why)) continue;
+    std::vector<int64_t> values;
+    unsigned long long visits = 0;
+    PassTimeline timeline(backend);
+    square_plus_one(backend, 1 << 16, values, visits);
+    timeline.mark("first");
+    if (backend == Backend::cpu) std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    square_plus_one(backend, 1 << 16, values, visits);
+    timeline.mark("second");
+    const auto passes = timeline.finish();
+    ASSERT_EQ(passes.size(), 2u) << to_string(backend);
+    EXPECT_EQ(passes[0].first, "first");
+    EXPECT_EQ(passes[1].first, "second");
+    EXPECT_GT(passes[0].second, 0.0) << to_string(backend);
+    EXPECT_GT(passes[1].second, 0.0) << to_string(backend);
+    if (backend == Backend::cpu) EXPECT_GE(passes[1].second, 3.0);
+  }
 }
 
 TEST(Backends, BackendNamesAndAvailability) {
