@@ -23,7 +23,7 @@ inline constexpr int64_t kSatMaxSmallItems = int64_t(1) << 20;
 // Throws InputError unless small_items is in [0, kSatMaxSmallItems].
 void validate_sat_small_items(int64_t small_items);
 
-// Passes: clear, upload, small (classification, and the small triangles voxelized), large.
+// Passes: upload, clear, small (classification, and the small triangles voxelized), large.
 // Counters: triangles, work_items, large_triangles, degenerate_triangles (those voxelized as
 // segments or points).
 // `max_batch` > 0 caps the triangles per large list below what packed_work_list_batch allows
