@@ -20,7 +20,8 @@
 
 namespace dv {
 
-inline constexpr int kDsmBlockSide = 8;  // texels per side of a generation block (= raster tile)
+// Texels per side of a generation block: a raster tile (texel_of_thread takes them tile by tile).
+inline constexpr int kDsmBlockSide = kTileSide;
 
 // What generation left in one texel, for figures, heatmaps and the overflow report.
 struct DsmTexelRecord {
@@ -90,13 +91,9 @@ struct DsmGenerator {
 
   // False for the padding threads of tiles that stick out of the map.
   DV_HD bool texel_of_thread(int64_t i, DsmTexel& t) const {
-    const int64_t block = block_of_thread(i);
-    const int local = int(i % (kDsmBlockSide * kDsmBlockSide));
-    t.face = int(block / blocks_per_face());
-    const int64_t b = block % blocks_per_face();
-    t.x = int(b % blocks_per_side) * kDsmBlockSide + local % kDsmBlockSide;
-    t.y = int(b / blocks_per_side) * kDsmBlockSide + local / kDsmBlockSide;
-    if (t.x >= resolution || t.y >= resolution) return false;
+    const int64_t per_face = blocks_per_face() * kDsmBlockSide * kDsmBlockSide;
+    t.face = int(i / per_face);
+    if (!pixel_of_tiled_thread(i % per_face, resolution, resolution, t.x, t.y)) return false;
     t.index = faces[t.face].offset + int64_t(t.y) * resolution + t.x;
     return true;
   }

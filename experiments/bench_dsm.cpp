@@ -81,8 +81,8 @@ void report_figures(benchmark::State& state, const DeepShadowMaps& maps, const S
   for (const DsmPass& p : maps.passes()) state.counters[p.name + "_ms"] = p.milliseconds;
   if (backend != Backend::cuda) return;
   const int views = int(maps.layout().faces.size());
-  const int64_t tiles_per_view = int64_t((maps.resolution() + kTileSide - 1) / kTileSide) *
-                                 ((maps.resolution() + kTileSide - 1) / kTileSide);
+  const int64_t tiles_per_view =
+      int64_t(tiles_along(maps.resolution())) * tiles_along(maps.resolution());
   const DsmFloorInputs floor{
       f["texels"].get<int64_t>(), f["bytes_in_nodes"].get<double>(),
       tile_binning_floor_bytes(scene.view().triangles.size, scene.view().vertices.size, views,

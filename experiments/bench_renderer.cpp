@@ -55,8 +55,8 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
     state.counters["copy_GBps"] = bytes_per_ms / 1e6;
     state.counters["fragment_floor_ms"] = floor_ms;
     state.counters["fragment_floor_x"] = state.counters["fragment_ms"] / floor_ms;
-    const int64_t tiles = int64_t((scene.camera.width + kTileSide - 1) / kTileSide) *
-                          ((scene.camera.height + kTileSide - 1) / kTileSide);
+    const int64_t tiles =
+        int64_t(tiles_along(scene.camera.width)) * tiles_along(scene.camera.height);
     const double raster_floor_ms =
         tile_binning_floor_bytes(data.view().triangles.size, data.view().vertices.size, 1, entries,
                                  tiles) /

@@ -18,11 +18,13 @@ template <class Source>
 void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& projection,
                   const TileListsView lists, const Source& source, const dvec3& background,
                   const InsideSet* eye_media, View<float> rgb, RenderCounters* counters) {
-  const int width = projection.width;
+  const int width = projection.width, height = projection.height;
   parallel_for(
-      backend, "raster_fragment_pass", int64_t(width) * projection.height,
-      DV_KERNEL_LAMBDA(int64_t i) {
-        const int x = int(i % width), y = int(i / width);
+      backend, "raster_fragment_pass", tiled_thread_count(width, height),
+      DV_KERNEL_LAMBDA(int64_t t) {
+        int x, y;
+        if (!pixel_of_tiled_thread(t, width, height, x, y)) return;
+        const int64_t i = int64_t(y) * width + x;
         const PixelRay ray = pixel_ray(projection, x, y);
         const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
         ShadePayload<Source> payload{s, source, ray.origin, ray.direction};

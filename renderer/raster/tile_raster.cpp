@@ -94,21 +94,6 @@ struct Records {
   }
 };
 
-// The last index i in [0, count) with sorted[i] <= value, for non-decreasing `sorted` whose
-// first value is <= value: of equal values, the last.
-template <class T>
-DV_HD int64_t last_index_at_most(View<const T> sorted, int64_t count, int64_t value) {
-  int64_t lo = 0, hi = count - 1;
-  while (lo < hi) {
-    const int64_t mid = (lo + hi + 1) / 2;
-    if (int64_t(sorted[mid]) <= value)
-      lo = mid;
-    else
-      hi = mid - 1;
-  }
-  return lo;
-}
-
 // Work item `item` of the records: tile item - starts[r] of record r's box, row by row, where
 // starts holds each record's first item (records without tiles share the next one's, and the
 // search takes the last of equal starts). One thread per item spreads a large triangle over
@@ -117,7 +102,7 @@ DV_HD int64_t last_index_at_most(View<const T> sorted, int64_t count, int64_t va
 template <class Visit>
 DV_HD void visit_box_tile(const Records& records, View<const int64_t> starts, int64_t item,
                           Visit&& visit) {
-  const int64_t r = last_index_at_most(starts, records.size(), item);
+  const int64_t r = owner_of_item(starts, records.size(), item);
   const RasterTriangle& t = records[r];
   const int64_t k = item - starts[r];
   if (k >= box_tile_count(t)) return;  // only if the items and the starts disagreed
@@ -247,8 +232,8 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   TileLists lists;
   lists.width = width;
   lists.height = height;
-  lists.tiles_x = (width + kTileSide - 1) / kTileSide;
-  lists.tiles_y = (height + kTileSide - 1) / kTileSide;
+  lists.tiles_x = tiles_along(width);
+  lists.tiles_y = tiles_along(height);
   const int64_t tiles = lists.tile_count();
   const int tiles_x = lists.tiles_x;
 
@@ -340,7 +325,7 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   const int64_t rank_sorted = rank_sorted_entries(backend);
   parallel_for(
       backend, "raster_rank_sort", int64_t(stored), DV_KERNEL_LAMBDA(int64_t e) {
-        const int64_t tile = last_index_at_most(range, tiles, e);
+        const int64_t tile = owner_of_item(range, tiles, e);
         const int64_t first = range[tile], end = range[tile + 1];
         if (end - first > rank_sorted) return;
         const TileEntry mine = unsorted[e];

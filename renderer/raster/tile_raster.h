@@ -79,6 +79,30 @@ struct TileListsView {
   View<const TileEntry> entries;
 };
 
+// Tiles along a side of `pixels` pixels (the last one partial where it does not divide).
+DV_HD inline int tiles_along(int pixels) {
+  return (pixels + kTileSide - 1) / kTileSide;
+}
+
+// Threads that shade a width x height view tile by tile: kTileSide^2 per raster tile, the
+// threads of tiles sticking out of the view included.
+DV_HD inline int64_t tiled_thread_count(int width, int height) {
+  return int64_t(tiles_along(width)) * tiles_along(height) * kTileSide * kTileSide;
+}
+
+// The pixel of thread i of tiled_thread_count's threads (the tiles row by row, each tile's
+// pixels row by row): the 32 lanes of a warp take half a tile, so their rays lie close together,
+// read the same fragment list and march through the same volume cells, where a warp over 32
+// pixels of one row spans four tiles. False for the threads outside the view.
+DV_HD inline bool pixel_of_tiled_thread(int64_t i, int width, int height, int& x, int& y) {
+  const int64_t tile = i / (kTileSide * kTileSide);
+  const int local = int(i % (kTileSide * kTileSide));
+  const int tiles_x = tiles_along(width);
+  x = int(tile % tiles_x) * kTileSide + local % kTileSide;
+  y = int(tile / tiles_x) * kTileSide + local / kTileSide;
+  return x < width && y < height;
+}
+
 DV_HD inline int64_t tile_of_pixel(const TileListsView& v, int x, int y) {
   return int64_t(y / kTileSide) * v.tiles_x + x / kTileSide;
 }

@@ -134,7 +134,7 @@ VoxelizeResult voxelize_atlas_compute(Backend backend, const TriangleSoup& soup,
     const VoxelGridView grid = result.grid.view();
     parallel_for(
         backend, "atlas_compute_points", s.layout.valid_texels(), DV_KERNEL_LAMBDA(int64_t k) {
-          const int64_t tri = work_item_owner(first, triangles, k);
+          const int64_t tri = owner_of_item(first, triangles, k);
           int i, j;
           atlas_texel_of(k - first[tri], i, j);
           atlas_write_point(grid, to_grid, atlas_point(&corners[3 * tri], cells[tri], i, j));

@@ -157,7 +157,7 @@ VoxelizeResult voxelize_sat(Backend backend, const TriangleSoup& soup, const Gri
               const int64_t end = min_value(items, chunk + kSatLargeChunk);
               for (int64_t k = chunk + lane; k < end; k += 32) {
                 if (k >= owner_end) {
-                  owner = work_item_owner(first, first.size, k);
+                  owner = owner_of_item(first, first.size, k);
                   owner_end = owner + 1 < first.size ? first[owner + 1] : items;
                   const int64_t tri = list.primitive[owner];
                   SatTriangle t;

@@ -3,7 +3,7 @@
 // triangle): per-primitive counts become offsets (on the host with work_item_offsets, where
 // they live with exclusive_scan_queued from cuda/scan.h, or appended by a kernel to a
 // PackedWorkList with no scan at all), and a kernel thread finds the primitive that owns its
-// item by binary search over them (CPU and CUDA alike).
+// item by binary search over them (owner_of_item, cuda/scan.h; CPU and CUDA alike).
 #pragma once
 
 #include <bit>
@@ -13,6 +13,7 @@
 #include "core/atomic.h"
 #include "core/hd.h"
 #include "cuda/buffer.h"
+#include "cuda/scan.h"
 
 namespace dv {
 
@@ -29,25 +30,10 @@ inline std::vector<int64_t> work_item_offsets(const std::vector<int64_t>& counts
   return offsets;
 }
 
-// The last of the `primitives` first entries of `first` that is <= item: the primitive owning
-// `item` (primitives without items share their offset with the next one and are skipped).
-DV_HD inline int64_t work_item_owner(const View<const int64_t>& first, int64_t primitives,
-                                     int64_t item) {
-  int64_t lo = 0, hi = primitives - 1;
-  while (lo < hi) {
-    const int64_t mid = (lo + hi + 1) / 2;
-    if (first[mid] <= item)
-      lo = mid;
-    else
-      hi = mid - 1;
-  }
-  return lo;
-}
-
 // Primitives appended from a kernel with their item counts, offsets included, no scan and no
 // host round trip: one 64-bit counter holds the entries in its high bits and their items in
 // its low `item_bits`, so an append takes its entry index and its first item from the same
-// atomic add; first items therefore increase with the entry index (work_item_owner finds an
+// atomic add; first items therefore increase with the entry index (owner_of_item finds an
 // item's entry) whatever order the threads append in. The host sizes item_bits and the number
 // of primitives per list with packed_work_list_batch so that neither part can overflow.
 struct PackedWorkList {

@@ -258,7 +258,7 @@ TEST(PackedWorkList, ConcurrentAppendsGiveOrderedOffsets) {
   }
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), n);
   for (int64_t k = 0; k < total; k += 97) {
-    const int64_t e = work_item_owner(list.firsts(), n, k);
+    const int64_t e = owner_of_item(list.firsts(), n, k);
     EXPECT_TRUE(first[e] <= k && k < first[e] + items_of(primitive[e])) << "item " << k;
   }
 }
