@@ -58,7 +58,6 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
   generator_.lists = list_views_.const_view();
   generator_.ray_media = ray_media_.const_view();
   generator_.resolution = res;
-  generator_.blocks_per_side = tiles_along(res);
   generator_.subrays = options.subrays;
   generator_.step_scale = options.step_scale;
   if (options.precompressed) {

@@ -70,7 +70,6 @@ struct DsmGenerator {
   View<const TileListsView> lists;  // per face
   View<const InsideSet> ray_media;  // per face: media containing its rays' origin
   int resolution = 0;
-  int blocks_per_side = 0;            // ceil(resolution / 8)
   int subrays = 1;                    // > 1: pre-filtered texels (dsm/prefilter.h)
   PrecompressedTables tables;         // bins > 0: volume steps from pre-compressed tables
   double step_scale = 1.0;            // multiplies the volumes' steps
@@ -82,16 +81,15 @@ struct DsmGenerator {
   }
 
   DV_HD int64_t texel_count() const { return faces.size * int64_t(resolution) * resolution; }
-  DV_HD int64_t blocks_per_face() const { return int64_t(blocks_per_side) * blocks_per_side; }
   DV_HD int64_t thread_count() const {
-    return faces.size * blocks_per_face() * kDsmBlockSide * kDsmBlockSide;
+    return faces.size * tiled_thread_count(resolution, resolution);
   }
   // The generation block (8x8 tile, over all faces) thread i belongs to.
   DV_HD int64_t block_of_thread(int64_t i) const { return i / (kDsmBlockSide * kDsmBlockSide); }
 
   // False for the padding threads of tiles that stick out of the map.
   DV_HD bool texel_of_thread(int64_t i, DsmTexel& t) const {
-    const int64_t per_face = blocks_per_face() * kDsmBlockSide * kDsmBlockSide;
+    const int64_t per_face = tiled_thread_count(resolution, resolution);
     t.face = int(i / per_face);
     if (!pixel_of_tiled_thread(i % per_face, resolution, resolution, t.x, t.y)) return false;
     t.index = faces[t.face].offset + int64_t(t.y) * resolution + t.x;
