@@ -6,6 +6,7 @@
 #include "core/atomic.h"
 #include "cuda/buffer.h"
 #include "cuda/pass_timer.h"
+#include "frame/fragment_lanes.h"
 #include "frame/shade_payload.h"
 #include "renderer/fragment_walk.h"
 #include "renderer/raster_fragments.h"
@@ -16,21 +17,26 @@ namespace {
 
 template <class Source>
 void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& projection,
-                  const TileListsView lists, const Source& source, const dvec3& background,
-                  const InsideSet* eye_media, View<float> rgb, RenderCounters* counters) {
+                  const TileListsView lists, const FragmentOrderView tile_order,
+                  const Source& source, const dvec3& background, const InsideSet* eye_media,
+                  View<float> rgb, RenderCounters* counters) {
   const int width = projection.width, height = projection.height;
   parallel_for(
-      backend, "raster_fragment_pass", tiled_thread_count(width, height),
+      backend, "raster_fragment_pass", fragment_thread_count(tile_order.order.size),
       DV_KERNEL_LAMBDA(int64_t t) {
         int x, y;
-        if (!pixel_of_tiled_thread(t, width, height, x, y)) return;
+        LaneGroup lanes;
+        if (!pixel_of_fragment_thread(t, tile_order, width, height, x, y, lanes)) return;
+        if (!DV_IN_DEVICE_CODE && lanes.rank > 0) return;  // a CPU thread marches every share
         const int64_t i = int64_t(y) * width + x;
         const PixelRay ray = pixel_ray(projection, x, y);
         const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
         ShadePayload<Source> payload{s, source, ray.origin, ray.direction};
+        payload.lanes = lanes;
         const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
         const WalkStatus status =
             walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
+        if (lanes.rank > 0) return;  // the group's lanes ended with the same pixel
         const dvec3 c = payload.color + payload.transmittance * background;
         rgb[3 * i + 0] = float(c.x);
         rgb[3 * i + 1] = float(c.y);
@@ -47,6 +53,7 @@ nlohmann::json RasterRenderResult::stats() const {
   j["renderer"] = "raster";
   j["raster_ms"] = raster_ms;
   j["fragment_ms"] = fragment_ms;
+  j["volume_tiles"] = volume_tiles;
   j["raster"] = raster;
   return j;
 }
@@ -78,10 +85,12 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   Buffer<RenderCounters> counters(memory, 1, "render counters");
   counters.fill_zero();
   PassTimer fragment_timer(backend);
+  const FragmentOrder tile_order =
+      order_fragment_tiles(backend, view, lists.view(), eye_media.data());
   std::visit(
       [&](const auto& s) {
-        shade_pixels(backend, view, projection, lists.view(), s, background, eye_media.data(),
-                     rgb.view(), counters.data());
+        shade_pixels(backend, view, projection, lists.view(), tile_order.view(), s, background,
+                     eye_media.data(), rgb.view(), counters.data());
       },
       source);
   result.fragment_ms = fragment_timer.stop();
@@ -90,6 +99,7 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   result.render.image.rgb = rgb.to_vector();
   if (backend == Backend::cuda) result.device_rgb = std::move(rgb);
   result.render.counters = counters.to_vector()[0];
+  result.volume_tiles = tile_order.volume_tiles();
   return result;
 }
 

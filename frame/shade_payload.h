@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/hd.h"
+#include "core/lane_group.h"
 #include "frame/shading.h"
 #include "renderer/fragment_walk.h"
 #include "renderer/media_march.h"
@@ -28,12 +29,15 @@ struct ShadePayload {
   dvec3 color{0.0};
   dvec3 transmittance{1.0};
   unsigned long long samples = 0;
-  dvec3 segment_sigma_rgb{0.0};  // the constant media's extinction in the current segment
+  dvec3 segment_sigma_rgb{0.0};    // the constant media's extinction in the current segment
+  LaneGroup lanes{};               // lanes that split this pixel's volume steps between them
+  dvec3 transmittance_scale{1.0};  // while marching a share: the transmittance before it
 
-  DV_HD bool done() const {
-    return max_value(transmittance.x, max_value(transmittance.y, transmittance.z)) <=
-           kSaturatedTransmittance;
+  DV_HD static bool saturated(const dvec3& t) {
+    return max_value(t.x, max_value(t.y, t.z)) <= kSaturatedTransmittance;
   }
+
+  DV_HD bool done() const { return saturated(transmittance * transmittance_scale); }
 
   // A translucent surface: its Phong colour over what lies behind, weighted by its opacity;
   // its transmissive part adds highlights and tints what lies behind by its colour. The shaded
@@ -63,10 +67,56 @@ struct ShadePayload {
     transmittance *= (1.0 - o.alpha - o.transmission) + o.transmission * o.color;
   }
 
-  // Media over [t0, t1], stepped by march_media (renderer/media_march.h).
+  // Media over [t0, t1], stepped by march_media (renderer/media_march.h); volume steps in shares
+  // when lanes split them.
   DV_HD void segment(const InsideSet& inside, double t0, double t1) {
     segment_sigma_rgb = constant_extinction_rgb(s, inside);
+    if (lanes.count > 1 && has_volume(s, inside)) return segment_in_shares(inside, t0, t1);
     march_media(s, inside, origin, dir, t0, t1, *this);
+  }
+
+  // What one share of a segment's steps adds, composited from clear (colour 0, transmittance 1).
+  struct SharePart {
+    dvec3 color;
+    dvec3 transmittance;
+    unsigned long long samples;
+  };
+
+  // The segment's steps in lanes.count contiguous shares, each composited from clear (a share
+  // stops where the ray is saturated even if the shares before it were clear), then folded in
+  // order: what a share adds is kept only while the ray before it is not saturated. In device
+  // code each lane of the group marches its own share and the lanes exchange the parts; a CPU
+  // thread marches every share itself. Both fold the same parts in the same order.
+  DV_HD void segment_in_shares(const InsideSet& inside, double t0, double t1) {
+    const dvec3 color_before = color, transmittance_before = transmittance;
+    const unsigned long long samples_before = samples;
+    const auto march_share = [&](int part) {
+      color = dvec3(0.0), transmittance = dvec3(1.0), samples = 0;
+      transmittance_scale = transmittance_before;
+      march_media(s, inside, origin, dir, t0, t1, *this, 1.0, StepShare{part, lanes.count});
+      return SharePart{color, transmittance, samples};
+    };
+#if DV_IN_DEVICE_CODE
+    const SharePart mine = march_share(lanes.rank);
+#endif
+    dvec3 folded_color = color_before, folded_transmittance = transmittance_before;
+    unsigned long long folded_samples = samples_before;
+    for (int part = 0; part < lanes.count; ++part) {
+#if DV_IN_DEVICE_CODE
+      const SharePart p{lane_value(lanes, mine.color, part),
+                        lane_value(lanes, mine.transmittance, part),
+                        lane_value(lanes, mine.samples, part)};
+      cursor.flags |= lane_value(lanes, cursor.flags, part);
+#else
+      const SharePart p = march_share(part);
+#endif
+      folded_samples += p.samples;
+      if (saturated(folded_transmittance)) continue;
+      folded_color += folded_transmittance * p.color;
+      folded_transmittance *= p.transmittance;
+    }
+    color = folded_color, transmittance = folded_transmittance, samples = folded_samples;
+    transmittance_scale = dvec3(1.0);
   }
 
   // Constant media only over [a, b]: they absorb, exactly, per channel.

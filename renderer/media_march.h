@@ -34,16 +34,31 @@ DV_HD inline double empty_run_end(const SceneView& s, const InsideSet& inside, c
   return until;
 }
 
+// Whether the ray is inside a volume (then its segments are sampled in steps).
+DV_HD inline bool has_volume(const SceneView& s, const InsideSet& inside) {
+  for (int i = 0; i < inside.count; ++i)
+    if (s.objects[inside.object[i]].interior == InteriorKind::volume) return true;
+  return false;
+}
+
+// Which of a segment's steps one march takes: share `part` of `parts` contiguous shares of its
+// steps (lanes that split a ray's samples between them, frame/shade_payload.h); all by default.
+struct StepShare {
+  int part = 0;
+  int parts = 1;
+};
+
 // Visitor interface:
 //   bool done() const;                                         stop early
 //   void absorb(double sigma_constant, double a, double b);    constant media only over [a, b]
 //   void sample(const InsideSet&, double sigma_constant, const dvec3& x, double a, double b);
 //                                                              one volume step [a, b], midpoint x
-// `step_scale` multiplies the volumes' steps (accuracy studies; 1 everywhere else).
+// `step_scale` multiplies the volumes' steps (accuracy studies; 1 everywhere else). With a share,
+// steps k of [steps * part / parts, steps * (part + 1) / parts) only, placed as in a whole march.
 template <class Visitor>
 DV_HD void march_media(const SceneView& s, const InsideSet& inside, const dvec3& origin,
                        const dvec3& dir, double t0, double t1, Visitor& visitor,
-                       double step_scale = 1.0) {
+                       double step_scale = 1.0, StepShare share = {}) {
   double sigma_constant = 0.0, step = 1e300;
   bool any_volume = false;
   for (int i = 0; i < inside.count; ++i) {
@@ -57,12 +72,13 @@ DV_HD void march_media(const SceneView& s, const InsideSet& inside, const dvec3&
   }
   step *= step_scale;
   const int64_t steps = int64_t(ceil((t1 - t0) / step));
-  for (int64_t k = 0; k < steps && !visitor.done(); ++k) {
+  const int64_t k_end = steps * (share.part + 1) / share.parts;
+  for (int64_t k = steps * share.part / share.parts; k < k_end && !visitor.done(); ++k) {
     const double a = t0 + double(k) * step, b = min_value(a + step, t1);
     const double mid = 0.5 * (a + b);
     const double empty_until = empty_run_end(s, inside, origin, dir, mid);
     if (empty_until > mid) {
-      const int64_t last = min_value(steps - 1, int64_t(floor((empty_until - t0) / step - 0.5)));
+      const int64_t last = min_value(k_end - 1, int64_t(floor((empty_until - t0) / step - 0.5)));
       const int64_t skip_to = last > k ? last : k;
       visitor.absorb(sigma_constant, a, min_value(t0 + double(skip_to + 1) * step, t1));
       k = skip_to;

@@ -1,0 +1,79 @@
+// How many threads the camera pass gives each pixel, and the order of the tiles. The pass's time
+// is that of its slowest warps, those of the pixels with the most volume steps: there a warp's
+// step is thousands of cycles of dependent double-precision work, and the few such warps leave
+// most of the GPU idle while they run (a per-warp timeline of knecht-fig56's 0.93 ms pass on the
+// H200: its slowest warps ran for 0.85-0.89 ms, and after the first 0.3 ms fewer than 450 of its
+// 10,800 warps were left running; results/2026-12-03-lanes-h200). So the tiles
+// whose lists hold a crossing of a volume's boundary (all of them when the eye is inside a
+// volume) give each pixel kVolumeLanes lanes that split its volume steps between them
+// (frame/shade_payload.h), and they go first; the other tiles keep one thread per pixel.
+#pragma once
+
+#include <cstdint>
+
+#include "core/hd.h"
+#include "core/lane_group.h"
+#include "cuda/buffer.h"
+#include "renderer/fragment_walk.h"
+#include "renderer/raster/tile_raster.h"
+
+namespace dv {
+
+// Lanes per pixel in volume tiles: 2 measured best of 2, 4 and 8 on knecht-fig56 (one light;
+// more lanes repeat more of each pixel's walk and surface shading than they save), 4 on
+// knecht-planner (seven lights), where 2 still takes the fragment pass from 1.26 to 0.87 ms.
+inline constexpr int kVolumeLanes = 2;
+
+// The tiles in the pass's order, as the pass's threads read it.
+struct FragmentOrderView {
+  View<const int32_t> order;    // the tiles, those with volume crossings first
+  const int64_t* volume_tiles;  // how many of those there are (in the order's memory)
+};
+
+// The pass's threads: kVolumeLanes per pixel of every tile, as many as a view of volume tiles
+// only would need; the threads past the last tile return at once.
+DV_HD inline int64_t fragment_thread_count(int64_t tiles) {
+  return tiles * kTileSide * kTileSide * kVolumeLanes;
+}
+
+// The pixel and lane group of thread i of the pass: the volume tiles' threads first, a warp
+// taking 32 / kVolumeLanes pixels of one tile with each group of kVolumeLanes consecutive lanes
+// on one pixel, then the other tiles' threads, one per pixel as pixel_of_tiled_thread takes
+// them. False past the last tile and for pixels outside the view.
+DV_HD inline bool pixel_of_fragment_thread(int64_t i, const FragmentOrderView& o, int width,
+                                           int height, int& x, int& y, LaneGroup& group) {
+  constexpr int64_t kPixels = kTileSide * kTileSide;
+  const int64_t shared = *o.volume_tiles, shared_threads = shared * kPixels * kVolumeLanes;
+  int64_t rank;
+  int local;
+  if (i < shared_threads) {
+    rank = i / (kPixels * kVolumeLanes);
+    const int thread = int(i % (kPixels * kVolumeLanes));
+    local = thread / kVolumeLanes;
+    group = LaneGroup{thread % kVolumeLanes, kVolumeLanes};
+  } else {
+    rank = shared + (i - shared_threads) / kPixels;
+    local = int((i - shared_threads) % kPixels);
+    group = LaneGroup{};
+  }
+  if (rank >= o.order.size) return false;
+  const int tile = o.order[rank];
+  const int tiles_x = tiles_along(width);
+  x = tile % tiles_x * kTileSide + local % kTileSide;
+  y = tile / tiles_x * kTileSide + local / kTileSide;
+  return x < width && y < height;
+}
+
+struct FragmentOrder {
+  Buffer<int32_t> order;
+  Buffer<int64_t> starts;  // tiles + 1: volume tiles before each tile; the last: their count
+
+  FragmentOrderView view() const { return {order.const_view(), starts.data() + order.size()}; }
+  int64_t volume_tiles() const;  // a read-back
+};
+
+// Finds the volume tiles and orders the tiles, on the device (no read-back).
+FragmentOrder order_fragment_tiles(Backend backend, const SceneView& s, const TileListsView lists,
+                                   const InsideSet* eye_media);
+
+}  // namespace dv
