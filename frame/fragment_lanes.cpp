@@ -20,8 +20,10 @@ FragmentOrder order_fragment_tiles(Backend backend, const SceneView& s, const Ti
   const View<int64_t> flag = result.starts.view();
   parallel_for(
       backend, "raster_volume_tiles", tiles + 1, DV_KERNEL_LAMBDA(int64_t t) {
-        flag[t] = 0;
-        if (t == tiles) return;
+        if (t == tiles) {
+          flag[t] = 0;
+          return;
+        }
         bool volume = has_volume(s, *eye_media);
         for (uint32_t k = lists.offsets[t]; !volume && k < lists.offsets[t + 1]; ++k)
           volume = s.objects[s.triangle_object[lists.entries[k].triangle]].interior ==

@@ -38,30 +38,21 @@ DV_HD inline int64_t fragment_thread_count(int64_t tiles) {
 
 // The pixel and lane group of thread i of the pass: the volume tiles' threads first, a warp
 // taking 32 / kVolumeLanes pixels of one tile with each group of kVolumeLanes consecutive lanes
-// on one pixel, then the other tiles' threads, one per pixel as pixel_of_tiled_thread takes
-// them. False past the last tile and for pixels outside the view.
+// on one pixel, then the other tiles' threads, one per pixel; within a tile the pixels in
+// pixel_of_tiled_thread's order. False past the last tile and for pixels outside the view.
 DV_HD inline bool pixel_of_fragment_thread(int64_t i, const FragmentOrderView& o, int width,
                                            int height, int& x, int& y, LaneGroup& group) {
   constexpr int64_t kPixels = kTileSide * kTileSide;
   const int64_t shared = *o.volume_tiles, shared_threads = shared * kPixels * kVolumeLanes;
-  int64_t rank;
-  int local;
-  if (i < shared_threads) {
-    rank = i / (kPixels * kVolumeLanes);
-    const int thread = int(i % (kPixels * kVolumeLanes));
-    local = thread / kVolumeLanes;
-    group = LaneGroup{thread % kVolumeLanes, kVolumeLanes};
-  } else {
-    rank = shared + (i - shared_threads) / kPixels;
-    local = int((i - shared_threads) % kPixels);
-    group = LaneGroup{};
-  }
+  const bool in_shared = i < shared_threads;
+  const int lanes = in_shared ? kVolumeLanes : 1;
+  const int64_t offset = in_shared ? i : i - shared_threads;
+  const int64_t rank = (in_shared ? 0 : shared) + offset / (kPixels * lanes);
+  const int thread = int(offset % (kPixels * lanes));
+  group = LaneGroup{thread % lanes, lanes};
   if (rank >= o.order.size) return false;
-  const int tile = o.order[rank];
-  const int tiles_x = tiles_along(width);
-  x = tile % tiles_x * kTileSide + local % kTileSide;
-  y = tile / tiles_x * kTileSide + local / kTileSide;
-  return x < width && y < height;
+  return pixel_of_tiled_thread(int64_t(o.order[rank]) * kPixels + thread / lanes, width, height, x,
+                               y);
 }
 
 struct FragmentOrder {

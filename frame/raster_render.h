@@ -19,7 +19,7 @@ struct RasterRenderResult {
   RenderResult render;       // image, walk counters, total milliseconds
   RasterStats raster;        // triangles, clipping, tile entries, overflow
   double raster_ms = 0.0;    // binning into tile lists
-  double fragment_ms = 0.0;  // per-pixel gather, sort, walk and shading
+  double fragment_ms = 0.0;  // tile order, per-pixel gather, sort, walk and shading
   int64_t volume_tiles = 0;  // tiles whose pixels split their volume steps between lanes
   // CUDA: the image still in device memory (linear rgb, as render.image.rgb), for display
   // without a host round trip (the viewer's CUDA-GL interop); empty on the CPU.
