@@ -86,7 +86,7 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   counters.fill_zero();
   PassTimer fragment_timer(backend);
   const FragmentOrder tile_order =
-      order_fragment_tiles(backend, view, lists.view(), eye_media.data());
+      order_fragment_tiles(backend, view, projection, lists.view(), eye_media.data());
   std::visit(
       [&](const auto& s) {
         shade_pixels(backend, view, projection, lists.view(), tile_order.view(), s, background,

@@ -1,13 +1,16 @@
-// The camera pass's lanes per pixel (frame/fragment_lanes.h, frame/shade_payload.h): a pixel's
-// volume steps split into shares and folded give the colour of one lane marching them all, and
-// the pass's layout gives every pixel of the view exactly one group of lanes, and CUDA lanes
-// that exchange their shares by warp shuffles give the CPU's image (skipped without a GPU).
+// The camera pass's lanes per pixel and tile order (frame/fragment_lanes.h, frame/shade_payload.h):
+// a pixel's volume steps split into shares and folded give the colour of one lane marching them
+// all; the pass's layout gives every pixel of the view exactly one group of lanes; the volume
+// tiles come first, by decreasing cost estimate from the occupied bricks along probe rays; CUDA
+// lanes that exchange their shares by warp shuffles give the CPU's image and the CUDA order is the
+// CPU's (skipped without a GPU).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -15,11 +18,13 @@
 #include "frame/fragment_lanes.h"
 #include "frame/raster_render.h"
 #include "frame/shade_payload.h"
+#include "generators/mesh_generators.h"
 #include "load/scene_loader.h"
 #include "renderer/camera_rays.h"
 #include "strategies/shadow/shadow_device.h"
 #include "strategies/shadow/shadow_method.h"
 #include "tests/support/paths.h"
+#include "tests/support/scene_builder.h"
 
 namespace dv {
 namespace {
@@ -72,7 +77,8 @@ TEST(VolumeLanes, EveryPixelGetsOneGroupOfLanes) {
   const RasterProjection projection = make_camera_projection(scene.camera, view.bounds);
   const TileLists lists = rasterize_tiles(Backend::cpu, view, projection);
   const InsideSet eye = media_containing(view, scene.camera.position).inside;
-  const FragmentOrder order = order_fragment_tiles(Backend::cpu, view, lists.view(), &eye);
+  const FragmentOrder order =
+      order_fragment_tiles(Backend::cpu, view, projection, lists.view(), &eye);
   const int64_t volume_tiles = order.volume_tiles();
   EXPECT_GT(volume_tiles, 0);
   EXPECT_LT(volume_tiles, lists.tile_count());
@@ -100,6 +106,87 @@ TEST(VolumeLanes, EveryPixelGetsOneGroupOfLanes) {
   EXPECT_EQ(shared_pixels, volume_tiles * kTileSide * kTileSide);
 }
 
+// A 33^3 grid over [0, 8]^3 (4 bricks of 2 world units per axis) whose density is 0 except
+// at the samples x = 17 .. 23: only the bricks at x in [4, 6] are occupied.
+TEST(VolumeLanes, OccupiedBrickLengthCountsOnlyOccupiedBricks) {
+  test::SceneBuilder b;
+  VolumeGrid g;
+  g.name = "slab";
+  g.dims = {33, 33, 33};
+  g.spacing = {0.25, 0.25, 0.25};
+  g.origin = {0.0, 0.0, 0.0};
+  for (int z = 0; z < 33; ++z)
+    for (int y = 0; y < 33; ++y)
+      for (int x = 0; x < 33; ++x) g.density.push_back(x >= 17 && x <= 23 ? 1.0f : 0.0f);
+  b.scene.volumes.push_back(g);
+  Object& v = b.add(make_box(g.bounds().lo, g.bounds().hi), 0.0, InteriorKind::volume);
+  v.interior.volume = 0;
+  v.interior.transfer.points = {{0.0, dvec3(1.0), 0.0}, {1.0, dvec3(1.0), 3.0}};
+  const SceneData data = b.build();
+  const SceneView& s = data.view();
+  const ObjectView& o = s.objects[0];
+  ASSERT_EQ(o.interior, InteriorKind::volume);
+  const auto length = [&](dvec3 origin, dvec3 dir, double t_min = 0.0) {
+    return occupied_brick_length(s, o, origin, dir, t_min);
+  };
+  EXPECT_NEAR(length({-1, 4.1, 4.1}, {1, 0, 0}), 2.0, 1e-9);       // through the slab
+  EXPECT_NEAR(length({9, 4.1, 4.1}, {-1, 0, 0}), 2.0, 1e-9);       // backwards, faces on bricks
+  EXPECT_NEAR(length({5, 4.1, 4.1}, {1, 0, 0}), 1.0, 1e-9);        // from inside the slab
+  EXPECT_NEAR(length({-1, 4.1, 4.1}, {1, 0, 0}, 6.5), 0.5, 1e-9);  // from t_min in it
+  EXPECT_NEAR(length({-1, 4.1, 4.1}, {1, 0, 0}, 7.5), 0.0, 1e-9);  // starting past it
+  EXPECT_NEAR(length({1, -1, 4.1}, {0, 1, 0}), 0.0, 1e-9);         // through empty bricks only
+  EXPECT_NEAR(length({5, -1, 4.1}, {0, 1, 0}), 8.0, 1e-9);         // along the slab
+  EXPECT_NEAR(length({5, 9, 4.1}, {1, 0, 0}), 0.0, 1e-9);          // outside the grid
+  const dvec3 diagonal = glm::normalize(dvec3(1, 1, 0));
+  EXPECT_NEAR(length({0, 0, 4.1}, diagonal), 2.0 * std::sqrt(2.0), 1e-9);
+}
+
+// The volume tiles first, by non-increasing volume_tile_cost, ties in tile order; then the
+// other tiles in tile order.
+TEST(VolumeLanes, VolumeTilesComeHeaviestFirst) {
+  const Scene scene = load_scene(test::source_dir() + "/scenes/knecht-fig56.json");
+  const SceneData data(scene, Memory::host);
+  const SceneView& view = data.view();
+  const RasterProjection projection = make_camera_projection(scene.camera, view.bounds);
+  const TileLists lists = rasterize_tiles(Backend::cpu, view, projection);
+  const InsideSet eye = media_containing(view, scene.camera.position).inside;
+  const FragmentOrder order =
+      order_fragment_tiles(Backend::cpu, view, projection, lists.view(), &eye);
+  const std::vector<int32_t> tiles = order.order.to_vector();
+  const int64_t volume_tiles = order.volume_tiles();
+  const std::vector<uint32_t> offsets(lists.view().offsets.data,
+                                      lists.view().offsets.data + lists.tile_count() + 1);
+  const auto crosses_a_volume = [&](int32_t t) {
+    for (uint32_t k = offsets[size_t(t)]; k < offsets[size_t(t) + 1]; ++k)
+      if (view.objects[view.triangle_object[lists.view().entries[k].triangle]].interior ==
+          InteriorKind::volume)
+        return true;
+    return false;
+  };
+  uint32_t previous_cost = kMostTileCost + 1;
+  int32_t previous_tile = -1;
+  std::set<uint32_t> costs;
+  for (int64_t r = 0; r < int64_t(tiles.size()); ++r) {
+    const int32_t t = tiles[size_t(r)];
+    const bool volume = r < volume_tiles;
+    ASSERT_EQ(crosses_a_volume(t), volume) << "tile " << t << " at " << r;
+    const uint32_t cost = volume ? volume_tile_cost(view, projection, t, lists.tiles_x) : 0;
+    if (r == volume_tiles) previous_cost = 0, previous_tile = -1;
+    ASSERT_LE(cost, previous_cost) << "tile " << t << " at " << r;
+    if (cost == previous_cost) {
+      ASSERT_GT(t, previous_tile) << "tile " << t << " at " << r;
+    }
+    if (volume) {
+      ASSERT_GE(cost, 1u);
+      costs.insert(cost);
+    }
+    previous_cost = cost, previous_tile = t;
+  }
+  // The estimate tells the tiles apart: fig56's volume tiles span many costs.
+  EXPECT_GT(costs.size(), 50u);
+  EXPECT_GT(*costs.rbegin(), 100u);
+}
+
 TEST(VolumeLanes, CudaSharesGiveTheCpuImage) {
   std::string why;
   if (!cuda_device_available(&why)) GTEST_SKIP() << "CPU/CUDA parity needs a GPU: " << why;
@@ -120,6 +207,25 @@ TEST(VolumeLanes, CudaSharesGiveTheCpuImage) {
       worst = std::max(worst, double(std::abs(c.render.image.rgb[i] - g.render.image.rgb[i])));
     EXPECT_LE(worst, 1e-6) << shadows;
   }
+}
+
+TEST(VolumeLanes, CudaOrdersTheTilesAsTheCpu) {
+  std::string why;
+  if (!cuda_device_available(&why)) GTEST_SKIP() << "CPU/CUDA parity needs a GPU: " << why;
+  const Scene scene = load_scene(test::source_dir() + "/scenes/knecht-fig56.json");
+  const SceneData host(scene, Memory::host), device(scene, Memory::device);
+  const RasterProjection projection = make_camera_projection(scene.camera, host.view().bounds);
+  const InsideSet eye = media_containing(host.view(), scene.camera.position).inside;
+  Buffer<InsideSet> device_eye(Memory::device, std::span<const InsideSet>(&eye, 1));
+  const TileLists cpu_lists = rasterize_tiles(Backend::cpu, host.view(), projection);
+  const TileLists cuda_lists = rasterize_tiles(Backend::cuda, device.view(), projection);
+  const FragmentOrder c =
+      order_fragment_tiles(Backend::cpu, host.view(), projection, cpu_lists.view(), &eye);
+  const FragmentOrder g = order_fragment_tiles(Backend::cuda, device.view(), projection,
+                                               cuda_lists.view(), device_eye.data());
+  EXPECT_GT(c.volume_tiles(), 0);
+  EXPECT_EQ(c.volume_tiles(), g.volume_tiles());
+  EXPECT_EQ(c.order.to_vector(), g.order.to_vector());
 }
 
 }  // namespace
