@@ -8,7 +8,9 @@
 // volume) give each pixel kVolumeLanes lanes that split its volume steps between them
 // (frame/shade_payload.h), and they go first, heaviest first: more of their warps are ready
 // than the GPU runs at once, and taken in tile order the heaviest of them started up to 0.24 ms
-// into the 0.73 ms pass (the same timeline with lanes). The other tiles keep one thread per pixel.
+// into the 0.73 ms pass (the same timeline with lanes). Heaviest first took the pass to 0.65 ms
+// (0.83 with a shadow map, was 1.06) for about 0.07 ms of ordering, 0.02 ms more than the tile
+// order took (results/2026-12-03-order-h200). The other tiles keep one thread per pixel.
 #pragma once
 
 #include <cstdint>
@@ -24,32 +26,41 @@
 
 namespace dv {
 
-// The key of a volume tile in the order: of five probe rays (the tile's corner pixels and its
-// centre), the most volume samples one would take, counted as the length it runs in bricks that
-// are not empty over each volume's step (occluders and saturation ignored), plus one, so that a
-// volume tile's key is never 0 (the other tiles' key); at most kMostTileCost.
+// The key of a volume tile in the order: of kTileProbes probe rays (the tile's corner pixels and
+// its centre), the most volume samples one would take, counted as the length it runs in bricks
+// that are not empty over each volume's step (occluders and saturation ignored), plus one, so
+// that a volume tile's key is never 0 (the other tiles' key); at most kMostTileCost.
+inline constexpr int kTileProbes = 5;
 inline constexpr uint32_t kTileCostBits = 20;
 inline constexpr uint32_t kMostTileCost = (uint32_t(1) << kTileCostBits) - 1;
 
-DV_HD inline uint32_t volume_tile_cost(const SceneView& s, const RasterProjection& projection,
-                                       int64_t tile, int tiles_x) {
+// Probe `probe` of the tile's key (0-3 the corners, row by row; 4 the centre): its samples plus
+// one.
+DV_HD inline uint32_t tile_probe_cost(const SceneView& s, const RasterProjection& projection,
+                                      int64_t tile, int tiles_x, int probe) {
   const int x0 = int(tile % tiles_x) * kTileSide, y0 = int(tile / tiles_x) * kTileSide;
   const int x_last = min_value(x0 + kTileSide - 1, projection.width - 1);
   const int y_last = min_value(y0 + kTileSide - 1, projection.height - 1);
-  const int probe_x[5] = {x0, x_last, x0, x_last, (x0 + x_last) / 2};
-  const int probe_y[5] = {y0, y0, y_last, y_last, (y0 + y_last) / 2};
-  double most = 0.0;
-  for (int p = 0; p < 5; ++p) {
-    const PixelRay ray = pixel_ray(projection, probe_x[p], probe_y[p]);
-    double samples = 0.0;
-    for (int64_t k = 0; k < s.objects.size; ++k) {
-      const ObjectView& o = s.objects[k];
-      if (o.interior == InteriorKind::volume)
-        samples += occupied_brick_length(s, o, ray.origin, ray.direction, 0.0) / o.step;
-    }
-    most = max_value(most, samples);
+  const bool centre = probe == kTileProbes - 1;
+  const int x = centre ? (x0 + x_last) / 2 : probe % 2 ? x_last : x0;
+  const int y = centre ? (y0 + y_last) / 2 : probe / 2 ? y_last : y0;
+  const PixelRay ray = pixel_ray(projection, x, y);
+  double samples = 0.0;
+  for (int64_t k = 0; k < s.objects.size; ++k) {
+    const ObjectView& o = s.objects[k];
+    if (o.interior == InteriorKind::volume)
+      samples += occupied_brick_length(s, o, ray.origin, ray.direction, 0.0) / o.step;
   }
-  return uint32_t(min_value(most, double(kMostTileCost - 1))) + 1;
+  const double most = double(kMostTileCost - 1);
+  return uint32_t(samples < most ? samples : most) + 1;  // a NaN counts as the most
+}
+
+DV_HD inline uint32_t volume_tile_cost(const SceneView& s, const RasterProjection& projection,
+                                       int64_t tile, int tiles_x) {
+  uint32_t most = 0;
+  for (int p = 0; p < kTileProbes; ++p)
+    most = max_value(most, tile_probe_cost(s, projection, tile, tiles_x, p));
+  return most;
 }
 
 // Lanes per pixel in volume tiles: 2 measured best of 2, 4 and 8 on knecht-fig56 (one light;
@@ -59,8 +70,8 @@ inline constexpr int kVolumeLanes = 2;
 
 // The tiles in the pass's order, as the pass's threads read it.
 struct FragmentOrderView {
-  View<const int32_t> order;    // the tiles, those with volume crossings first
-  const int64_t* volume_tiles;  // how many of those there are (in the order's memory)
+  View<const int32_t> order;  // the tiles, those with volume crossings first, heaviest first
+  const unsigned long long* volume_tiles;  // how many of those there are (in the order's memory)
 };
 
 // The pass's threads: kVolumeLanes per pixel of every tile, as many as a view of volume tiles
@@ -76,7 +87,7 @@ DV_HD inline int64_t fragment_thread_count(int64_t tiles) {
 DV_HD inline bool pixel_of_fragment_thread(int64_t i, const FragmentOrderView& o, int width,
                                            int height, int& x, int& y, LaneGroup& group) {
   constexpr int64_t kPixels = kTileSide * kTileSide;
-  const int64_t shared = *o.volume_tiles, shared_threads = shared * kPixels * kVolumeLanes;
+  const int64_t shared = int64_t(*o.volume_tiles), shared_threads = shared * kPixels * kVolumeLanes;
   const bool in_shared = i < shared_threads;
   const int lanes = in_shared ? kVolumeLanes : 1;
   const int64_t offset = in_shared ? i : i - shared_threads;
@@ -90,9 +101,9 @@ DV_HD inline bool pixel_of_fragment_thread(int64_t i, const FragmentOrderView& o
 
 struct FragmentOrder {
   Buffer<int32_t> order;
-  Buffer<int64_t> starts;  // tiles + 1: volume tiles before each tile; the last: their count
+  Buffer<unsigned long long> volume_tile_count;  // one value
 
-  FragmentOrderView view() const { return {order.const_view(), starts.data() + order.size()}; }
+  FragmentOrderView view() const { return {order.const_view(), volume_tile_count.data()}; }
   int64_t volume_tiles() const;  // a read-back
 };
 

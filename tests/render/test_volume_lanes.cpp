@@ -70,26 +70,31 @@ TEST(VolumeLanes, SharedStepsComposeAsOneLane) {
   EXPECT_GT(with_samples, 20);
 }
 
+// knecht-fig56 on the CPU: its tile lists and the camera pass's tile order.
+struct Fig56Tiles {
+  Scene scene = load_scene(test::source_dir() + "/scenes/knecht-fig56.json");
+  SceneData data{scene, Memory::host};
+  RasterProjection projection = make_camera_projection(scene.camera, data.view().bounds);
+  TileLists lists = rasterize_tiles(Backend::cpu, data.view(), projection);
+  InsideSet eye = media_containing(data.view(), scene.camera.position).inside;
+  FragmentOrder order =
+      order_fragment_tiles(Backend::cpu, data.view(), projection, lists.view(), &eye);
+};
+
 TEST(VolumeLanes, EveryPixelGetsOneGroupOfLanes) {
-  const Scene scene = load_scene(test::source_dir() + "/scenes/knecht-fig56.json");
-  const SceneData data(scene, Memory::host);
-  const SceneView& view = data.view();
-  const RasterProjection projection = make_camera_projection(scene.camera, view.bounds);
-  const TileLists lists = rasterize_tiles(Backend::cpu, view, projection);
-  const InsideSet eye = media_containing(view, scene.camera.position).inside;
-  const FragmentOrder order =
-      order_fragment_tiles(Backend::cpu, view, projection, lists.view(), &eye);
-  const int64_t volume_tiles = order.volume_tiles();
+  const Fig56Tiles f;
+  const int64_t volume_tiles = f.order.volume_tiles();
   EXPECT_GT(volume_tiles, 0);
-  EXPECT_LT(volume_tiles, lists.tile_count());
-  const std::vector<int32_t> tiles = order.order.to_vector();
-  EXPECT_EQ(std::set<int32_t>(tiles.begin(), tiles.end()).size(), size_t(lists.tile_count()));
+  EXPECT_LT(volume_tiles, f.lists.tile_count());
+  const std::vector<int32_t> tiles = f.order.order.to_vector();
+  EXPECT_EQ(std::set<int32_t>(tiles.begin(), tiles.end()).size(), size_t(f.lists.tile_count()));
   std::map<std::pair<int, int>, std::pair<int, int>> seen;  // pixel: (lanes, ranks seen bits)
   int64_t shared_pixels = 0;
-  for (int64_t i = 0; i < fragment_thread_count(lists.tile_count()); ++i) {
+  for (int64_t i = 0; i < fragment_thread_count(f.lists.tile_count()); ++i) {
     int x, y;
     LaneGroup g;
-    if (!pixel_of_fragment_thread(i, order.view(), projection.width, projection.height, x, y, g))
+    if (!pixel_of_fragment_thread(i, f.order.view(), f.projection.width, f.projection.height, x, y,
+                                  g))
       continue;
     auto& [lanes, ranks] = seen[{x, y}];
     if (ranks == 0) lanes = g.count;
@@ -100,7 +105,7 @@ TEST(VolumeLanes, EveryPixelGetsOneGroupOfLanes) {
     ASSERT_EQ(i % g.count, g.rank);
     shared_pixels += g.count > 1 && g.rank == 0;
   }
-  ASSERT_EQ(seen.size(), size_t(projection.width) * projection.height);
+  ASSERT_EQ(seen.size(), size_t(f.projection.width) * f.projection.height);
   for (const auto& [pixel, group] : seen) ASSERT_EQ(group.second, (1 << group.first) - 1);
   // 720 x 480: whole tiles only.
   EXPECT_EQ(shared_pixels, volume_tiles * kTileSide * kTileSide);
@@ -144,21 +149,15 @@ TEST(VolumeLanes, OccupiedBrickLengthCountsOnlyOccupiedBricks) {
 // The volume tiles first, by non-increasing volume_tile_cost, ties in tile order; then the
 // other tiles in tile order.
 TEST(VolumeLanes, VolumeTilesComeHeaviestFirst) {
-  const Scene scene = load_scene(test::source_dir() + "/scenes/knecht-fig56.json");
-  const SceneData data(scene, Memory::host);
-  const SceneView& view = data.view();
-  const RasterProjection projection = make_camera_projection(scene.camera, view.bounds);
-  const TileLists lists = rasterize_tiles(Backend::cpu, view, projection);
-  const InsideSet eye = media_containing(view, scene.camera.position).inside;
-  const FragmentOrder order =
-      order_fragment_tiles(Backend::cpu, view, projection, lists.view(), &eye);
-  const std::vector<int32_t> tiles = order.order.to_vector();
-  const int64_t volume_tiles = order.volume_tiles();
-  const std::vector<uint32_t> offsets(lists.view().offsets.data,
-                                      lists.view().offsets.data + lists.tile_count() + 1);
+  const Fig56Tiles f;
+  const SceneView& view = f.data.view();
+  const std::vector<int32_t> tiles = f.order.order.to_vector();
+  const int64_t volume_tiles = f.order.volume_tiles();
+  const std::vector<uint32_t> offsets(f.lists.view().offsets.data,
+                                      f.lists.view().offsets.data + f.lists.tile_count() + 1);
   const auto crosses_a_volume = [&](int32_t t) {
     for (uint32_t k = offsets[size_t(t)]; k < offsets[size_t(t) + 1]; ++k)
-      if (view.objects[view.triangle_object[lists.view().entries[k].triangle]].interior ==
+      if (view.objects[view.triangle_object[f.lists.view().entries[k].triangle]].interior ==
           InteriorKind::volume)
         return true;
     return false;
@@ -170,7 +169,7 @@ TEST(VolumeLanes, VolumeTilesComeHeaviestFirst) {
     const int32_t t = tiles[size_t(r)];
     const bool volume = r < volume_tiles;
     ASSERT_EQ(crosses_a_volume(t), volume) << "tile " << t << " at " << r;
-    const uint32_t cost = volume ? volume_tile_cost(view, projection, t, lists.tiles_x) : 0;
+    const uint32_t cost = volume ? volume_tile_cost(view, f.projection, t, f.lists.tiles_x) : 0;
     if (r == volume_tiles) previous_cost = 0, previous_tile = -1;
     ASSERT_LE(cost, previous_cost) << "tile " << t << " at " << r;
     if (cost == previous_cost) {
