@@ -26,7 +26,6 @@ FragmentOrder order_fragment_tiles(Backend backend, const SceneView& s,
   const View<uint32_t> key = cost.view(), flag = volume_flag.view();
   const View<int32_t> index = tile_index.view();
   unsigned long long* const count = result.volume_tile_count.data();
-  const int tiles_x = lists.tiles_x;
   parallel_for(
       backend, "raster_tile_order_clear", tiles, DV_KERNEL_LAMBDA(int64_t t) {
         key[t] = 0;
@@ -54,7 +53,7 @@ FragmentOrder order_fragment_tiles(Backend backend, const SceneView& s,
       backend, "raster_volume_tile_cost", tiles * kTileProbes, DV_KERNEL_LAMBDA(int64_t i) {
         const int64_t t = i / kTileProbes;
         if (flag[t] != 0)
-          atomic_max(&key[t], tile_probe_cost(s, projection, t, tiles_x, int(i % kTileProbes)));
+          atomic_max(&key[t], tile_probe_cost(s, projection, t, int(i % kTileProbes)));
       });
   sort_by_key_descending_queued(backend, cost.const_view(), tile_index.const_view(),
                                 result.order.view(), int(kTileCostBits));

@@ -37,8 +37,9 @@ inline constexpr uint32_t kMostTileCost = (uint32_t(1) << kTileCostBits) - 1;
 // Probe `probe` of the tile's key (0-3 the corners, row by row; 4 the centre): its samples plus
 // one.
 DV_HD inline uint32_t tile_probe_cost(const SceneView& s, const RasterProjection& projection,
-                                      int64_t tile, int tiles_x, int probe) {
-  const int x0 = int(tile % tiles_x) * kTileSide, y0 = int(tile / tiles_x) * kTileSide;
+                                      int64_t tile, int probe) {
+  int x0, y0;  // the tile's first pixel, always in the view
+  pixel_of_tiled_thread(tile * kTileSide * kTileSide, projection.width, projection.height, x0, y0);
   const int x_last = min_value(x0 + kTileSide - 1, projection.width - 1);
   const int y_last = min_value(y0 + kTileSide - 1, projection.height - 1);
   const bool centre = probe == kTileProbes - 1;
@@ -56,10 +57,10 @@ DV_HD inline uint32_t tile_probe_cost(const SceneView& s, const RasterProjection
 }
 
 DV_HD inline uint32_t volume_tile_cost(const SceneView& s, const RasterProjection& projection,
-                                       int64_t tile, int tiles_x) {
+                                       int64_t tile) {
   uint32_t most = 0;
   for (int p = 0; p < kTileProbes; ++p)
-    most = max_value(most, tile_probe_cost(s, projection, tile, tiles_x, p));
+    most = max_value(most, tile_probe_cost(s, projection, tile, p));
   return most;
 }
 

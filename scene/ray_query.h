@@ -123,15 +123,17 @@ DV_HD inline dvec3 nearest_point_on_triangle(const dvec3& p, const dvec3& a, con
   return p;
 }
 
-// Slab test of the ray against a box for t in [t_min, t_max].
-DV_HD inline bool ray_hits_box(const ShearedRay& r, const Aabb& box, double t_min, double t_max) {
+// Slab test of the ray origin + t dir (inv_dir its componentwise inverse) against a box:
+// narrows [t_min, t_max] to the part inside the box; false when nothing of it is.
+DV_HD inline bool clip_ray_to_box(const dvec3& origin, const dvec3& dir, const dvec3& inv_dir,
+                                  const Aabb& box, double& t_min, double& t_max) {
   for (int axis = 0; axis < 3; ++axis) {
-    if (r.dir[axis] == 0.0) {
-      if (r.origin[axis] < box.lo[axis] || r.origin[axis] > box.hi[axis]) return false;
+    if (dir[axis] == 0.0) {
+      if (origin[axis] < box.lo[axis] || origin[axis] > box.hi[axis]) return false;
       continue;
     }
-    double t0 = (box.lo[axis] - r.origin[axis]) * r.inv_dir[axis];
-    double t1 = (box.hi[axis] - r.origin[axis]) * r.inv_dir[axis];
+    double t0 = (box.lo[axis] - origin[axis]) * inv_dir[axis];
+    double t1 = (box.hi[axis] - origin[axis]) * inv_dir[axis];
     if (t0 > t1) {
       double tmp = t0;
       t0 = t1;
@@ -145,6 +147,11 @@ DV_HD inline bool ray_hits_box(const ShearedRay& r, const Aabb& box, double t_mi
     if (t_min > t_max) return false;
   }
   return true;
+}
+
+// Slab test of the ray against a box for t in [t_min, t_max].
+DV_HD inline bool ray_hits_box(const ShearedRay& r, const Aabb& box, double t_min, double t_max) {
+  return clip_ray_to_box(r.origin, r.dir, r.inv_dir, box, t_min, t_max);
 }
 
 DV_HD inline bool intersect_scene_triangle(const SceneView& s, const ShearedRay& r, uint32_t tri,

@@ -5,6 +5,7 @@
 
 #include "core/hd.h"
 #include "core/math.h"
+#include "scene/ray_query.h"
 #include "scene/scene_view.h"
 
 namespace dv {
@@ -121,13 +122,19 @@ DV_HD inline int64_t brick_flag_index(const ObjectView& o, const ivec3& brick) {
 // map to zero extinction under the object's transfer function are flagged when the scene is
 // flattened. Coordinates outside the grid clamp, so the first and last bricks extend to
 // infinity on their outer sides.
-DV_HD inline bool in_empty_brick(const SceneView& s, const ObjectView& o, const dvec3& g,
-                                 ivec3& brick) {
+DV_HD inline ivec3 brick_of_grid_point(const SceneView& s, const ObjectView& o, const dvec3& g) {
   const VolumeView& v = s.volumes[o.volume];
+  ivec3 brick;
   for (int a = 0; a < 3; ++a) {
     const double c = clamp_value(g[a], 0.0, double(v.dims[a] - 1));
     brick[a] = min_value(int(c) / kBrickCells, o.bricks[a] - 1);
   }
+  return brick;
+}
+
+DV_HD inline bool in_empty_brick(const SceneView& s, const ObjectView& o, const dvec3& g,
+                                 ivec3& brick) {
+  brick = brick_of_grid_point(s, o, g);
   return s.brick_empty[brick_flag_index(o, brick)] != 0;
 }
 
@@ -152,27 +159,17 @@ DV_HD inline double brick_exit_distance(const ObjectView& o, const ivec3& brick,
 // grid traversal) and one flag load per brick.
 DV_HD inline double occupied_brick_length(const SceneView& s, const ObjectView& o,
                                           const dvec3& origin, const dvec3& dir, double t_min) {
-  const VolumeView& v = s.volumes[o.volume];
   const dvec3 g0 = dvec3(o.world_to_grid * dvec4(origin, 1.0));
   const dvec3 gd = dvec3(o.world_to_grid * dvec4(dir, 0.0));
+  const Aabb grid{dvec3(0.0), dvec3(s.volumes[o.volume].dims - 1)};
   double t0 = t_min, t1 = 1e300;
-  for (int a = 0; a < 3; ++a) {
-    const double hi = double(v.dims[a] - 1);
-    if (gd[a] == 0.0) {
-      if (g0[a] < 0.0 || g0[a] > hi) return 0.0;
-      continue;
-    }
-    const double ta = -g0[a] / gd[a], tb = (hi - g0[a]) / gd[a];
-    t0 = max_value(t0, min_value(ta, tb));
-    t1 = min_value(t1, max_value(ta, tb));
-  }
-  if (!(t0 < t1)) return 0.0;
+  if (!clip_ray_to_box(g0, gd, 1.0 / gd, grid, t0, t1) || !(t0 < t1)) return 0.0;
   // The first brick is the one just past the entry, found as the sampling finds bricks; from
   // there each step crosses the nearest brick face.
-  ivec3 brick, step;
+  ivec3 step;
   dvec3 next, delta;
   const double t_start = t0 + 0.5 * min_value(t1 - t0, 1e-6);
-  in_empty_brick(s, o, g0 + gd * t_start, brick);
+  ivec3 brick = brick_of_grid_point(s, o, g0 + gd * t_start);
   for (int a = 0; a < 3; ++a) {
     step[a] = gd[a] > 0.0 ? 1 : gd[a] < 0.0 ? -1 : 0;
     delta[a] = step[a] != 0 ? double(kBrickCells) / fabs(gd[a]) : 1e300;

@@ -153,11 +153,10 @@ TEST(VolumeLanes, VolumeTilesComeHeaviestFirst) {
   const SceneView& view = f.data.view();
   const std::vector<int32_t> tiles = f.order.order.to_vector();
   const int64_t volume_tiles = f.order.volume_tiles();
-  const std::vector<uint32_t> offsets(f.lists.view().offsets.data,
-                                      f.lists.view().offsets.data + f.lists.tile_count() + 1);
+  const TileListsView lists = f.lists.view();
   const auto crosses_a_volume = [&](int32_t t) {
-    for (uint32_t k = offsets[size_t(t)]; k < offsets[size_t(t) + 1]; ++k)
-      if (view.objects[view.triangle_object[f.lists.view().entries[k].triangle]].interior ==
+    for (uint32_t k = lists.offsets[t]; k < lists.offsets[t + 1]; ++k)
+      if (view.objects[view.triangle_object[lists.entries[k].triangle]].interior ==
           InteriorKind::volume)
         return true;
     return false;
@@ -169,7 +168,7 @@ TEST(VolumeLanes, VolumeTilesComeHeaviestFirst) {
     const int32_t t = tiles[size_t(r)];
     const bool volume = r < volume_tiles;
     ASSERT_EQ(crosses_a_volume(t), volume) << "tile " << t << " at " << r;
-    const uint32_t cost = volume ? volume_tile_cost(view, f.projection, t, f.lists.tiles_x) : 0;
+    const uint32_t cost = volume ? volume_tile_cost(view, f.projection, t) : 0;
     if (r == volume_tiles) previous_cost = 0, previous_tile = -1;
     ASSERT_LE(cost, previous_cost) << "tile " << t << " at " << r;
     if (cost == previous_cost) {
