@@ -62,6 +62,7 @@ template <class Sink>
 struct DsmTexelResult {
   Sink sink;  // the sink after the texel (storages read their state from it)
   DsmTexelRecord record;
+  float final_visibility = 1.0f;  // V where the walk ended (the exact function's last value)
 };
 
 struct DsmGenerator {
@@ -186,18 +187,30 @@ struct DsmGenerator {
       float extra_error, float final_visibility) {
     const VisibilityCompressionStats& stats = compressor.stats();
     const TrackingSink<Sink>& tracked = compressor.sink();
+    return {tracked.inner,
+            texel_record(stats.nodes, stats.max_error + extra_error, tracked, final_visibility,
+                         walk_overflow),
+            final_visibility};
+  }
+
+  // The record of a texel whose function has `nodes` nodes within `error` of the walk's, of
+  // which `tracked` took a prefix (all but after a refusal: the compressor emits no more then).
+  template <class Sink>
+  DV_HD static DsmTexelRecord texel_record(int nodes, float error,
+                                           const TrackingSink<Sink>& tracked,
+                                           float final_visibility, bool walk_overflow) {
     DsmTexelRecord r;
-    r.nodes = stats.nodes;
+    r.nodes = nodes;
     r.stored = tracked.stored;
-    r.error = stats.max_error + extra_error;
-    if (stats.overflow) {
+    r.error = error;
+    if (tracked.stored < nodes) {
       // The prefix is within the bound; beyond it V' stays at the last stored value while V
       // falls to where the walk ended.
       r.flags |= kDsmStorageOverflow;
       r.error = max_value(r.error, tracked.last_v - final_visibility);
     }
     if (walk_overflow) r.flags |= kDsmWalkOverflow;
-    return {tracked.inner, r};
+    return r;
   }
 };
 

@@ -1,18 +1,22 @@
-// The `write` pass shared by the storages that fold each texel's nodes into a fixed-size record
-// (moments, fourier, occupancy; optical_depth_basis.h): one generation walk per texel into a
-// copy of `prototype` (the storage's sink with its settings) whose `texel` points at texel t's
-// record (t * stride), then the sink's write(). The `range` pass (texel_depth_ranges.h) has
-// filled each record's first and last node depth before. Include only from files compiled by
-// nvcc when CUDA is on: it launches a kernel.
+// The two passes of the storages that fold each texel's nodes into a fixed-size record
+// (moments, fourier, occupancy; optical_depth_basis.h): `range` (texel_depth_ranges.h) writes
+// each record's first and last node depth and keeps the nodes (dsm/node_replay.h); `write`
+// replays texel t's nodes (or walks them again where they were not kept) into a copy of
+// `prototype` (the storage's sink with its settings) whose `texel` points at texel t's record
+// (t * stride), then calls the sink's write(). Include only from files compiled by nvcc when
+// CUDA is on: it launches a kernel.
 #pragma once
 
+#include "dsm/node_replay.h"
 #include "dsm/storage/dsm_storage.h"
+#include "dsm/storage/node_replay_scratch.h"
+#include "dsm/storage/texel_depth_ranges.h"
 
 namespace dv {
 
 template <class Sink>
-void write_basis_texels(const DsmGenerationContext& c, const char* kernel, const Sink& prototype,
-                        int stride, View<float> data) {
+void write_basis_texels(const DsmGenerationContext& c, NodeReplay replay, const char* kernel,
+                        const Sink& prototype, int stride, View<float> data) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const View<DsmTexelRecord> records = c.records;
@@ -23,10 +27,22 @@ void write_basis_texels(const DsmGenerationContext& c, const char* kernel, const
         if (!g.texel_of_thread(i, t)) return;
         Sink sink = settings;
         sink.texel = data.data + t.index * stride;
-        const DsmTexelResult<Sink> r = g.generate(t, eps, sink);
+        const DsmTexelResult<Sink> r = replay.generate(g, t, eps, sink);
         r.sink.write();
         records[t.index] = r.record;
       });
+}
+
+// Both passes, timed as `range` and `write`, with their replay in `scratch` (begun inside the
+// range pass's time).
+template <class Sink>
+void generate_basis_texels(const DsmGenerationContext& c, NodeReplayScratch& scratch,
+                           const char* kernel, const Sink& prototype, int stride,
+                           View<float> data) {
+  timed_pass(c, "range", [&] { write_texel_depth_ranges(c, scratch.begin(c), data, stride); });
+  timed_pass(c, "write",
+             [&] { write_basis_texels(c, scratch.replay(), kernel, prototype, stride, data); });
+  scratch.end();
 }
 
 }  // namespace dv

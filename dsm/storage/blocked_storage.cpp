@@ -13,13 +13,14 @@
 #include "cuda/ensure_buffer.h"
 #include "dsm/storage/blocked_device.h"
 #include "dsm/storage/dsm_storage.h"
+#include "dsm/storage/node_replay_scratch.h"
 #include "dsm/storage/pool_sizing.h"
 
 namespace dv {
 
 namespace {
 
-void write_blocks(const DsmGenerationContext& c, const BlockedSink& prototype,
+void write_blocks(const DsmGenerationContext& c, NodeReplay replay, const BlockedSink& prototype,
                   View<int32_t> counts) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
@@ -31,7 +32,7 @@ void write_blocks(const DsmGenerationContext& c, const BlockedSink& prototype,
         BlockedSink sink = prototype;
         sink.tile = sink.layout.tile_of(t.index);
         sink.local = sink.layout.local_of(t.index);
-        const DsmTexelResult<BlockedSink> r = g.generate(t, eps, sink);
+        const DsmTexelResult<BlockedSink> r = replay.generate(g, t, eps, sink);
         counts[t.index] = r.sink.count;
         records[t.index] = r.record;
       });
@@ -58,7 +59,7 @@ class BlockedStorage final : public DsmStorage {
     const int64_t block_entries = int64_t(kBlockLayers) * tile_ * tile_;
     const double wanted = pool_units_wanted(c, sizing_, pool_, pool_per_tile_ * double(tiles_),
                                             {NodeCountGroups::tile, true, layout_}, tiles_,
-                                            kBlockLayers, layout_.blocks_per_tile);
+                                            kBlockLayers, layout_.blocks_per_tile, &scratch_);
     capacity_ = int32_t(std::min(wanted, 2147483647.0));
     ensure_buffer(indirection_, memory, tiles_ * layout_.blocks_per_tile, "dsm block indirection");
     ensure_buffer(used_, memory, 1, "dsm blocks used");
@@ -69,8 +70,9 @@ class BlockedStorage final : public DsmStorage {
     timed_pass(c, "write", [&] {
       indirection_.fill_zero();
       used_.fill_zero();
-      write_blocks(c, prototype, counts_.view());
+      write_blocks(c, scratch_.replay(), prototype, counts_.view());
     });
+    scratch_.end();
     taken_ = used_.to_vector()[0];
   }
 
@@ -89,13 +91,16 @@ class BlockedStorage final : public DsmStorage {
   nlohmann::json own_figures() const override {
     const int64_t allocated = std::min<int64_t>(taken_, capacity_);
     const int64_t block_bytes = int64_t(kBlockLayers) * tile_ * tile_ * int64_t(sizeof(DsmNode));
-    return {{"tiles", tiles_},
-            {"pool_blocks", capacity_},
-            {"blocks_allocated", allocated},
-            {"pool_exhausted", taken_ > capacity_},
-            {"block_bytes", block_bytes},
-            {"blocks_per_tile", tiles_ ? double(allocated) / double(tiles_) : 0.0},
-            {"bytes_in_blocks", allocated * block_bytes}};
+    nlohmann::json figures = {
+        {"tiles", tiles_},
+        {"pool_blocks", capacity_},
+        {"blocks_allocated", allocated},
+        {"pool_exhausted", taken_ > capacity_},
+        {"block_bytes", block_bytes},
+        {"blocks_per_tile", tiles_ ? double(allocated) / double(tiles_) : 0.0},
+        {"bytes_in_blocks", allocated * block_bytes}};
+    figures.update(scratch_.figures());
+    return figures;
   }
 
  private:
@@ -109,6 +114,7 @@ class BlockedStorage final : public DsmStorage {
   int64_t tiles_ = 0, taken_ = 0;
   Buffer<int32_t> indirection_, used_, counts_;
   Buffer<DsmNode> pool_nodes_;
+  NodeReplayScratch scratch_;
 };
 
 }  // namespace

@@ -17,13 +17,14 @@
 #include "cuda/ensure_buffer.h"
 #include "dsm/storage/chunked_device.h"
 #include "dsm/storage/dsm_storage.h"
+#include "dsm/storage/node_replay_scratch.h"
 #include "dsm/storage/pool_sizing.h"
 
 namespace dv {
 
 namespace {
 
-void write_chunks(const DsmGenerationContext& c, const ChunkPool& pool) {
+void write_chunks(const DsmGenerationContext& c, NodeReplay replay, const ChunkPool& pool) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const View<DsmTexelRecord> records = c.records;
@@ -32,7 +33,7 @@ void write_chunks(const DsmGenerationContext& c, const ChunkPool& pool) {
         DsmTexel t;
         if (!g.texel_of_thread(i, t)) return;
         const ChunkedSink sink{pool, g.block_of_thread(i), t.index};
-        records[t.index] = g.generate(t, eps, sink).record;
+        records[t.index] = replay.generate(g, t, eps, sink).record;
       });
 }
 
@@ -59,10 +60,10 @@ class ChunkedStorage final : public DsmStorage {
 
   void generate(const DsmGenerationContext& c) override {
     blocks_ = c.generator.thread_count() / (kDsmBlockSide * kDsmBlockSide);
-    const bool counted = pool_ == 0 && sizing_ == PoolSizing::counted;
+    const bool counted = counts_nodes(sizing_, pool_);
     double wanted = pool_units_wanted(c, sizing_, pool_, pool_per_block_ * double(blocks_),
                                       {NodeCountGroups::generation_block, false}, blocks_,
-                                      chunk_layers_, block_limit_);
+                                      chunk_layers_, block_limit_, &scratch_);
     // The racing allocation (alloc=thesis) loses chunks to the race, so a counted pool may run
     // out: it then doubles what the race took and the maps are written again, until no node is
     // refused (the race differs each time; growing only to what it took left a retry short now
@@ -73,6 +74,7 @@ class ChunkedStorage final : public DsmStorage {
       if (!counted || taken_ <= capacity_ || capacity_ >= int32_t(max_pool_chunks())) break;
       wanted = 2.0 * double(taken_);
     }
+    scratch_.end();
   }
 
   DsmReader reader() const override {
@@ -90,7 +92,7 @@ class ChunkedStorage final : public DsmStorage {
   int64_t bytes_per_node() const override { return sizeof(ChunkEntry); }
   nlohmann::json own_figures() const override {
     const int64_t allocated = std::min<int64_t>(taken_, capacity_);
-    return {
+    nlohmann::json figures = {
         {"chunk_bytes", int64_t(chunk_layers_) * int64_t(sizeof(ChunkEntry))},
         {"pool_chunks", capacity_},
         {"chunks_allocated", allocated},
@@ -102,6 +104,8 @@ class ChunkedStorage final : public DsmStorage {
         {"used_chunks_per_block", blocks_ ? double(used_) / double(blocks_) : 0.0},
         {"wasted_chunks_per_block", blocks_ ? double(allocated - used_) / double(blocks_) : 0.0},
         {"lookup_bytes", entries_.bytes() + first_.bytes()}};
+    figures.update(scratch_.figures());
+    return figures;
   }
 
  private:
@@ -135,7 +139,7 @@ class ChunkedStorage final : public DsmStorage {
       block_chunks_.fill_zero();
       counters_.fill_zero();
       first_.fill_zero();
-      write_chunks(c, pool);
+      write_chunks(c, scratch_.replay(), pool);
     });
     const std::vector<int32_t> counters = counters_.to_vector();
     taken_ = counters[0];
@@ -161,6 +165,7 @@ class ChunkedStorage final : public DsmStorage {
   Buffer<int32_t> next_chunk_, next_layer_, block_layers_, block_chunks_, counters_;
   Buffer<ChunkFirst> first_;
   Buffer<ChunkEntry> entries_;
+  NodeReplayScratch scratch_;
 };
 
 }  // namespace

@@ -1,28 +1,34 @@
-// Storage strategy `compact` (see compact_layout.h): counting pass, exclusive scan, packing pass.
-// Compiled by nvcc when CUDA is on.
+// Storage strategy `compact` (see compact_device.h): counting pass (which keeps the nodes for
+// the packing pass, dsm/node_replay.h), exclusive scan, packing pass. Compiled by nvcc when CUDA
+// is on.
 #include <memory>
 
 #include "cuda/ensure_buffer.h"
 #include "cuda/scan.h"
 #include "dsm/storage/compact_device.h"
 #include "dsm/storage/dsm_storage.h"
+#include "dsm/storage/node_replay_scratch.h"
 
 namespace dv {
 
 namespace {
 
-void count_nodes(const DsmGenerationContext& c, View<int64_t> counts) {
+void count_nodes(const DsmGenerationContext& c, NodeReplay replay, View<int64_t> counts) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   parallel_for(
       c.backend, "dsm_compact_count", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
         DsmTexel t;
         if (!g.texel_of_thread(i, t)) return;
-        counts[t.index] = g.generate(t, eps, CountingNodeSink{}).record.nodes;
+        const DsmTexelResult<KeepingSink<CountingNodeSink>> r =
+            g.generate(t, eps, replay.sink<CountingNodeSink>(t));
+        counts[t.index] = r.record.nodes;
+        replay.keep(t, r);
       });
 }
 
-void write_nodes(const DsmGenerationContext& c, View<const int64_t> offsets, View<DsmNode> nodes) {
+void write_nodes(const DsmGenerationContext& c, NodeReplay replay, View<const int64_t> offsets,
+                 View<DsmNode> nodes) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const View<DsmTexelRecord> records = c.records;
@@ -32,7 +38,7 @@ void write_nodes(const DsmGenerationContext& c, View<const int64_t> offsets, Vie
         if (!g.texel_of_thread(i, t)) return;
         const int64_t begin = offsets[t.index];
         const CompactSink sink{nodes.data + begin, offsets[t.index + 1] - begin};
-        records[t.index] = g.generate(t, eps, sink).record;
+        records[t.index] = replay.generate(g, t, eps, sink).record;
       });
 }
 
@@ -46,12 +52,14 @@ class CompactStorage final : public DsmStorage {
     ensure_buffer(offsets_, memory_of(c.backend), texels + 1, "dsm compact offsets");
     timed_pass(c, "count", [&] {
       offsets_.fill_zero();
-      count_nodes(c, offsets_.view());
+      count_nodes(c, scratch_.begin(c), offsets_.view());
     });
     int64_t total = 0;
     timed_pass(c, "scan", [&] { total = exclusive_scan_in_place(c.backend, offsets_.view()); });
     ensure_buffer(nodes_, memory_of(c.backend), total, "dsm compact nodes");
-    timed_pass(c, "write", [&] { write_nodes(c, offsets_.const_view(), nodes_.view()); });
+    timed_pass(c, "write",
+               [&] { write_nodes(c, scratch_.replay(), offsets_.const_view(), nodes_.view()); });
+    scratch_.end();
   }
 
   DsmReader reader() const override {
@@ -64,10 +72,12 @@ class CompactStorage final : public DsmStorage {
   bool keeps_error_bound() const override { return true; }
   int64_t bytes_per_node() const override { return sizeof(DsmNode); }
   DsmHostNodes host_nodes() const override { return {offsets_.to_vector(), nodes_.to_vector()}; }
+  nlohmann::json own_figures() const override { return scratch_.figures(); }
 
  private:
   Buffer<int64_t> offsets_;
   Buffer<DsmNode> nodes_;
+  NodeReplayScratch scratch_;
 };
 
 }  // namespace

@@ -4,9 +4,9 @@
 // clamping). A DSM storage, not a shadow method: its input is exactly the DSM generation walk's
 // per-texel visibility function (the sink interface of dsm_storage.h), and faces, clusters,
 // receiver bias and filtering are the dsm method's. Passes: `range` (first and last node
-// depth), `write` (a second walk projecting the nodes). Bytes per texel: 4 * (4 + 2K): 48
-// (K = 4), 80 (K = 8), 144 (K = 16). Parameter: frequencies (K). The answer
-// does not respect eps: truncation error and ringing remain. Compiled by nvcc when CUDA is on.
+// depth), `write` (the nodes replayed, dsm/node_replay.h, and projected). Bytes per texel: 4 * (4 +
+// 2K): 48 (K = 4), 80 (K = 8), 144 (K = 16). Parameter: frequencies (K). The answer does not
+// respect eps: truncation error and ringing remain. Compiled by nvcc when CUDA is on.
 #include <memory>
 
 #include "core/error.h"
@@ -14,7 +14,6 @@
 #include "dsm/storage/basis_texel_write.h"
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/fourier_device.h"
-#include "dsm/storage/texel_depth_ranges.h"
 
 namespace dv {
 
@@ -31,11 +30,8 @@ class FourierStorage final : public DsmStorage {
     const int stride = fourier_stride(frequencies_);
     ensure_buffer(data_, memory_of(c.backend), c.generator.texel_count() * stride,
                   "dsm fourier texels");
-    timed_pass(c, "range", [&] { write_texel_depth_ranges(c, data_.view(), stride); });
-    timed_pass(c, "write", [&] {
-      write_basis_texels(c, "dsm_fourier_write", FourierSink{nullptr, frequencies_}, stride,
-                         data_.view());
-    });
+    generate_basis_texels(c, scratch_, "dsm_fourier_write", FourierSink{nullptr, frequencies_},
+                          stride, data_.view());
   }
 
   DsmReader reader() const override {
@@ -50,14 +46,18 @@ class FourierStorage final : public DsmStorage {
   bool keeps_error_bound() const override { return false; }
   int64_t bytes_per_node() const override { return 0; }
   nlohmann::json own_figures() const override {
-    return {{"bytes_per_texel", int64_t(sizeof(float)) * fourier_stride(frequencies_)},
-            {"nodes", "folded into the coefficients, not stored"}};
+    nlohmann::json figures = {
+        {"bytes_per_texel", int64_t(sizeof(float)) * fourier_stride(frequencies_)},
+        {"nodes", "folded into the coefficients, not stored"}};
+    figures.update(scratch_.figures());
+    return figures;
   }
 
  private:
   StrategyParams params_;
   int frequencies_;
   Buffer<float> data_;
+  NodeReplayScratch scratch_;
 };
 
 }  // namespace

@@ -5,7 +5,7 @@
 // exactly the DSM generation walk's per-texel visibility function (the sink interface of
 // dsm_storage.h), and everything around the texel (faces, clusters, receiver bias, bilinear
 // filter) is the dsm method's; only what a texel keeps and how it answers differs. Passes:
-// `range` (first and last node depth), `write` (a second walk folding the nodes into moments).
+// `range` (first and last node depth), `write` (the nodes replayed and folded into moments).
 // Bytes per texel: 4 * (4 + n): 32 (n = 4), 40 (n = 6). Parameters: the table at its
 // registration. The answer is biased: a bound blended between the
 // Chebyshev-Markov-Krein bounds, not the function; it does not respect eps. Compiled by nvcc
@@ -17,7 +17,6 @@
 #include "dsm/storage/basis_texel_write.h"
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/moments_device.h"
-#include "dsm/storage/texel_depth_ranges.h"
 
 namespace dv {
 
@@ -37,11 +36,8 @@ class MomentsStorage final : public DsmStorage {
     const int stride = moments_stride(moments_);
     ensure_buffer(data_, memory_of(c.backend), c.generator.texel_count() * stride,
                   "dsm moments texels");
-    timed_pass(c, "range", [&] { write_texel_depth_ranges(c, data_.view(), stride); });
-    timed_pass(c, "write", [&] {
-      write_basis_texels(c, "dsm_moments_write", PowerMomentSink{nullptr, moments_}, stride,
-                         data_.view());
-    });
+    generate_basis_texels(c, scratch_, "dsm_moments_write", PowerMomentSink{nullptr, moments_},
+                          stride, data_.view());
   }
 
   DsmReader reader() const override {
@@ -56,8 +52,11 @@ class MomentsStorage final : public DsmStorage {
   bool keeps_error_bound() const override { return false; }
   int64_t bytes_per_node() const override { return 0; }
   nlohmann::json own_figures() const override {
-    return {{"bytes_per_texel", int64_t(sizeof(float)) * moments_stride(moments_)},
-            {"nodes", "folded into the moments, not stored"}};
+    nlohmann::json figures = {
+        {"bytes_per_texel", int64_t(sizeof(float)) * moments_stride(moments_)},
+        {"nodes", "folded into the moments, not stored"}};
+    figures.update(scratch_.figures());
+    return figures;
   }
 
  private:
@@ -66,6 +65,7 @@ class MomentsStorage final : public DsmStorage {
   double bias_;
   double overestimation_;
   Buffer<float> data_;
+  NodeReplayScratch scratch_;
 };
 
 }  // namespace

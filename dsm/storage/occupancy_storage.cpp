@@ -18,7 +18,6 @@
 #include "dsm/storage/basis_texel_write.h"
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/occupancy_device.h"
-#include "dsm/storage/texel_depth_ranges.h"
 
 namespace dv {
 
@@ -35,11 +34,8 @@ class OccupancyStorage final : public DsmStorage {
     const int stride = occupancy_stride(slices_, slabs_);
     ensure_buffer(data_, memory_of(c.backend), c.generator.texel_count() * stride,
                   "dsm occupancy texels");
-    timed_pass(c, "range", [&] { write_texel_depth_ranges(c, data_.view(), stride); });
-    timed_pass(c, "write", [&] {
-      write_basis_texels(c, "dsm_occupancy_write", OccupancySink{nullptr, slices_, slabs_}, stride,
-                         data_.view());
-    });
+    generate_basis_texels(c, scratch_, "dsm_occupancy_write",
+                          OccupancySink{nullptr, slices_, slabs_}, stride, data_.view());
   }
 
   DsmReader reader() const override {
@@ -54,8 +50,11 @@ class OccupancyStorage final : public DsmStorage {
   bool keeps_error_bound() const override { return false; }
   int64_t bytes_per_node() const override { return 0; }
   nlohmann::json own_figures() const override {
-    return {{"bytes_per_texel", int64_t(sizeof(float)) * occupancy_stride(slices_, slabs_)},
-            {"nodes", "folded into slice bits and slab sums, not stored"}};
+    nlohmann::json figures = {
+        {"bytes_per_texel", int64_t(sizeof(float)) * occupancy_stride(slices_, slabs_)},
+        {"nodes", "folded into slice bits and slab sums, not stored"}};
+    figures.update(scratch_.figures());
+    return figures;
   }
 
  private:
@@ -63,6 +62,7 @@ class OccupancyStorage final : public DsmStorage {
   int slices_;
   int slabs_;
   Buffer<float> data_;
+  NodeReplayScratch scratch_;
 };
 
 }  // namespace

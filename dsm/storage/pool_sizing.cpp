@@ -22,19 +22,24 @@ const char* to_string(PoolSizing sizing) {
 }
 
 std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
-                                           const NodeCountGroups& groups, int64_t group_count) {
+                                           const NodeCountGroups& groups, int64_t group_count,
+                                           NodeReplayScratch* scratch) {
   Buffer<int32_t> buffer(memory_of(c.backend), group_count, "dsm node counts per group");
   const View<int32_t> totals = buffer.view();
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const NodeCountGroups by = groups;
   timed_pass(c, "count", [&] {
+    const NodeReplay replay = scratch ? scratch->begin(c) : NodeReplay{};
     buffer.fill_zero();
     parallel_for(
         c.backend, "dsm_count_nodes", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
           DsmTexel t;
           if (!g.texel_of_thread(i, t)) return;
-          const int32_t nodes = g.generate(t, eps, CountingNodeSink{}).record.nodes;
+          const DsmTexelResult<KeepingSink<CountingNodeSink>> r =
+              g.generate(t, eps, replay.sink<CountingNodeSink>(t));
+          replay.keep(t, r);
+          const int32_t nodes = r.record.nodes;
           int32_t* total = &totals[by.group_of(g, i, t.index)];
           if (by.maximum)
             atomic_max_combined(total, nodes);
@@ -47,11 +52,11 @@ std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
 
 double pool_units_wanted(const DsmGenerationContext& c, PoolSizing sizing, int64_t pool,
                          double thesis_units, const NodeCountGroups& groups, int64_t group_count,
-                         int64_t per_unit, int64_t limit) {
+                         int64_t per_unit, int64_t limit, NodeReplayScratch* scratch) {
   if (pool > 0) return double(pool);
-  if (sizing != PoolSizing::counted) return thesis_units;
+  if (!counts_nodes(sizing, pool)) return thesis_units;
   double wanted = 0.0;
-  for (int32_t nodes : count_nodes_per_group(c, groups, group_count))
+  for (int32_t nodes : count_nodes_per_group(c, groups, group_count, scratch))
     wanted += double(units_needed(nodes, per_unit, limit));
   return wanted;
 }

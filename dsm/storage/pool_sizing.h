@@ -1,6 +1,7 @@
 // How the pooled storages (texture3d, chunked, blocked) size their pools. `counted` (default):
 // a counting pass first (the compact storage's: every texel's function compressed into a sink
-// that only counts), reduced per group of texels that shares pool space (the whole atlas, a
+// that counts, and for chunked and blocked keeps the nodes for the write pass to replay,
+// dsm/node_replay.h), reduced per group of texels that shares pool space (the whole atlas, a
 // generation block, a tile), and the pool sized to exactly what the maps need, never beyond the
 // strategy's limits (layers, chunks per block, an explicit pool), so those limits still
 // overflow and are reported. `thesis`: the fixed formulas of the papers (layers x texels,
@@ -15,6 +16,7 @@
 #include "core/registry.h"
 #include "dsm/storage/blocked_device.h"
 #include "dsm/storage/dsm_storage.h"
+#include "dsm/storage/node_replay_scratch.h"
 
 namespace dv {
 
@@ -38,10 +40,17 @@ struct NodeCountGroups {
   }
 };
 
+// Whether the pool is sized by a counting pass: counted sizing and no explicit pool.
+inline bool counts_nodes(PoolSizing sizing, int64_t pool) {
+  return pool <= 0 && sizing == PoolSizing::counted;
+}
+
 // The counting pass over every texel of c.generator (at c.eps), reduced per group: the totals
-// in host memory, `group_count` of them. Timed as pass "count".
+// in host memory, `group_count` of them. Timed as pass "count". Keeps the nodes for the write
+// pass in a replay begun in `scratch` when one is given (dsm/node_replay.h).
 std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
-                                           const NodeCountGroups& groups, int64_t group_count);
+                                           const NodeCountGroups& groups, int64_t group_count,
+                                           NodeReplayScratch* scratch = nullptr);
 
 // Pool units (chunks, blocks) a group needs for `nodes` nodes at `per_unit` nodes a unit, at
 // most `limit` of them (more would be refused anyway).
@@ -52,10 +61,10 @@ inline int64_t units_needed(int64_t nodes, int64_t per_unit, int64_t limit) {
 
 // How many pool units (chunks, blocks) to reserve: an explicit `pool` (> 0) as given; else with
 // counted sizing the sum over the groups of what each group's count needs (units_needed at
-// `per_unit` nodes a unit, at most `limit` a group; the counting pass runs); else
-// `thesis_units`, the papers' formula.
+// `per_unit` nodes a unit, at most `limit` a group; the counting pass runs and keeps the nodes
+// in `scratch`); else `thesis_units`, the papers' formula.
 double pool_units_wanted(const DsmGenerationContext& c, PoolSizing sizing, int64_t pool,
                          double thesis_units, const NodeCountGroups& groups, int64_t group_count,
-                         int64_t per_unit, int64_t limit);
+                         int64_t per_unit, int64_t limit, NodeReplayScratch* scratch = nullptr);
 
 }  // namespace dv
