@@ -137,33 +137,6 @@ DV_HD void atomic_max_combined(T* address, T value) {
 #endif
 }
 
-// atomic_add onto one counter from many threads that each claim `value` consecutive places of
-// a shared pool: returns the counter's value where this thread's places start. On the device the
-// lanes of a warp that reach the call together and target the same address do one atomic: the
-// lowest adds their sum, and each lane starts after the values of the lanes below it. On the
-// host the plain atomic.
-template <class T>
-DV_HD T atomic_claim_combined(T* address, T value) {
-#if DV_IN_DEVICE_CODE
-  const unsigned peers =
-      __match_any_sync(__activemask(), reinterpret_cast<unsigned long long>(address));
-  const int lane = warp_lane();
-  const int leader = __ffs(peers) - 1;
-  T below = T(0), sum = T(0);
-  for (unsigned rest = peers; rest != 0; rest &= rest - 1) {
-    const int peer = __ffs(rest) - 1;
-    const T peer_value = __shfl_sync(peers, value, peer);
-    if (peer < lane) below += peer_value;
-    sum += peer_value;
-  }
-  T base = T(0);
-  if (lane == leader) base = atomicAdd(address, sum);
-  return __shfl_sync(peers, base, leader) + below;
-#else
-  return atomic_add(address, value);
-#endif
-}
-
 // Lets other threads run while this one spin-waits (a short sleep on the device).
 DV_HD inline void spin_pause() {
 #if DV_IN_DEVICE_CODE

@@ -123,61 +123,6 @@ TEST(Backends, CombinedAtomicsEqualSerialTotalsUnderDivergence) {
   }
 }
 
-// Thread i claims combined_value(i) places of a pool with the warp-combined claim (some inside
-// a branch, some after a loop of their own length) and writes i into each; returns the pool and
-// the counter's total.
-std::vector<int64_t> claimed_pool(Backend backend, int64_t n, int64_t places,
-                                  unsigned long long& total) {
-  Buffer<unsigned long long> counter(memory_of(backend), 1, "test claim counter");
-  counter.fill_zero();
-  Buffer<int64_t> pool(memory_of(backend), std::vector<int64_t>(size_t(places), -1), "test pool");
-  unsigned long long* c = counter.data();
-  const View<int64_t> owner = pool.view();
-  parallel_for(
-      backend, "combined_claims", n, DV_KERNEL_LAMBDA(int64_t i) {
-        const unsigned long long v = combined_value(i);
-        unsigned long long start = 0;
-        if (i % 3 == 0) {
-          start = atomic_claim_combined(c, v);
-        } else {
-          unsigned long long spin = 0;
-          for (int64_t k = 0; k < i % 7; ++k) spin += (unsigned long long)k;
-          start = atomic_claim_combined(c, v + spin - spin);
-        }
-        for (unsigned long long k = 0; k < v; ++k)
-          if (start + k < (unsigned long long)owner.size) owner[int64_t(start + k)] = i;
-      });
-  if (backend == Backend::cuda) device_synchronize("combined_claims");
-  total = counter.to_vector()[0];
-  return pool.to_vector();
-}
-
-// Every thread's claimed places are its own, consecutive and its value in number, and the claims
-// tile the pool without a gap, on both backends.
-TEST(Backends, CombinedClaimsTileThePool) {
-  const int64_t n = (int64_t(1) << 16) + 77;
-  unsigned long long expected_total = 0;
-  for (int64_t i = 0; i < n; ++i) expected_total += combined_value(i);
-  for (Backend backend : {Backend::cpu, Backend::cuda}) {
-    if (backend == Backend::cuda && !cuda_device_available()) continue;
-    unsigned long long total = 0;
-    const std::vector<int64_t> pool = claimed_pool(backend, n, int64_t(expected_total), total);
-    EXPECT_EQ(total, expected_total) << to_string(backend);
-    std::vector<int64_t> first(size_t(n), -1), count(size_t(n), 0);
-    bool consecutive = true;
-    for (int64_t p = 0; p < int64_t(pool.size()); ++p) {
-      ASSERT_GE(pool[p], 0) << to_string(backend) << ": place " << p << " unclaimed";
-      const size_t i = size_t(pool[p]);
-      if (first[i] < 0) first[i] = p;
-      consecutive &= first[i] + count[i] == p;
-      ++count[i];
-    }
-    EXPECT_TRUE(consecutive) << to_string(backend);
-    for (int64_t i = 0; i < n; ++i)
-      ASSERT_EQ(count[size_t(i)], int64_t(combined_value(i))) << to_string(backend) << " " << i;
-  }
-}
-
 TEST(Backends, HostBufferRoundTrip) {
   std::vector<float> v(1000);
   std::iota(v.begin(), v.end(), 0.5f);
