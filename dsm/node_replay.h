@@ -36,6 +36,11 @@ inline constexpr int kReplayCounterStride = 8;  // unsigned long longs: 64 bytes
 // walked again.
 inline constexpr int64_t kReplayCounters = int64_t(kReplayStripes + 1) * kReplayCounterStride;
 
+// Chunks of a replay over `texels` texels whose stripes hold `stripe_chunks` each.
+DV_HD inline int64_t replay_chunks(int64_t texels, int64_t stripe_chunks) {
+  return texels + stripe_chunks * kReplayStripes;
+}
+
 // What a texel's first walk left for its replay.
 struct KeptTexel {
   int32_t nodes = 0;
@@ -137,8 +142,9 @@ struct NodeReplay {
   template <class Sink>
   DV_HD DsmTexelResult<Sink> generate(const DsmGenerator& g, const DsmTexel& t, float eps,
                                       Sink sink) const {
-    if (!active() || (kept[t.index].flags & kKeptLost)) return g.generate(t, eps, sink);
+    if (!active()) return g.generate(t, eps, sink);
     const KeptTexel k = kept[t.index];
+    if (k.flags & kKeptLost) return g.generate(t, eps, sink);
     TrackingSink<Sink> tracked{sink};
     int64_t chunk = t.index;
     for (int n = 0; n < k.nodes; ++n) {

@@ -17,7 +17,7 @@ NodeReplay NodeReplayScratch::begin(const DsmGenerationContext& c) {
   const int64_t wanted = largest_stripe_ < 0 ? texels / 4 / kReplayStripes + 1
                                              : largest_stripe_ + largest_stripe_ / 8 + 1;
   const int64_t share = std::min(wanted, (most_chunks - texels) / kReplayStripes);
-  const int64_t chunks = texels + share * kReplayStripes;
+  const int64_t chunks = replay_chunks(texels, share);
   const Memory memory = memory_of(c.backend);
   check_reservation(memory, chunks * kReplayChunkNodes * int64_t(sizeof(DsmNode)),
                     "dsm node replay chunks");

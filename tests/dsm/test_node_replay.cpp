@@ -91,7 +91,7 @@ void keep_texels(Backend backend, const DsmGenerator& generator, float eps, int3
                  FirstPass& f) {
   const Memory memory = memory_of(backend);
   const int64_t texels = generator.texel_count();
-  const int64_t chunks = texels + int64_t(share) * kReplayStripes;
+  const int64_t chunks = replay_chunks(texels, share);
   f.nodes = Buffer<DsmNode>(memory, chunks * kReplayChunkNodes, "test replay chunks");
   f.next = Buffer<int32_t>(memory, chunks, "test replay links");
   f.kept = Buffer<KeptTexel>(memory, texels, "test replay kept");
