@@ -11,11 +11,12 @@
 // claims more from its stripe and links them (`next`). The stripes split the further chunks, each
 // with its own counter on its own 64-byte line, a texel's stripe by its generation block
 // (neighbouring blocks in different stripes): one counter made the CPU threads take turns on its
-// cache line. A texel that finds its stripe full is walked again: a short pool costs time, never
-// nodes. The first pass is slower than the counting pass it replaces (0.74 against 0.57 ms at
-// 1024^2 on an H200; results/2026-12-03-replay-h200): its node stores cost it, kept in a local
-// array or written to the chunks alike (0.61 ms without them); an out-of-line keep made it 2.3 ms.
-// Host and device code; dsm/storage/node_replay_scratch.h owns the buffers.
+// cache line. A texel that finds its stripe full is listed as lost and walked again by a kernel
+// of its own after the replay (dsm/storage/replay_write.h): a short pool costs time, never nodes.
+// The first pass is slower than the counting pass it replaces (0.74 against 0.57 ms at 1024^2 on an
+// H200; results/2026-12-03-replay-h200): its node stores cost it, kept in a local array or written
+// to the chunks alike (0.61 ms without them); an out-of-line keep made it 2.3 ms. Host and device
+// code; dsm/storage/node_replay_scratch.h owns the buffers.
 #pragma once
 
 #include <cstdint>
@@ -104,10 +105,16 @@ struct NodeReplay {
   View<DsmNode> nodes;   // chunks: one per texel, then kReplayStripes stripes of stripe_chunks
   View<int32_t> next;    // per chunk: the chunk after it
   View<KeptTexel> kept;  // per texel; empty: nothing is kept or replayed
+  View<int32_t> lost;    // per texel: the generator threads of the lost texels, as many as counted
   View<unsigned long long> counters;  // kReplayCounters
   int32_t stripe_chunks = 0;
 
   DV_HD bool active() const { return kept.size > 0; }
+  DV_HD bool is_lost(const DsmTexel& t) const { return (kept[t.index].flags & kKeptLost) != 0; }
+  // How many texels the first pass lost (their threads: lost[0, lost_count())).
+  DV_HD unsigned long long lost_count() const {
+    return counters[int64_t(kReplayStripes) * kReplayCounterStride];
+  }
 
   // The first pass's sink for texel t.
   template <class Inner>
@@ -124,39 +131,47 @@ struct NodeReplay {
     return s;
   }
 
-  // First pass: texel t's walk into sink(t) gave `r`.
+  // First pass: texel t, of generator thread `thread`, walked into sink(t) gave `r`.
   template <class Inner>
-  DV_HD void keep(const DsmTexel& t, const DsmTexelResult<KeepingSink<Inner>>& r) const {
+  DV_HD void keep(int64_t thread, const DsmTexel& t,
+                  const DsmTexelResult<KeepingSink<Inner>>& r) const {
     if (!active()) return;
     uint32_t flags = (r.record.flags & kDsmWalkOverflow) ? kKeptWalkOverflow : 0u;
     if (r.sink.lost) {
       flags |= kKeptLost;
-      atomic_add_combined(&counters[int64_t(kReplayStripes) * kReplayCounterStride], 1ull);
+      const unsigned long long k =
+          atomic_add(&counters[int64_t(kReplayStripes) * kReplayCounterStride], 1ull);
+      lost[int64_t(k)] = int32_t(thread);
     }
     kept[t.index] = {r.record.nodes, r.record.error, r.final_visibility, flags};
   }
 
   // Write pass: texel t's function into `sink`, as g.generate(t, eps, sink) gives it, eps being
-  // the first pass's (a kept texel is replayed, a lost one walked again). Reads only what the
-  // first pass wrote, so a write pass may run again (chunked's retries).
-  template <class Sink>
+  // the first pass's. kWalk: walked again (a lost texel, or every texel of an inactive replay);
+  // else replayed (a kept texel). Two instantiations, so that the replaying kernel does not carry
+  // the walk's code: with it, its registers and stack made compact's write pass 0.17 ms against
+  // 0.04 (results/2026-12-03-walk-h200). Reads only what the first pass wrote, so a write pass
+  // may run again (chunked's retries).
+  template <bool kWalk, class Sink>
   DV_HD DsmTexelResult<Sink> generate(const DsmGenerator& g, const DsmTexel& t, float eps,
                                       Sink sink) const {
-    if (!active()) return g.generate(t, eps, sink);
-    const KeptTexel k = kept[t.index];
-    if (k.flags & kKeptLost) return g.generate(t, eps, sink);
-    TrackingSink<Sink> tracked{sink};
-    int64_t chunk = t.index;
-    for (int n = 0; n < k.nodes; ++n) {
-      const int slot = n % kReplayChunkNodes;
-      if (n > 0 && slot == 0) chunk = next[chunk];
-      const DsmNode node = nodes[chunk * kReplayChunkNodes + slot];
-      if (!tracked.emit(node.z, node.v)) break;
+    if constexpr (kWalk) {
+      return g.generate(t, eps, sink);
+    } else {
+      const KeptTexel k = kept[t.index];
+      TrackingSink<Sink> tracked{sink};
+      int64_t chunk = t.index;
+      for (int n = 0; n < k.nodes; ++n) {
+        const int slot = n % kReplayChunkNodes;
+        if (n > 0 && slot == 0) chunk = next[chunk];
+        const DsmNode node = nodes[chunk * kReplayChunkNodes + slot];
+        if (!tracked.emit(node.z, node.v)) break;
+      }
+      return {tracked.inner,
+              DsmGenerator::texel_record(k.nodes, k.error, tracked, k.final_visibility,
+                                         (k.flags & kKeptWalkOverflow) != 0),
+              k.final_visibility};
     }
-    return {tracked.inner,
-            DsmGenerator::texel_record(k.nodes, k.error, tracked, k.final_visibility,
-                                       (k.flags & kKeptWalkOverflow) != 0),
-            k.final_visibility};
   }
 };
 

@@ -10,27 +10,33 @@
 #include "dsm/node_replay.h"
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/node_replay_scratch.h"
+#include "dsm/storage/replay_write.h"
 #include "dsm/storage/texel_depth_ranges.h"
 
 namespace dv {
 
-template <class Sink>
+template <bool kWalk, class Sink>
 void write_basis_texels(const DsmGenerationContext& c, NodeReplay replay, const char* kernel,
                         const Sink& prototype, int stride, View<float> data) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const View<DsmTexelRecord> records = c.records;
   const Sink settings = prototype;
-  parallel_for(
-      c.backend, kernel, g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
-        DsmTexel t;
-        if (!g.texel_of_thread(i, t)) return;
+  for_replay_texels<kWalk>(
+      c, replay, kernel, DV_KERNEL_LAMBDA(int64_t, const DsmTexel& t) {
         Sink sink = settings;
         sink.texel = data.data + t.index * stride;
-        const DsmTexelResult<Sink> r = replay.generate(g, t, eps, sink);
+        const DsmTexelResult<Sink> r = replay.generate<kWalk>(g, t, eps, sink);
         r.sink.write();
         records[t.index] = r.record;
       });
+}
+
+template <class Sink>
+void write_basis_texels(const DsmGenerationContext& c, NodeReplay replay, const char* kernel,
+                        const Sink& prototype, int stride, View<float> data) {
+  if (replay.active()) write_basis_texels<false>(c, replay, kernel, prototype, stride, data);
+  write_basis_texels<true>(c, replay, kernel, prototype, stride, data);
 }
 
 // Both passes, timed as `range` and `write`, with their replay in `scratch` (begun inside the

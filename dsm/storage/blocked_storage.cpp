@@ -15,27 +15,33 @@
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/node_replay_scratch.h"
 #include "dsm/storage/pool_sizing.h"
+#include "dsm/storage/replay_write.h"
 
 namespace dv {
 
 namespace {
 
+template <bool kWalk>
 void write_blocks(const DsmGenerationContext& c, NodeReplay replay, const BlockedSink& prototype,
                   View<int32_t> counts) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const View<DsmTexelRecord> records = c.records;
-  parallel_for(
-      c.backend, "dsm_blocked_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
-        DsmTexel t;
-        if (!g.texel_of_thread(i, t)) return;
+  for_replay_texels<kWalk>(
+      c, replay, "dsm_blocked_write", DV_KERNEL_LAMBDA(int64_t, const DsmTexel& t) {
         BlockedSink sink = prototype;
         sink.tile = sink.layout.tile_of(t.index);
         sink.local = sink.layout.local_of(t.index);
-        const DsmTexelResult<BlockedSink> r = replay.generate(g, t, eps, sink);
+        const DsmTexelResult<BlockedSink> r = replay.generate<kWalk>(g, t, eps, sink);
         counts[t.index] = r.sink.count;
         records[t.index] = r.record;
       });
+}
+
+void write_blocks(const DsmGenerationContext& c, NodeReplay replay, const BlockedSink& prototype,
+                  View<int32_t> counts) {
+  if (replay.active()) write_blocks<false>(c, replay, prototype, counts);
+  write_blocks<true>(c, replay, prototype, counts);
 }
 
 class BlockedStorage final : public DsmStorage {

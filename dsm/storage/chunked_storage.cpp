@@ -19,22 +19,27 @@
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/node_replay_scratch.h"
 #include "dsm/storage/pool_sizing.h"
+#include "dsm/storage/replay_write.h"
 
 namespace dv {
 
 namespace {
 
+template <bool kWalk>
 void write_chunks(const DsmGenerationContext& c, NodeReplay replay, const ChunkPool& pool) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const View<DsmTexelRecord> records = c.records;
-  parallel_for(
-      c.backend, "dsm_chunked_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
-        DsmTexel t;
-        if (!g.texel_of_thread(i, t)) return;
+  for_replay_texels<kWalk>(
+      c, replay, "dsm_chunked_write", DV_KERNEL_LAMBDA(int64_t i, const DsmTexel& t) {
         const ChunkedSink sink{pool, g.block_of_thread(i), t.index};
-        records[t.index] = replay.generate(g, t, eps, sink).record;
+        records[t.index] = replay.generate<kWalk>(g, t, eps, sink).record;
       });
+}
+
+void write_chunks(const DsmGenerationContext& c, NodeReplay replay, const ChunkPool& pool) {
+  if (replay.active()) write_chunks<false>(c, replay, pool);
+  write_chunks<true>(c, replay, pool);
 }
 
 // Packs the allocated part of the pool into one entry per layer (the thesis's float4 texture).

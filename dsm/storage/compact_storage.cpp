@@ -8,6 +8,7 @@
 #include "dsm/storage/compact_device.h"
 #include "dsm/storage/dsm_storage.h"
 #include "dsm/storage/node_replay_scratch.h"
+#include "dsm/storage/replay_write.h"
 
 namespace dv {
 
@@ -23,23 +24,28 @@ void count_nodes(const DsmGenerationContext& c, NodeReplay replay, View<int64_t>
         const DsmTexelResult<KeepingSink<CountingNodeSink>> r =
             g.generate(t, eps, replay.sink<CountingNodeSink>(t));
         counts[t.index] = r.record.nodes;
-        replay.keep(t, r);
+        replay.keep(i, t, r);
       });
 }
 
+template <bool kWalk>
 void write_nodes(const DsmGenerationContext& c, NodeReplay replay, View<const int64_t> offsets,
                  View<DsmNode> nodes) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const View<DsmTexelRecord> records = c.records;
-  parallel_for(
-      c.backend, "dsm_compact_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
-        DsmTexel t;
-        if (!g.texel_of_thread(i, t)) return;
+  for_replay_texels<kWalk>(
+      c, replay, "dsm_compact_write", DV_KERNEL_LAMBDA(int64_t, const DsmTexel& t) {
         const int64_t begin = offsets[t.index];
         const CompactSink sink{nodes.data + begin, offsets[t.index + 1] - begin};
-        records[t.index] = replay.generate(g, t, eps, sink).record;
+        records[t.index] = replay.generate<kWalk>(g, t, eps, sink).record;
       });
+}
+
+void write_nodes(const DsmGenerationContext& c, NodeReplay replay, View<const int64_t> offsets,
+                 View<DsmNode> nodes) {
+  if (replay.active()) write_nodes<false>(c, replay, offsets, nodes);
+  write_nodes<true>(c, replay, offsets, nodes);
 }
 
 class CompactStorage final : public DsmStorage {

@@ -10,10 +10,11 @@ namespace dv {
 
 NodeReplay NodeReplayScratch::begin(const DsmGenerationContext& c) {
   const int64_t texels = c.generator.texel_count();
-  // Chunk indices are 32-bit: beyond that the replay stays inactive and every texel is walked
-  // twice, as without it.
+  // Chunk indices and the lost texels' threads are 32-bit: beyond that the replay stays inactive
+  // and every texel is walked twice, as without it.
   const int64_t most_chunks = std::numeric_limits<int32_t>::max();
-  if (texels == 0 || texels >= most_chunks) return replay_ = {};
+  if (texels == 0 || texels >= most_chunks || c.generator.thread_count() > most_chunks)
+    return replay_ = {};
   const int64_t wanted = largest_stripe_ < 0 ? texels / 4 / kReplayStripes + 1
                                              : largest_stripe_ + largest_stripe_ / 8 + 1;
   const int64_t share = std::min(wanted, (most_chunks - texels) / kReplayStripes);
@@ -24,10 +25,12 @@ NodeReplay NodeReplayScratch::begin(const DsmGenerationContext& c) {
   nodes_ = Buffer<DsmNode>(memory, chunks * kReplayChunkNodes, "dsm node replay chunks");
   next_ = Buffer<int32_t>(memory, chunks, "dsm node replay chunk links");
   kept_ = Buffer<KeptTexel>(memory, texels, "dsm node replay texels");
+  lost_ = Buffer<int32_t>(memory, texels, "dsm node replay lost texels");
   counters_ = Buffer<unsigned long long>(memory, kReplayCounters, "dsm node replay counters");
   counters_.fill_zero();
-  bytes_ = nodes_.bytes() + next_.bytes() + kept_.bytes() + counters_.bytes();
-  replay_ = {nodes_.view(), next_.view(), kept_.view(), counters_.view(), int32_t(share)};
+  bytes_ = nodes_.bytes() + next_.bytes() + kept_.bytes() + lost_.bytes() + counters_.bytes();
+  replay_ = {nodes_.view(), next_.view(),     kept_.view(),
+             lost_.view(),  counters_.view(), int32_t(share)};
   return replay_;
 }
 
@@ -39,6 +42,7 @@ void NodeReplayScratch::end() {
   nodes_ = Buffer<DsmNode>();
   next_ = Buffer<int32_t>();
   kept_ = Buffer<KeptTexel>();
+  lost_ = Buffer<int32_t>();
   counters_ = Buffer<unsigned long long>();
   replay_ = {};
 }

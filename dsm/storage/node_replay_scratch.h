@@ -4,7 +4,8 @@
 // cuda/device_memory.cpp, so this costs no cudaMalloc in steady state), and not part of the
 // storage's bytes_allocated: the storage holds none of it between generations. A chunk per
 // texel, and per stripe what the busiest stripe asked for in the last generation's first pass,
-// an eighth more (the first generation: a chunk for every fourth texel, over the stripes).
+// an eighth more (the first generation: a chunk for every fourth texel, over the stripes); a
+// record and a slot in the list of lost texels per texel.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +33,7 @@ class NodeReplayScratch {
   Buffer<DsmNode> nodes_;
   Buffer<int32_t> next_;
   Buffer<KeptTexel> kept_;
+  Buffer<int32_t> lost_;
   Buffer<unsigned long long> counters_;
   NodeReplay replay_;
   int64_t largest_stripe_ = -1;  // the most chunks one stripe asked for in the last first pass

@@ -38,7 +38,7 @@ std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
           if (!g.texel_of_thread(i, t)) return;
           const DsmTexelResult<KeepingSink<CountingNodeSink>> r =
               g.generate(t, eps, replay.sink<CountingNodeSink>(t));
-          replay.keep(t, r);
+          replay.keep(i, t, r);
           const int32_t nodes = r.record.nodes;
           int32_t* total = &totals[by.group_of(g, i, t.index)];
           if (by.maximum)

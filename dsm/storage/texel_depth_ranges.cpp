@@ -15,7 +15,7 @@ void write_texel_depth_ranges(const DsmGenerationContext& c, NodeReplay replay, 
         if (!g.texel_of_thread(i, t)) return;
         const DsmTexelResult<KeepingSink<DepthRangeSink>> r =
             g.generate(t, eps, replay.sink<DepthRangeSink>(t));
-        replay.keep(t, r);
+        replay.keep(i, t, r);
         const DepthRangeSink range = r.sink.inner;
         float* texel = data.data + t.index * stride;
         texel[0] = range.first;

@@ -12,6 +12,7 @@
 #include "cuda/device_memory.h"
 #include "dsm/node_replay.h"
 #include "dsm/storage/compact_device.h"
+#include "dsm/storage/replay_write.h"
 #include "tests/dsm/dsm_test_support.h"
 
 namespace dv {
@@ -57,22 +58,30 @@ struct TexelOutputs {
   }
 };
 
-// Every texel of g into a slot of `capacity` nodes, by replay (a walk where not kept or inactive).
+// The write pass's kernels (dsm/storage/replay_write.h) into slots of `capacity` nodes.
+template <bool kWalk>
+void write_texels(const DsmGenerationContext& c, NodeReplay replay, int capacity,
+                  View<DsmNode> out) {
+  const DsmGenerator g = c.generator;
+  const float eps = c.eps;
+  const View<DsmTexelRecord> records = c.records;
+  for_replay_texels<kWalk>(
+      c, replay, "test_replay_write", DV_KERNEL_LAMBDA(int64_t, const DsmTexel& t) {
+        const CompactSink sink{out.data + t.index * kSlotNodes, capacity};
+        records[t.index] = replay.generate<kWalk>(g, t, eps, sink).record;
+      });
+}
+
+// Every texel of g into a slot of `capacity` nodes, as a storage's write pass does it: the kept
+// texels replayed, the lost ones walked (every texel when the replay is inactive).
 TexelOutputs write_texels(Backend backend, const DsmGenerator& generator, NodeReplay replay,
                           float eps, int capacity) {
   const int64_t texels = generator.texel_count();
   Buffer<DsmNode> nodes(memory_of(backend), texels * kSlotNodes, "test replay nodes");
   Buffer<DsmTexelRecord> records(memory_of(backend), texels, "test replay records");
-  const View<DsmNode> out = nodes.view();
-  const View<DsmTexelRecord> out_records = records.view();
-  const DsmGenerator g = generator;
-  parallel_for(
-      backend, "test_replay_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
-        DsmTexel t;
-        if (!g.texel_of_thread(i, t)) return;
-        const CompactSink sink{out.data + t.index * kSlotNodes, capacity};
-        out_records[t.index] = replay.generate(g, t, eps, sink).record;
-      });
+  const DsmGenerationContext c{backend, generator, eps, records.view(), nullptr};
+  if (replay.active()) write_texels<false>(c, replay, capacity, nodes.view());
+  write_texels<true>(c, replay, capacity, nodes.view());
   if (backend == Backend::cuda) device_synchronize("test_replay_write");
   return {nodes.to_vector(), records.to_vector()};
 }
@@ -81,6 +90,7 @@ struct FirstPass {
   Buffer<DsmNode> nodes;
   Buffer<int32_t> next;
   Buffer<KeptTexel> kept;
+  Buffer<int32_t> lost;
   Buffer<unsigned long long> counters;
   NodeReplay replay;
   std::vector<int32_t> counts;  // the first pass's node count of each texel
@@ -95,10 +105,12 @@ void keep_texels(Backend backend, const DsmGenerator& generator, float eps, int3
   f.nodes = Buffer<DsmNode>(memory, chunks * kReplayChunkNodes, "test replay chunks");
   f.next = Buffer<int32_t>(memory, chunks, "test replay links");
   f.kept = Buffer<KeptTexel>(memory, texels, "test replay kept");
+  f.lost = Buffer<int32_t>(memory, texels, "test replay lost");
   f.counters = Buffer<unsigned long long>(memory, kReplayCounters, "test replay counters");
   f.counters.fill_zero();
   Buffer<int32_t> counts(memory, texels, "test replay counts");
-  f.replay = {f.nodes.view(), f.next.view(), f.kept.view(), f.counters.view(), share};
+  f.replay = {f.nodes.view(), f.next.view(),     f.kept.view(),
+              f.lost.view(),  f.counters.view(), share};
   const NodeReplay replay = f.replay;
   const View<int32_t> count_of = counts.view();
   const DsmGenerator g = generator;
@@ -109,7 +121,7 @@ void keep_texels(Backend backend, const DsmGenerator& generator, float eps, int3
         const DsmTexelResult<KeepingSink<CountingNodeSink>> r =
             g.generate(t, eps, replay.sink<CountingNodeSink>(t));
         count_of[t.index] = r.sink.inner.count;
-        replay.keep(t, r);
+        replay.keep(i, t, r);
       });
   if (backend == Backend::cuda) device_synchronize("test_replay_keep");
   f.counts = counts.to_vector();
