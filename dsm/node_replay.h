@@ -34,8 +34,9 @@ inline constexpr int kReplayChunkNodes = 4;  // fig56 at 1024^2: 2.4 nodes a tex
 inline constexpr int kReplayStripes = 64;
 inline constexpr int kReplayCounterStride = 8;  // unsigned long longs: 64 bytes
 // Counters of a replay: chunks a stripe was asked for (also beyond its share), then the texels
-// walked again.
-inline constexpr int64_t kReplayCounters = int64_t(kReplayStripes + 1) * kReplayCounterStride;
+// walked again (at kReplayLostCounter).
+inline constexpr int64_t kReplayLostCounter = int64_t(kReplayStripes) * kReplayCounterStride;
+inline constexpr int64_t kReplayCounters = kReplayLostCounter + kReplayCounterStride;
 
 // Chunks of a replay over `texels` texels whose stripes hold `stripe_chunks` each.
 DV_HD inline int64_t replay_chunks(int64_t texels, int64_t stripe_chunks) {
@@ -97,7 +98,7 @@ inline ReplayClaims replay_claims(const std::vector<unsigned long long>& counter
     c.asked += stripe;
     c.largest_stripe = stripe > c.largest_stripe ? stripe : c.largest_stripe;
   }
-  c.walked = int64_t(counters[size_t(kReplayStripes) * kReplayCounterStride]);
+  c.walked = int64_t(counters[size_t(kReplayLostCounter)]);
   return c;
 }
 
@@ -112,9 +113,7 @@ struct NodeReplay {
   DV_HD bool active() const { return kept.size > 0; }
   DV_HD bool is_lost(const DsmTexel& t) const { return (kept[t.index].flags & kKeptLost) != 0; }
   // How many texels the first pass lost (their threads: lost[0, lost_count())).
-  DV_HD unsigned long long lost_count() const {
-    return counters[int64_t(kReplayStripes) * kReplayCounterStride];
-  }
+  DV_HD unsigned long long lost_count() const { return counters[kReplayLostCounter]; }
 
   // The first pass's sink for texel t.
   template <class Inner>
@@ -139,8 +138,7 @@ struct NodeReplay {
     uint32_t flags = (r.record.flags & kDsmWalkOverflow) ? kKeptWalkOverflow : 0u;
     if (r.sink.lost) {
       flags |= kKeptLost;
-      const unsigned long long k =
-          atomic_add(&counters[int64_t(kReplayStripes) * kReplayCounterStride], 1ull);
+      const unsigned long long k = atomic_add(&counters[kReplayLostCounter], 1ull);
       lost[int64_t(k)] = int32_t(thread);
     }
     kept[t.index] = {r.record.nodes, r.record.error, r.final_visibility, flags};

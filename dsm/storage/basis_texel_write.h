@@ -32,13 +32,6 @@ void write_basis_texels(const DsmGenerationContext& c, NodeReplay replay, const 
       });
 }
 
-template <class Sink>
-void write_basis_texels(const DsmGenerationContext& c, NodeReplay replay, const char* kernel,
-                        const Sink& prototype, int stride, View<float> data) {
-  if (replay.active()) write_basis_texels<false>(c, replay, kernel, prototype, stride, data);
-  write_basis_texels<true>(c, replay, kernel, prototype, stride, data);
-}
-
 // Both passes, timed as `range` and `write`, with their replay in `scratch` (begun inside the
 // range pass's time).
 template <class Sink>
@@ -46,8 +39,12 @@ void generate_basis_texels(const DsmGenerationContext& c, NodeReplayScratch& scr
                            const char* kernel, const Sink& prototype, int stride,
                            View<float> data) {
   timed_pass(c, "range", [&] { write_texel_depth_ranges(c, scratch.begin(c), data, stride); });
-  timed_pass(c, "write",
-             [&] { write_basis_texels(c, scratch.replay(), kernel, prototype, stride, data); });
+  timed_pass(c, "write", [&] {
+    const NodeReplay replay = scratch.replay();
+    run_replay_write(replay, [&]<bool kWalk>() {
+      write_basis_texels<kWalk>(c, replay, kernel, prototype, stride, data);
+    });
+  });
   scratch.end();
 }
 

@@ -38,12 +38,6 @@ void write_blocks(const DsmGenerationContext& c, NodeReplay replay, const Blocke
       });
 }
 
-void write_blocks(const DsmGenerationContext& c, NodeReplay replay, const BlockedSink& prototype,
-                  View<int32_t> counts) {
-  if (replay.active()) write_blocks<false>(c, replay, prototype, counts);
-  write_blocks<true>(c, replay, prototype, counts);
-}
-
 class BlockedStorage final : public DsmStorage {
  public:
   explicit BlockedStorage(const StrategyParams& p)
@@ -76,7 +70,9 @@ class BlockedStorage final : public DsmStorage {
     timed_pass(c, "write", [&] {
       indirection_.fill_zero();
       used_.fill_zero();
-      write_blocks(c, scratch_.replay(), prototype, counts_.view());
+      const NodeReplay replay = scratch_.replay();
+      run_replay_write(
+          replay, [&]<bool kWalk>() { write_blocks<kWalk>(c, replay, prototype, counts_.view()); });
     });
     scratch_.end();
     taken_ = used_.to_vector()[0];

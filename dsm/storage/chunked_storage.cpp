@@ -37,11 +37,6 @@ void write_chunks(const DsmGenerationContext& c, NodeReplay replay, const ChunkP
       });
 }
 
-void write_chunks(const DsmGenerationContext& c, NodeReplay replay, const ChunkPool& pool) {
-  if (replay.active()) write_chunks<false>(c, replay, pool);
-  write_chunks<true>(c, replay, pool);
-}
-
 // Packs the allocated part of the pool into one entry per layer (the thesis's float4 texture).
 void relayout(Backend backend, const ChunkPool& pool, View<ChunkEntry> entries) {
   parallel_for(
@@ -144,7 +139,8 @@ class ChunkedStorage final : public DsmStorage {
       block_chunks_.fill_zero();
       counters_.fill_zero();
       first_.fill_zero();
-      write_chunks(c, scratch_.replay(), pool);
+      const NodeReplay replay = scratch_.replay();
+      run_replay_write(replay, [&]<bool kWalk>() { write_chunks<kWalk>(c, replay, pool); });
     });
     const std::vector<int32_t> counters = counters_.to_vector();
     taken_ = counters[0];

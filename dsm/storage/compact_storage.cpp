@@ -42,12 +42,6 @@ void write_nodes(const DsmGenerationContext& c, NodeReplay replay, View<const in
       });
 }
 
-void write_nodes(const DsmGenerationContext& c, NodeReplay replay, View<const int64_t> offsets,
-                 View<DsmNode> nodes) {
-  if (replay.active()) write_nodes<false>(c, replay, offsets, nodes);
-  write_nodes<true>(c, replay, offsets, nodes);
-}
-
 class CompactStorage final : public DsmStorage {
  public:
   std::string name() const override { return "compact"; }
@@ -63,8 +57,12 @@ class CompactStorage final : public DsmStorage {
     int64_t total = 0;
     timed_pass(c, "scan", [&] { total = exclusive_scan_in_place(c.backend, offsets_.view()); });
     ensure_buffer(nodes_, memory_of(c.backend), total, "dsm compact nodes");
-    timed_pass(c, "write",
-               [&] { write_nodes(c, scratch_.replay(), offsets_.const_view(), nodes_.view()); });
+    timed_pass(c, "write", [&] {
+      const NodeReplay replay = scratch_.replay();
+      run_replay_write(replay, [&]<bool kWalk>() {
+        write_nodes<kWalk>(c, replay, offsets_.const_view(), nodes_.view());
+      });
+    });
     scratch_.end();
   }
 

@@ -2,9 +2,8 @@
 // replays every kept texel, then one that walks the lost ones again (persistent threads over the
 // first pass's list of them, which the host never reads: with none lost its threads return at
 // once); with an inactive replay, one kernel that walks every texel. The storage writes its pass
-// as a template on kWalk whose body calls replay.generate<kWalk>, and runs it with kWalk false
-// when the replay is active, then with kWalk true. Include only from files compiled by nvcc when
-// CUDA is on.
+// as a template on kWalk whose body calls replay.generate<kWalk> and runs it through
+// run_replay_write. Include only from files compiled by nvcc when CUDA is on.
 #pragma once
 
 #include <cstdint>
@@ -42,6 +41,14 @@ void for_replay_texels(const DsmGenerationContext& c, const NodeReplay& replay, 
           body(int64_t(r.lost[k]), t);
         }
       });
+}
+
+// A write pass written as a template on kWalk, `pass` being [&]<bool kWalk>() { ... }: the kept
+// texels replayed when the replay is active (kWalk false), then the rest walked (kWalk true).
+template <class Pass>
+void run_replay_write(const NodeReplay& replay, Pass pass) {
+  if (replay.active()) pass.template operator()<false>();
+  pass.template operator()<true>();
 }
 
 }  // namespace dv

@@ -80,8 +80,8 @@ TexelOutputs write_texels(Backend backend, const DsmGenerator& generator, NodeRe
   Buffer<DsmNode> nodes(memory_of(backend), texels * kSlotNodes, "test replay nodes");
   Buffer<DsmTexelRecord> records(memory_of(backend), texels, "test replay records");
   const DsmGenerationContext c{backend, generator, eps, records.view(), nullptr};
-  if (replay.active()) write_texels<false>(c, replay, capacity, nodes.view());
-  write_texels<true>(c, replay, capacity, nodes.view());
+  run_replay_write(replay,
+                   [&]<bool kWalk>() { write_texels<kWalk>(c, replay, capacity, nodes.view()); });
   if (backend == Backend::cuda) device_synchronize("test_replay_write");
   return {nodes.to_vector(), records.to_vector()};
 }
