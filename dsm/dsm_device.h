@@ -42,9 +42,15 @@ struct DsmSource {
     }
   };
 
+  // Texel (x, y) of face f, -1 outside the map.
+  DV_HD int64_t texel_index(const ShadowFace& f, int x, int y) const {
+    if (x < 0 || y < 0 || x >= resolution || y >= resolution) return -1;
+    return f.offset + int64_t(y) * resolution + x;
+  }
+
   DV_HD float texel_visibility(const ShadowFace& f, int x, int y, float z, int& hint) const {
-    if (x < 0 || y < 0 || x >= resolution || y >= resolution) return 1.0f;
-    return reader.visibility(f.offset + int64_t(y) * resolution + x, z, hint);
+    const int64_t t = texel_index(f, x, y);
+    return t < 0 ? 1.0f : reader.visibility(t, z, hint);
   }
 
   DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
@@ -99,14 +105,24 @@ struct DsmSource {
     if (!(fp.u >= lo && fp.u <= hi && fp.v >= lo && fp.v <= hi)) return 1.0;
     const double u = clamp_value(fp.u, 0.0, resolution - 1.0);
     const double v = clamp_value(fp.v, 0.0, resolution - 1.0);
-    if (!bilinear) return texel_visibility(f, int(floor(u + 0.5)), int(floor(v + 0.5)), z, hint[0]);
+    DsmTaps taps;
+    float tv[4];
+    if (!bilinear) {
+      taps.texel[0] = texel_index(f, int(floor(u + 0.5)), int(floor(v + 0.5)));
+      taps.count = 1;
+      reader.visibilities(taps, z, hint, tv);
+      return tv[0];
+    }
     const double fx = floor(u), fy = floor(v);
     const int x = int(fx), y = int(fy);
     const double wx = u - fx, wy = v - fy;
-    const double v00 = texel_visibility(f, x, y, z, hint[0]);
-    const double v10 = texel_visibility(f, x + 1, y, z, hint[1]);
-    const double v01 = texel_visibility(f, x, y + 1, z, hint[2]);
-    const double v11 = texel_visibility(f, x + 1, y + 1, z, hint[3]);
+    taps.texel[0] = texel_index(f, x, y);
+    taps.texel[1] = texel_index(f, x + 1, y);
+    taps.texel[2] = texel_index(f, x, y + 1);
+    taps.texel[3] = texel_index(f, x + 1, y + 1);
+    taps.count = 4;
+    reader.visibilities(taps, z, hint, tv);
+    const double v00 = tv[0], v10 = tv[1], v01 = tv[2], v11 = tv[3];
     return (1.0 - wy) * ((1.0 - wx) * v00 + wx * v10) + wy * ((1.0 - wx) * v01 + wx * v11);
   }
 };

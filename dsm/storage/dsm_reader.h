@@ -31,6 +31,13 @@ enum class DsmReaderKind : uint8_t {
   occupancy
 };
 
+// The texels one lookup reads: a bilinear filter's four, or the nearest one; -1 for a texel
+// outside the map (lit).
+struct DsmTaps {
+  int64_t texel[4];
+  int count = 0;
+};
+
 struct DsmReader {
   DsmReaderKind kind = DsmReaderKind::compact;
   CompactReader compact{};
@@ -43,31 +50,48 @@ struct DsmReader {
   FourierReader fourier{};
   OccupancyReader occupancy{};
 
-  // V'(z) of texel `texel`; `hint` carries coherent-search state between lookups of one ray
-  // (start it at -1). Out of line on the GPU: inlined into each of the fragment kernel's
-  // lookups (four bilinear taps, clustered and plain faces), the nine readers took the shading
-  // kernel to 255 registers and 3216 bytes of stack (ptxas -v, sm_90); out of line, 2064 bytes.
-  DV_HD DV_NOINLINE float visibility(int64_t texel, float z, int& hint) const {
+  // f(reader) for the reader of this kind.
+  template <class F>
+  DV_HD auto with_reader(F f) const {
     switch (kind) {
       case DsmReaderKind::texture3d:
-        return texture3d.visibility(texel, z, hint);
+        return f(texture3d);
       case DsmReaderKind::chunked:
-        return chunked.visibility(texel, z, hint);
+        return f(chunked);
       case DsmReaderKind::blocked:
-        return blocked.visibility(texel, z, hint);
+        return f(blocked);
       case DsmReaderKind::beer:
-        return beer.visibility(texel, z, hint);
+        return f(beer);
       case DsmReaderKind::avsm:
-        return avsm.visibility(texel, z, hint);
+        return f(avsm);
       case DsmReaderKind::moments:
-        return moments.visibility(texel, z, hint);
+        return f(moments);
       case DsmReaderKind::fourier:
-        return fourier.visibility(texel, z, hint);
+        return f(fourier);
       case DsmReaderKind::occupancy:
-        return occupancy.visibility(texel, z, hint);
+        return f(occupancy);
       default:
-        return compact.visibility(texel, z, hint);
+        return f(compact);
     }
+  }
+
+  // V'(z) of texel `texel`; `hint` carries coherent-search state between lookups of one ray
+  // (start it at -1).
+  DV_HD DV_NOINLINE float visibility(int64_t texel, float z, int& hint) const {
+    return with_reader([&](const auto& r) { return r.visibility(texel, z, hint); });
+  }
+
+  // V'(z) of every tap of a lookup into v (1 for a tap outside the map), hint[i] tap i's
+  // coherent-search state: one call and one dispatch for the lookup's taps. Out of line on the
+  // GPU: inlined into each of the fragment kernel's lookups (four bilinear taps, clustered and
+  // plain faces), the nine readers took the shading kernel to 255 registers and 3216 bytes of
+  // stack (ptxas -v, sm_90); called once a tap, 255 registers, 2000 bytes and spills; once a
+  // lookup (with the moments resolve in registers), 240 registers, 1696 bytes, no spills.
+  DV_HD DV_NOINLINE void visibilities(const DsmTaps& taps, float z, int* hint, float* v) const {
+    with_reader([&](const auto& r) {
+      for (int i = 0; i < taps.count; ++i)
+        v[i] = taps.texel[i] < 0 ? 1.0f : r.visibility(taps.texel[i], z, hint[i]);
+    });
   }
 };
 

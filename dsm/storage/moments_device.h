@@ -52,16 +52,21 @@ struct MomentsReader {
   float overestimation = 0.0f;
 
   DV_HD float visibility(int64_t t, float z, int&) const {
-    const float* texel = data.data + t * moments_stride(moments);
+    return moments == 6 ? visibility_of<6>(t, z) : visibility_of<4>(t, z);
+  }
+
+  template <int n>
+  DV_HD float visibility_of(int64_t t, float z) const {
+    const float* texel = data.data + t * moments_stride(n);
     float outside;
     if (visibility_outside_range(texel, z, outside)) return outside;
     const double mass = texel[kTexelHeaderFloats];
     if (!(mass > 0.0)) return 1.0f;
-    double b[kMaxPowerMoments + 1];
-    for (int k = 1; k <= moments; ++k) b[k] = texel[kTexelHeaderFloats + k];
+    double b[n + 1];
+    for (int k = 1; k <= n; ++k) b[k] = texel[kTexelHeaderFloats + k];
     const double span = double(texel[1]) - double(texel[0]);
     const double u = -1.0 + 2.0 * ((double(z) - double(texel[0])) / span);
-    return float(exp(-mass * moment_fraction_in_front(b, moments, u, bias, overestimation)));
+    return float(exp(-mass * moment_fraction_in_front<n>(b, u, bias, overestimation)));
   }
 };
 

@@ -15,7 +15,9 @@
 // clamped to [0, 1] (a NaN, which only input far outside the moment space could still give,
 // becomes `overestimation`). Roots come from the quadratic formula (degree 2) or bisection between
 // the derivative's roots (degree 3): only + - * / and sqrt, so CPU and CUDA take the same decisions
-// from the same stored moments. Host and device code; double precision.
+// from the same stored moments. The resolve is a template on the moment count, so that its arrays
+// are registers on the GPU: with the count a run-time value they lived on the stack (304 bytes of
+// local memory for every lookup, ptxas -v on sm_90). Host and device code; double precision.
 #pragma once
 
 #include "core/hd.h"
@@ -89,20 +91,21 @@ DV_HD inline void quadratic_roots(const double* c, double* roots) {
 
 // The m (2 or 3) support points besides u: roots of the kernel polynomial c of degree m,
 // bounded by kMomentRootBound (a vanishing leading coefficient puts a root at infinity).
-DV_HD inline void kernel_roots(const double* c, int m, double* roots) {
+template <int m>
+DV_HD void kernel_roots(const double* c, double* roots) {
   double scale = 0.0;
   for (int i = 0; i <= m; ++i) scale = max_value(scale, c[i] < 0.0 ? -c[i] : c[i]);
   const double lead = c[m] < 0.0 ? -c[m] : c[m];
   const double bound = kMomentRootBound;
   if (lead <= scale / bound) {  // degree drops: one root far out, the rest from degree m - 1
-    if (m == 2) {
+    if constexpr (m == 2) {
       roots[0] = c[1] != 0.0 ? clamp_value(-c[0] / c[1], -bound, bound) : bound;
       roots[1] = bound;
     } else {
       quadratic_roots(c, roots);
       roots[2] = bound;
     }
-  } else if (m == 2) {
+  } else if constexpr (m == 2) {
     quadratic_roots(c, roots);
   } else {
     const double d[3] = {c[1], 2.0 * c[2], 3.0 * c[3]};  // derivative
@@ -117,9 +120,11 @@ DV_HD inline void kernel_roots(const double* c, int m, double* roots) {
 }
 
 // The fraction of b_0 in front of u from normalised moments moments[1..n] (moments[0] unused).
-DV_HD inline double moment_fraction_in_front(const double* moments, int n, double u, double bias,
-                                             double overestimation) {
-  const int m = n / 2;
+template <int n>
+DV_HD double moment_fraction_in_front(const double* moments, double u, double bias,
+                                      double overestimation) {
+  static_assert(n == 4 || n == 6, "4 or 6 power moments");
+  constexpr int m = n / 2;
   double b[kMaxPowerMoments + 1];
   b[0] = 1.0;
   for (int k = 1; k <= n; ++k) b[k] = (1.0 - bias) * moments[k] + bias * moment_bias_vector(n, k);
@@ -147,7 +152,7 @@ DV_HD inline double moment_fraction_in_front(const double* moments, int n, doubl
   // Support points x[0] = u, x[1..m]; weights f; Newton divided differences.
   double x[4], f[4];
   x[0] = u, f[0] = overestimation;
-  kernel_roots(c, m, x + 1);
+  kernel_roots<m>(c, x + 1);
   for (int i = 1; i <= m; ++i) {
     for (int j = 0; j < i; ++j) {
       const double gap = x[i] - x[j];
@@ -167,6 +172,13 @@ DV_HD inline double moment_fraction_in_front(const double* moments, int n, doubl
   double fraction = 0.0;
   for (int k = 0; k <= m; ++k) fraction += p[k] * b[k];
   return fraction == fraction ? clamp_value(fraction, 0.0, 1.0) : overestimation;
+}
+
+// The same for a moment count n (4 or 6) known at run time.
+DV_HD inline double moment_fraction_in_front(const double* moments, int n, double u, double bias,
+                                             double overestimation) {
+  return n == 6 ? moment_fraction_in_front<6>(moments, u, bias, overestimation)
+                : moment_fraction_in_front<4>(moments, u, bias, overestimation);
 }
 
 }  // namespace dv

@@ -1,16 +1,23 @@
 // Deep-shadow-map lookups against the exact oracle: points on texel-centre rays of every face
 // (spot, omni, directional) of random scenes with translucent surfaces and constant media agree
 // within the bound (eps for the compression, eps / 2 for the sampled exponential of constant
-// media); Knecht eq. 3.7's clamps, the twin rule on surfaces, the bilinear filter; and maps are
-// generated once while the camera moves.
+// media); Knecht eq. 3.7's clamps, the twin rule on surfaces, the bilinear filter (for every
+// storage on both backends: its taps, read in one reader call, are the texels read one by one);
+// and maps are generated once while the camera moves.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <span>
+#include <string>
+#include <tuple>
+#include <vector>
 
+#include "cuda/device_memory.h"
 #include "dsm/deep_shadow_maps.h"
 #include "frame/raster_render.h"
 #include "tests/dsm/dsm_test_support.h"
+#include "tests/dsm/storage_test_support.h"
 
 namespace dv {
 namespace {
@@ -136,6 +143,85 @@ TEST(DsmLookups, BilinearFilterWeightsFourTexels) {
   }
   EXPECT_GT(between, 5);  // some lookups straddle a shadow edge
 }
+
+// A lookup reads all its taps in one call to the storage's reader (DsmReader::visibilities). For
+// every storage on both backends, at points over face 0 and past its edges (off the map: lit; on
+// the last row or column: a bilinear tap beyond it counts lit), a bilinear lookup equals its four
+// texels' V', each read alone (DsmSource::texel_visibility), weighted bilinearly, and a nearest
+// lookup equals its nearest texel's, to the bit.
+class EveryStorageLookup : public ::testing::TestWithParam<std::tuple<std::string, Backend>> {};
+
+TEST_P(EveryStorageLookup, TapsReadTogetherAreTheTexelsReadAlone) {
+  const auto [storage, backend] = GetParam();
+  std::string why;
+  if (backend == Backend::cuda && !cuda_device_available(&why))
+    GTEST_SKIP() << "CUDA lookups need a GPU: " << why;
+  const int res = 20;
+  DsmSettings settings = test::storage_settings(storage, {}, 0.01f, res);
+  settings.bilinear = true;
+  const SceneData data(test::random_scene(21), memory_of(backend));
+  DeepShadowMaps maps(settings);
+  maps.generate(data, backend);
+  const DsmSource filtered = maps.source();
+  DsmSource nearest = filtered;
+  nearest.bilinear = false;
+  const ShadowFace face = maps.layout().faces[0];
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-0.7, res - 0.3);
+  std::uniform_real_distribution<double> depth(0.0, 1.5 * data.view().diagonal);
+  std::vector<FacePoint> points;
+  for (int k = 0; k < 3000; ++k) points.push_back({coordinate(rng), coordinate(rng), depth(rng)});
+  points.push_back({res - 1.0, res - 1.0, 0.5 * data.view().diagonal});
+  points.push_back({res - 0.5, 3.25, 0.5 * data.view().diagonal});
+  const Buffer<FacePoint> at(memory_of(backend), std::span<const FacePoint>(points),
+                             "test lookup points");
+  // Per point: bilinear lookup, its texels weighted, nearest lookup, its texel.
+  Buffer<double> out(memory_of(backend), 4 * at.size(), "test lookup values");
+  const View<const FacePoint> p = at.const_view();
+  const View<double> o = out.view();
+  parallel_for(
+      backend, "test_lookup_taps", at.size(), DV_KERNEL_LAMBDA(int64_t i) {
+        const ShadowReceiver r{dvec3(0.0)};  // not on a surface: no bias
+        const float z = float(p[i].depth);
+        int hint[4] = {-1, -1, -1, -1}, nearest_hint[4] = {-1, -1, -1, -1};
+        o[4 * i] = filtered.face_visibility(face, p[i], r, hint);
+        o[4 * i + 2] = nearest.face_visibility(face, p[i], r, nearest_hint);
+        const double lo = -0.5 - 1e-6, hi = res - 0.5 + 1e-6;
+        if (!(p[i].u >= lo && p[i].u <= hi && p[i].v >= lo && p[i].v <= hi)) {
+          o[4 * i + 1] = o[4 * i + 3] = 1.0;
+          return;
+        }
+        const double u = clamp_value(p[i].u, 0.0, res - 1.0);
+        const double v = clamp_value(p[i].v, 0.0, res - 1.0);
+        const int x = int(floor(u)), y = int(floor(v));
+        const double wx = u - floor(u), wy = v - floor(v);
+        int alone[5] = {-1, -1, -1, -1, -1};  // a fresh search for each texel
+        const double v00 = filtered.texel_visibility(face, x, y, z, alone[0]);
+        const double v10 = filtered.texel_visibility(face, x + 1, y, z, alone[1]);
+        const double v01 = filtered.texel_visibility(face, x, y + 1, z, alone[2]);
+        const double v11 = filtered.texel_visibility(face, x + 1, y + 1, z, alone[3]);
+        o[4 * i + 1] =
+            (1.0 - wy) * ((1.0 - wx) * v00 + wx * v10) + wy * ((1.0 - wx) * v01 + wx * v11);
+        o[4 * i + 3] =
+            nearest.texel_visibility(face, int(floor(u + 0.5)), int(floor(v + 0.5)), z, alone[4]);
+      });
+  const std::vector<double> values = out.to_vector();
+  int between = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(values[4 * i], values[4 * i + 1]) << storage << " bilinear at point " << i;
+    ASSERT_EQ(values[4 * i + 2], values[4 * i + 3]) << storage << " nearest at point " << i;
+    between += values[4 * i] > 0.0 && values[4 * i] < 1.0;
+  }
+  EXPECT_GT(between, 100) << storage;  // the lookups see partial shadow, not only 0 and 1
+}
+
+INSTANTIATE_TEST_SUITE_P(NamesAndBackends, EveryStorageLookup,
+                         ::testing::Combine(::testing::ValuesIn(storage_registry().names()),
+                                            ::testing::Values(Backend::cpu, Backend::cuda)),
+                         [](const auto& info) {
+                           return std::string(std::get<0>(info.param)) + "_" +
+                                  to_string(std::get<1>(info.param));
+                         });
 
 TEST(DsmLookups, CameraMovesDoNotRegenerate) {
   Scene scene = test::scene_file("translucent-boxes.json");
