@@ -48,6 +48,8 @@ struct DsmSource {
     return f.offset + int64_t(y) * resolution + x;
   }
 
+  // V'(z) of texel (x, y) of face f (1 outside the map) read alone, through the reader's
+  // single-texel visibility: the reference the tests hold a lookup's taps read together to.
   DV_HD float texel_visibility(const ShadowFace& f, int x, int y, float z, int& hint) const {
     const int64_t t = texel_index(f, x, y);
     return t < 0 ? 1.0f : reader.visibility(t, z, hint);
@@ -106,22 +108,24 @@ struct DsmSource {
     const double u = clamp_value(fp.u, 0.0, resolution - 1.0);
     const double v = clamp_value(fp.v, 0.0, resolution - 1.0);
     DsmTaps taps;
-    float tv[4];
-    if (!bilinear) {
+    double wx = 0.0, wy = 0.0;
+    if (bilinear) {
+      const double fx = floor(u), fy = floor(v);
+      const int x = int(fx), y = int(fy);
+      wx = u - fx;
+      wy = v - fy;
+      taps.texel[0] = texel_index(f, x, y);
+      taps.texel[1] = texel_index(f, x + 1, y);
+      taps.texel[2] = texel_index(f, x, y + 1);
+      taps.texel[3] = texel_index(f, x + 1, y + 1);
+      taps.count = 4;
+    } else {
       taps.texel[0] = texel_index(f, int(floor(u + 0.5)), int(floor(v + 0.5)));
       taps.count = 1;
-      reader.visibilities(taps, z, hint, tv);
-      return tv[0];
     }
-    const double fx = floor(u), fy = floor(v);
-    const int x = int(fx), y = int(fy);
-    const double wx = u - fx, wy = v - fy;
-    taps.texel[0] = texel_index(f, x, y);
-    taps.texel[1] = texel_index(f, x + 1, y);
-    taps.texel[2] = texel_index(f, x, y + 1);
-    taps.texel[3] = texel_index(f, x + 1, y + 1);
-    taps.count = 4;
+    float tv[4];
     reader.visibilities(taps, z, hint, tv);
+    if (!bilinear) return tv[0];
     const double v00 = tv[0], v10 = tv[1], v01 = tv[2], v11 = tv[3];
     return (1.0 - wy) * ((1.0 - wx) * v00 + wx * v10) + wy * ((1.0 - wx) * v01 + wx * v11);
   }

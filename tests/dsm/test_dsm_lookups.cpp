@@ -215,6 +215,66 @@ TEST_P(EveryStorageLookup, TapsReadTogetherAreTheTexelsReadAlone) {
   EXPECT_GT(between, 100) << storage;  // the lookups see partial shadow, not only 0 and 1
 }
 
+// Along a camera ray each tap's search starts where the same tap's last one ended (its hint):
+// texture3d and blocked walk from there down or up to the depth. For every storage on both
+// backends: at points over face 0 and past its edges, depths swept out and back (steps from a
+// small part of a node's spacing to many nodes), a lookup keeping its hints equals, to the bit,
+// the same lookup started fresh, bilinear and nearest.
+TEST_P(EveryStorageLookup, CoherentSearchesEndWhereFreshOnesDo) {
+  const auto [storage, backend] = GetParam();
+  std::string why;
+  if (backend == Backend::cuda && !cuda_device_available(&why))
+    GTEST_SKIP() << "CUDA lookups need a GPU: " << why;
+  const int res = 20;
+  DsmSettings settings = test::storage_settings(storage, {}, 0.01f, res);
+  settings.bilinear = true;
+  const SceneData data(test::random_scene(21), memory_of(backend));
+  DeepShadowMaps maps(settings);
+  maps.generate(data, backend);
+  const DsmSource filtered = maps.source();
+  DsmSource nearest = filtered;
+  nearest.bilinear = false;
+  const ShadowFace face = maps.layout().faces[0];
+  const double far = 1.5 * data.view().diagonal;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coordinate(-0.7, res - 0.3);
+  std::vector<FacePoint> points;
+  for (int k = 0; k < 500; ++k) points.push_back({coordinate(rng), coordinate(rng), far});
+  const Buffer<FacePoint> at(memory_of(backend), std::span<const FacePoint>(points),
+                             "test sweep points");
+  // Per point: lookups whose kept-hint value differs from the fresh one, lookups strictly
+  // between 0 and 1.
+  Buffer<int> out(memory_of(backend), 2 * at.size(), "test sweep counts");
+  const View<const FacePoint> p = at.const_view();
+  const View<int> o = out.view();
+  parallel_for(
+      backend, "test_lookup_sweep", at.size(), DV_KERNEL_LAMBDA(int64_t i) {
+        const ShadowReceiver r{dvec3(0.0)};
+        int kept[4] = {-1, -1, -1, -1}, kept_nearest[4] = {-1, -1, -1, -1};
+        int differ = 0, partial = 0;
+        const int steps = 40;
+        for (int j = 0; j < 2 * steps; ++j) {
+          const double s = double(j < steps ? j : 2 * steps - 1 - j) / (steps - 1);
+          const FacePoint q{p[i].u, p[i].v, p[i].depth * s * s};
+          int fresh[4] = {-1, -1, -1, -1}, fresh_nearest[4] = {-1, -1, -1, -1};
+          const double b = filtered.face_visibility(face, q, r, kept);
+          differ += b != filtered.face_visibility(face, q, r, fresh);
+          differ += nearest.face_visibility(face, q, r, kept_nearest) !=
+                    nearest.face_visibility(face, q, r, fresh_nearest);
+          partial += b > 0.0 && b < 1.0;
+        }
+        o[2 * i] = differ;
+        o[2 * i + 1] = partial;
+      });
+  const std::vector<int> counts = out.to_vector();
+  int partial = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(counts[2 * i], 0) << storage << " at point " << i;
+    partial += counts[2 * i + 1];
+  }
+  EXPECT_GT(partial, 1000) << storage;  // the sweeps cross partial shadow, not only 0 and 1
+}
+
 INSTANTIATE_TEST_SUITE_P(NamesAndBackends, EveryStorageLookup,
                          ::testing::Combine(::testing::ValuesIn(storage_registry().names()),
                                             ::testing::Values(Backend::cpu, Backend::cuda)),
