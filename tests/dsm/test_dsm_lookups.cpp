@@ -144,35 +144,57 @@ TEST(DsmLookups, BilinearFilterWeightsFourTexels) {
   EXPECT_GT(between, 5);  // some lookups straddle a shadow edge
 }
 
+// Every registered storage on the CPU and CUDA (the CUDA cases skip without a GPU).
+class EveryStorageLookup : public ::testing::TestWithParam<std::tuple<std::string, Backend>> {
+ protected:
+  void SetUp() override {
+    std::string why;
+    if (std::get<1>(GetParam()) == Backend::cuda && !cuda_device_available(&why))
+      GTEST_SKIP() << "CUDA lookups need a GPU: " << why;
+  }
+};
+
+// A random scene's deep shadow maps (20^2, bilinear) in one storage on one backend, their
+// bilinear and nearest sources and the face the tests look up.
+struct LookupMaps {
+  static constexpr int res = 20;
+  SceneData data;
+  DeepShadowMaps maps;
+  DsmSource filtered, nearest;
+  ShadowFace face;
+  LookupMaps(const std::string& storage, Backend backend)
+      : data(test::random_scene(21), memory_of(backend)), maps(bilinear_settings(storage)) {
+    maps.generate(data, backend);
+    filtered = maps.source();
+    nearest = filtered;
+    nearest.bilinear = false;
+    face = maps.layout().faces[0];
+  }
+  static DsmSettings bilinear_settings(const std::string& storage) {
+    DsmSettings settings = test::storage_settings(storage, {}, 0.01f, res);
+    settings.bilinear = true;
+    return settings;
+  }
+};
+
 // A lookup reads all its taps in one call to the storage's reader (DsmReader::visibilities). For
 // every storage on both backends, at points over face 0 and past its edges (off the map: lit; on
 // the last row or column: a bilinear tap beyond it counts lit), a bilinear lookup equals its four
 // texels' V', each read alone (DsmSource::texel_visibility), weighted bilinearly, and a nearest
 // lookup equals its nearest texel's, to the bit.
-class EveryStorageLookup : public ::testing::TestWithParam<std::tuple<std::string, Backend>> {};
-
 TEST_P(EveryStorageLookup, TapsReadTogetherAreTheTexelsReadAlone) {
   const auto [storage, backend] = GetParam();
-  std::string why;
-  if (backend == Backend::cuda && !cuda_device_available(&why))
-    GTEST_SKIP() << "CUDA lookups need a GPU: " << why;
-  const int res = 20;
-  DsmSettings settings = test::storage_settings(storage, {}, 0.01f, res);
-  settings.bilinear = true;
-  const SceneData data(test::random_scene(21), memory_of(backend));
-  DeepShadowMaps maps(settings);
-  maps.generate(data, backend);
-  const DsmSource filtered = maps.source();
-  DsmSource nearest = filtered;
-  nearest.bilinear = false;
-  const ShadowFace face = maps.layout().faces[0];
+  const LookupMaps m(storage, backend);
+  const int res = LookupMaps::res;
+  const DsmSource filtered = m.filtered, nearest = m.nearest;  // copies for the kernel
+  const ShadowFace face = m.face;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> coordinate(-0.7, res - 0.3);
-  std::uniform_real_distribution<double> depth(0.0, 1.5 * data.view().diagonal);
+  std::uniform_real_distribution<double> depth(0.0, 1.5 * m.data.view().diagonal);
   std::vector<FacePoint> points;
   for (int k = 0; k < 3000; ++k) points.push_back({coordinate(rng), coordinate(rng), depth(rng)});
-  points.push_back({res - 1.0, res - 1.0, 0.5 * data.view().diagonal});
-  points.push_back({res - 0.5, 3.25, 0.5 * data.view().diagonal});
+  points.push_back({res - 1.0, res - 1.0, 0.5 * m.data.view().diagonal});
+  points.push_back({res - 0.5, 3.25, 0.5 * m.data.view().diagonal});
   const Buffer<FacePoint> at(memory_of(backend), std::span<const FacePoint>(points),
                              "test lookup points");
   // Per point: bilinear lookup, its texels weighted, nearest lookup, its texel.
@@ -222,20 +244,11 @@ TEST_P(EveryStorageLookup, TapsReadTogetherAreTheTexelsReadAlone) {
 // the same lookup started fresh, bilinear and nearest.
 TEST_P(EveryStorageLookup, CoherentSearchesEndWhereFreshOnesDo) {
   const auto [storage, backend] = GetParam();
-  std::string why;
-  if (backend == Backend::cuda && !cuda_device_available(&why))
-    GTEST_SKIP() << "CUDA lookups need a GPU: " << why;
-  const int res = 20;
-  DsmSettings settings = test::storage_settings(storage, {}, 0.01f, res);
-  settings.bilinear = true;
-  const SceneData data(test::random_scene(21), memory_of(backend));
-  DeepShadowMaps maps(settings);
-  maps.generate(data, backend);
-  const DsmSource filtered = maps.source();
-  DsmSource nearest = filtered;
-  nearest.bilinear = false;
-  const ShadowFace face = maps.layout().faces[0];
-  const double far = 1.5 * data.view().diagonal;
+  const LookupMaps m(storage, backend);
+  const int res = LookupMaps::res;
+  const DsmSource filtered = m.filtered, nearest = m.nearest;  // copies for the kernel
+  const ShadowFace face = m.face;
+  const double far = 1.5 * m.data.view().diagonal;
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coordinate(-0.7, res - 0.3);
   std::vector<FacePoint> points;
