@@ -10,25 +10,27 @@
 #include <cstdint>
 
 #include "core/hd.h"
+#include "cuda/read_only.h"
 
 namespace dv {
 
-// One node as stored: depth from the light and visibility (1 - accumulated opacity).
-struct DsmNode {
+// One node as stored: depth from the light and visibility (1 - accumulated opacity). Aligned to
+// its size, so that a lookup reads it with one vector load (cuda/read_only.h).
+struct alignas(8) DsmNode {
   float z;
   float v;
 };
 
 // Node accessors for the search templates below (named structs, not lambdas: see
-// renderer/raster_fragments.h for why).
+// renderer/raster_fragments.h for why); lookups only, through the read-only data path.
 struct ContiguousNodes {  // node k at base[k]
   const DsmNode* base;
-  DV_HD DsmNode operator()(int k) const { return base[k]; }
+  DV_HD DsmNode operator()(int k) const { return read_only(base + k); }
 };
 struct StridedNodes {  // node k at base[k * stride]
   const DsmNode* base;
   int64_t stride;
-  DV_HD DsmNode operator()(int k) const { return base[int64_t(k) * stride]; }
+  DV_HD DsmNode operator()(int k) const { return read_only(base + int64_t(k) * stride); }
 };
 
 // The first k in [0, count] with node(k).z >= z (count when every node lies before z).

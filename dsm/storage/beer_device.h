@@ -21,6 +21,7 @@
 
 #include "core/hd.h"
 #include "cuda/buffer.h"
+#include "cuda/read_only.h"
 #include "dsm/node_search.h"
 
 namespace dv {
@@ -28,7 +29,9 @@ namespace dv {
 inline constexpr float kBeerEmptyDepth = 3.402823466e38f;  // the largest float: never reached
 inline constexpr double kBeerVisibilityFloor = 1e-6;       // = kDsmSaturatedVisibility
 
-struct BeerTexel {
+// A texel's two nodes, aligned to their size so that a lookup reads them with one vector load
+// (cuda/read_only.h).
+struct alignas(16) BeerTexel {
   DsmNode entry{kBeerEmptyDepth, 1.0f};
   DsmNode exit{kBeerEmptyDepth, 1.0f};
 };
@@ -61,7 +64,7 @@ struct BeerReader {
   View<const BeerTexel> texels;
 
   DV_HD float visibility(int64_t texel, float z, int&) const {
-    const BeerTexel t = texels[texel];
+    const BeerTexel t = read_only(texels.data + texel);
     if (!(z > t.entry.z)) return 1.0f;
     if (!(z < t.exit.z)) return t.exit.v;
     if (!(double(t.entry.v) > kBeerVisibilityFloor)) return t.exit.v;

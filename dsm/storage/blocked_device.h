@@ -10,6 +10,7 @@
 
 #include "core/hd.h"
 #include "cuda/buffer.h"
+#include "cuda/read_only.h"
 #include "dsm/node_search.h"
 #include "dsm/storage/slot_claim.h"
 
@@ -68,7 +69,7 @@ struct BlockedNodes {
   const DsmNode* pool;
   int local;
   DV_HD DsmNode operator()(int k) const {
-    return pool[layout.entry(table[k / kBlockLayers] - 1, k, local)];
+    return read_only(pool + layout.entry(read_only(table + k / kBlockLayers) - 1, k, local));
   }
 };
 
@@ -82,7 +83,7 @@ struct BlockedReader {
     const BlockedNodes node{layout,
                             indirection.data + layout.tile_of(texel) * layout.blocks_per_tile,
                             pool.data, layout.local_of(texel)};
-    return evaluate_nodes(node, counts[texel], z, hint);
+    return evaluate_nodes(node, read_only(counts.data + texel), z, hint);
   }
 };
 

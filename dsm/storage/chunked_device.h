@@ -13,20 +13,22 @@
 #include "core/atomic.h"
 #include "core/hd.h"
 #include "cuda/buffer.h"
+#include "cuda/read_only.h"
 #include "dsm/node_search.h"
 #include "dsm/storage/slot_claim.h"
 
 namespace dv {
 
-// One packed layer; chunk indices are stored + 1 (0: no next node).
-struct ChunkEntry {
+// One packed layer; chunk indices are stored + 1 (0: no next node). Aligned to its size, as is
+// ChunkFirst, so that a lookup reads it with one vector load (cuda/read_only.h).
+struct alignas(16) ChunkEntry {
   float z;
   float v;
   int32_t next_chunk;
   int32_t next_layer;
 };
 
-struct ChunkFirst {
+struct alignas(8) ChunkFirst {
   int32_t chunk;  // + 1; 0: the texel has no nodes
   int32_t layer;
 };
@@ -85,12 +87,12 @@ struct ChunkedReader {
 
   // Walks the list to the first node at or beyond z (no spatial coherence to exploit).
   DV_HD float visibility(int64_t texel, float z, int&) const {
-    const ChunkFirst f = first[texel];
+    const ChunkFirst f = read_only(first.data + texel);
     int32_t chunk = f.chunk, layer = f.layer;
     DsmNode previous{0.0f, 1.0f};
     bool any = false;
     while (chunk > 0) {
-      const ChunkEntry& e = entries[int64_t(chunk - 1) * chunk_layers + layer];
+      const ChunkEntry e = read_only(entries.data + int64_t(chunk - 1) * chunk_layers + layer);
       if (e.z >= z) return any ? interpolate_between(previous, {e.z, e.v}, z) : 1.0f;
       previous = {e.z, e.v}, any = true;
       chunk = e.next_chunk, layer = e.next_layer;

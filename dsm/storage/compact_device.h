@@ -7,6 +7,7 @@
 
 #include "core/hd.h"
 #include "cuda/buffer.h"
+#include "cuda/read_only.h"
 #include "dsm/node_search.h"
 
 namespace dv {
@@ -29,8 +30,8 @@ struct CompactReader {
   View<const DsmNode> nodes;
 
   DV_HD float visibility(int64_t texel, float z, int&) const {
-    const int64_t begin = offsets[texel];
-    const int count = int(offsets[texel + 1] - begin);
+    const int64_t begin = read_only(offsets.data + texel);
+    const int count = int(read_only(offsets.data + texel + 1) - begin);
     const ContiguousNodes node{nodes.data + begin};
     return interpolate_nodes(node, count, lower_bound_nodes(node, count, z), z);
   }

@@ -10,6 +10,7 @@
 
 #include "core/hd.h"
 #include "cuda/buffer.h"
+#include "cuda/read_only.h"
 #include "dsm/node_search.h"
 
 namespace dv {
@@ -33,7 +34,7 @@ struct Texture3dReader {
 
   DV_HD float visibility(int64_t texel, float z, int& hint) const {
     const StridedNodes node{atlas.data + texel, texels};
-    return evaluate_nodes(node, counts[texel], z, hint);
+    return evaluate_nodes(node, read_only(counts.data + texel), z, hint);
   }
 };
 
