@@ -23,14 +23,10 @@ DV_HD T read_only(const T* p) {
     static_assert(std::is_trivially_copyable_v<T> && (sizeof(T) == 8 || sizeof(T) == 16) &&
                       alignof(T) == sizeof(T),
                   "read_only: an 8- or 16-byte struct aligned to its size");
+    using Bits = std::conditional_t<sizeof(T) == 8, uint2, uint4>;
+    const Bits bits = __ldg(reinterpret_cast<const Bits*>(p));
     T out;
-    if constexpr (sizeof(T) == 8) {
-      const uint2 bits = __ldg(reinterpret_cast<const uint2*>(p));
-      std::memcpy(&out, &bits, sizeof(T));
-    } else {
-      const uint4 bits = __ldg(reinterpret_cast<const uint4*>(p));
-      std::memcpy(&out, &bits, sizeof(T));
-    }
+    std::memcpy(&out, &bits, sizeof(T));
     return out;
   }
 #else
