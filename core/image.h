@@ -1,5 +1,5 @@
 // A linear RGB float image in memory: what the renderers produce and every writer, metric and
-// viewer reads. Files are written by io/image.h.
+// viewer reads. Files are written by render/io/image.h.
 #pragma once
 
 #include <cstddef>

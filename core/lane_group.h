@@ -1,7 +1,8 @@
 // Lanes of one warp that share a task (the camera pass's volume tiles split each pixel's samples
 // between a few lanes): which share this lane takes, and the values of the others. In device code
 // a group is `count` consecutive lanes starting at a multiple of `count`; CPU threads have no
-// lanes, so there the code that shares a task does every share itself (frame/shade_payload.h).
+// lanes, so there the code that shares a task does every share itself
+// (render/frame/shade_payload.h).
 #pragma once
 
 #include <cstdint>

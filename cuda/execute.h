@@ -1,8 +1,8 @@
 // One parallel-for, two executors: `parallel_for(backend, name, n, lambda)` runs the lambda on
 // CPU threads or as a CUDA kernel. Write kernel bodies as DV_KERNEL_LAMBDA over View<> data.
 // A translation unit that calls parallel_for must be compiled by nvcc when the build has CUDA:
-// list it in deepvox_kernel_sources() (cmake/DeepvoxCuda.cmake). Forgetting it fails the CUDA
-// build at the call (a static_assert), not a run on the GPU machine.
+// list it in deepvox_kernel_sources() (scripts/cmake/DeepvoxCuda.cmake). Forgetting it fails the
+// CUDA build at the call (a static_assert), not a run on the GPU machine.
 #pragma once
 
 #include <cstdint>
@@ -33,7 +33,7 @@ void parallel_for(Backend backend, const char* name, int64_t n, F body) {
 #if defined(DEEPVOX_WITH_CUDA) && !defined(__CUDACC__)
   static_assert(kNeverTrue<F>,
                 "this file launches parallel_for: list it in deepvox_kernel_sources() so nvcc "
-                "compiles it (cmake/DeepvoxCuda.cmake)");
+                "compiles it (scripts/cmake/DeepvoxCuda.cmake)");
 #endif
   if (backend == Backend::cuda) {
 #if defined(__CUDACC__)

@@ -1,6 +1,6 @@
 // Stable sort of values by key, largest key first, on either backend (CUB's radix sort on CUDA,
 // std::stable_sort on the host): orders work heaviest first, so that the items that take longest
-// start before the lighter ones (the camera pass's volume tiles, frame/fragment_lanes.h).
+// start before the lighter ones (the camera pass's volume tiles, render/frame/fragment_lanes.h).
 #pragma once
 
 #include <cstdint>

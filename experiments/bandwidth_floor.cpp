@@ -6,8 +6,8 @@
 
 #include "core/error.h"
 #include "core/math.h"
-#include "dsm/dsm_generator.h"
-#include "renderer/raster/tile_raster.h"
+#include "engine/dsm/dsm_generator.h"
+#include "engine/raster/tile_raster.h"
 #include "strategies/voxelizer/atlas_packing.h"
 
 #if defined(DEEPVOX_WITH_CUDA)

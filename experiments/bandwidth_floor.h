@@ -28,7 +28,7 @@ struct FloorInputs {
 std::optional<double> pass_floor_bytes(const std::string& method, const std::string& pass,
                                        const FloorInputs& in);
 
-// The fewest bytes of binning a scene into tile lists (renderer/raster/tile_raster.h) `views`
+// The fewest bytes of binning a scene into tile lists (engine/raster/tile_raster.h) `views`
 // times (a light's faces, or the camera once): every view reads the triangles' indices and
 // their vertices once; the lists' entries and the tiles' offsets are written once.
 double tile_binning_floor_bytes(int64_t triangles, int64_t vertices, int views, int64_t entries,

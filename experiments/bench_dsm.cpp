@@ -1,5 +1,5 @@
-// Deep-shadow-map benchmarks on scenes/knecht-fig56.json (one spot light, two 128^3 volumes, six
-// polyhedra, 720x480), eps 0.05, per storage strategy, on the GPU with CUDA events.
+// Deep-shadow-map benchmarks on experiments/scenes/knecht-fig56.json (one spot light, two 128^3
+// volumes, six polyhedra, 720x480), eps 0.05, per storage strategy, on the GPU with CUDA events.
 // generate/<storage>/cuda at 256^2, 512^2, 1024^2: the iteration time is a regeneration of the
 // same maps in place (DeepShadowMaps::generate after a warm-up: allocations and first touch
 // done; the sum of its passes: light-view rasterization, counting, scan, writes, re-layout), what
@@ -12,8 +12,8 @@
 // pass, the memory figures and Knecht 2011 §5.8's formulas (texture3d d^2 * 64 layers * 64 bit,
 // chunked nodes * 128 bit + d^2 * 64 bit).
 // render_bilinear: the bilinear-filtered frame per storage through the harness's timed frame (the
-// suite's render_ms). lights32: every light's maps of scenes/knecht-32-lights.json plus one
-// bilinear frame (no suite runs it), through the same harness functions. Bandwidth floor
+// suite's render_ms). lights32: every light's maps of experiments/scenes/knecht-32-lights.json plus
+// one bilinear frame (no suite runs it), through the same harness functions. Bandwidth floor
 // (bandwidth_floor.h): copy_GBps measured once in the run; per modelled generation pass
 // PASS_floor_ms (its fewest bytes over that bandwidth; raster: the scene read per light view,
 // the tile lists written, while its time is all of DsmGeneration's set-up: faces, uploads, the
@@ -29,19 +29,20 @@
 #include <vector>
 
 #include "cuda/device_memory.h"
-#include "dsm/deep_shadow_maps.h"
+#include "engine/raster/tile_raster.h"
 #include "experiments/bandwidth_floor.h"
 #include "experiments/harness/shadow_measure.h"
 #include "experiments/kernel_counters.h"
-#include "load/scene_loader.h"
-#include "renderer/raster/tile_raster.h"
-#include "tests/support/paths.h"
+#include "experiments/source_paths.h"
+#include "render/load/scene_loader.h"
+#include "strategies/storage/deep_shadow_maps.h"
 
 namespace dv {
 namespace {
 
 const Scene& fig56() {
-  static const Scene scene = load_scene(test::source_dir() + "/scenes/knecht-fig56.json");
+  static const Scene scene =
+      load_scene(test::source_dir() + "/experiments/scenes/knecht-fig56.json");
   return scene;
 }
 
@@ -152,13 +153,14 @@ void dsm_render(benchmark::State& state, std::string storage) {
   state.SetLabel(cuda_device_name());
 }
 
-// scenes/knecht-32-lights.json (the same objects under 16 spot and 16 omni lights): maps of
-// every light generated, then one rasterized frame with bilinear lookups of all 32 lights;
+// experiments/scenes/knecht-32-lights.json (the same objects under 16 spot and 16 omni lights):
+// maps of every light generated, then one rasterized frame with bilinear lookups of all 32 lights;
 // range(0) = res, range(1) = clusters. On the CPU at a small image and resolution so it runs
 // anywhere; on CUDA at the scene's image size.
 void many_lights(benchmark::State& state, Backend backend) {
   if (skip_without_device(state, backend)) return;
-  static const Scene many = load_scene(test::source_dir() + "/scenes/knecht-32-lights.json");
+  static const Scene many =
+      load_scene(test::source_dir() + "/experiments/scenes/knecht-32-lights.json");
   Scene scene = many;
   if (backend == Backend::cpu) scene.camera.width = 120, scene.camera.height = 80;
   const SceneData data(scene, memory_of(backend));

@@ -8,16 +8,16 @@
 #include <string>
 
 #include "cuda/device_memory.h"
-#include "frame/reference_render.h"
-#include "load/scene_loader.h"
+#include "experiments/source_paths.h"
+#include "render/frame/reference_render.h"
+#include "render/load/scene_loader.h"
 #include "strategies/shadow/probe.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {
 
 std::string scene_path(const char* name) {
-  return test::source_dir() + "/scenes/" + name;
+  return test::source_dir() + "/experiments/scenes/" + name;
 }
 
 std::vector<dvec3> random_points(const Scene& scene, int n) {

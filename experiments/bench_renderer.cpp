@@ -1,27 +1,26 @@
 // Google Benchmark cases over the suite's own frame measurement (experiments/harness/
 // shadow_measure.h, which the `seeds` experiment no-shadow-baseline runs too): the rasterizing
-// renderer on scenes/knecht-fig56.json (one spot light, two 128^3 volumes, six polyhedra,
-// 720x480, step 0.5 voxel), tile binning and the fragment pass (gather, sort, walk, shade) timed
-// separately with CUDA events on the GPU, per shadow method (the method generated once before).
-// Knecht 2011 reports 43 ms without shadows on a GTX 480.
-// Bandwidth floor (bandwidth_floor.h): fragment_floor_ms is the image written once over the
-// device copy bandwidth measured in the run (copy_GBps), fragment_floor_x the pass's multiple;
-// raster_floor_ms / raster_floor_x the same for the tile binning (the scene read, the lists
-// written).
-// With DEEPVOX_KERNEL_TIMING=1 each case adds a counter per kernel (experiments/kernel_counters.h).
-// Run: build/bin/bench_renderer --benchmark_repetitions=5
+// renderer on experiments/scenes/knecht-fig56.json (one spot light, two 128^3 volumes, six
+// polyhedra, 720x480, step 0.5 voxel), tile binning and the fragment pass (gather, sort, walk,
+// shade) timed separately with CUDA events on the GPU, per shadow method (the method generated once
+// before). Knecht 2011 reports 43 ms without shadows on a GTX 480. Bandwidth floor
+// (bandwidth_floor.h): fragment_floor_ms is the image written once over the device copy bandwidth
+// measured in the run (copy_GBps), fragment_floor_x the pass's multiple; raster_floor_ms /
+// raster_floor_x the same for the tile binning (the scene read, the lists written). With
+// DEEPVOX_KERNEL_TIMING=1 each case adds a counter per kernel (experiments/kernel_counters.h). Run:
+// build/bin/bench_renderer --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 #include <string>
 
 #include "cuda/device_memory.h"
+#include "engine/raster/tile_raster.h"
 #include "experiments/bandwidth_floor.h"
 #include "experiments/harness/shadow_measure.h"
 #include "experiments/kernel_counters.h"
-#include "load/scene_loader.h"
-#include "renderer/raster/tile_raster.h"
-#include "tests/support/paths.h"
+#include "experiments/source_paths.h"
+#include "render/load/scene_loader.h"
 
 namespace dv {
 namespace {
@@ -31,7 +30,7 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
   std::string why;
   if (backend == Backend::cuda && !cuda_device_available(&why))
     return state.SkipWithError(why.c_str());
-  const Scene scene = load_scene(test::source_dir() + "/scenes/" + scene_name);
+  const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/" + scene_name);
   const SceneData data(scene, memory_of(backend));
   const TimedGeneration g = timed_generation(shadows, {}, data, backend, scene.camera);
   timed_frame(backend, data, scene.camera, *g.method, scene.background);  // warm-up
@@ -84,10 +83,10 @@ BENCHMARK_CAPTURE(raster_render, fig56_none_cpu, "knecht-fig56.json", "none", Ba
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
 
-// The effect planner's saving (scenes/knecht-planner.json: the Knecht-like scene's volumes and
-// translucent objects under its spot light, plus four spot lights that reach only opaque
-// objects and one that reaches nothing): `auto` against `dsm` for every light. "first" times a
-// frame with a fresh method (maps built: what an edited scene or a new light costs), "steady" a
+// The effect planner's saving (experiments/scenes/knecht-planner.json: the Knecht-like scene's
+// volumes and translucent objects under its spot light, plus four spot lights that reach only
+// opaque objects and one that reaches nothing): `auto` against `dsm` for every light. "first" times
+// a frame with a fresh method (maps built: what an edited scene or a new light costs), "steady" a
 // frame with the maps cached. Wall clock around the whole frame (map builds included).
 // Run: build/bin/bench_renderer --benchmark_filter=planner
 void planned_frame(benchmark::State& state, const char* shadows, const char* params,
@@ -95,7 +94,7 @@ void planned_frame(benchmark::State& state, const char* shadows, const char* par
   std::string why;
   if (backend == Backend::cuda && !cuda_device_available(&why))
     return state.SkipWithError(why.c_str());
-  const Scene scene = load_scene(test::source_dir() + "/scenes/knecht-planner.json");
+  const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/knecht-planner.json");
   const SceneData data(scene, memory_of(backend));
   const auto make = [&] {
     return shadow_registry().create(shadows, StrategyParams::parse({params}));

@@ -21,19 +21,21 @@
 
 #include "cuda/device_memory.h"
 #include "experiments/bandwidth_floor.h"
-#include "generators/mesh_generators.h"
+#include "experiments/source_paths.h"
+#include "render/load/mesh_generators.h"
 #include "strategies/voxelizer/atlas_voxelizer.h"
 #include "strategies/voxelizer/triangle_soup.h"
 #include "strategies/voxelizer/voxel_bounds.h"
 #include "strategies/voxelizer/voxelizer.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {
 
 TriangleSoup bench_mesh(const std::string& name) {
-  if (name == "bunny2") return triangle_soup(make_bunny(test::source_dir() + "/assets", 2));
-  if (name == "bunny3") return triangle_soup(make_bunny(test::source_dir() + "/assets", 3));
+  if (name == "bunny2")
+    return triangle_soup(make_bunny(test::source_dir() + "/experiments/assets", 2));
+  if (name == "bunny3")
+    return triangle_soup(make_bunny(test::source_dir() + "/experiments/assets", 3));
   if (name == "cube") return triangle_soup(make_box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}));
   TriangleSoup soup;
   if (name == "two-big") {  // two triangles spanning the whole x-y extent, tilted through depth

@@ -14,7 +14,7 @@ build=${1:?build dir}
 out=${OUT:-gpu-out}
 work=$(mktemp -d)
 [ -n "${2:-}" ] && export LD_LIBRARY_PATH="$PWD/$2:${LD_LIBRARY_PATH:-}"
-export DEEPVOX_SOURCE_DIR="$PWD" DEEPVOX_ASSETS="$PWD/assets"
+export DEEPVOX_SOURCE_DIR="$PWD" DEEPVOX_ASSETS="$PWD/experiments/assets"
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.mem --format=csv > "$work/gpu.txt" 2>&1
 cat "$work/gpu.txt"
 status=0
@@ -23,7 +23,8 @@ has() { [[ " $sections " == *" $1 "* ]]; }
 # Packs what exists so far: a run cut short by the device's time limit still returns its logs.
 pack() { mkdir -p "$out" && tar -czf "$out/gpu-check.tar.gz" -C "$work" .; }
 limit=${STEP_TIMEOUT:-240}  # seconds per test binary, benchmark or experiment
-has tests && for t in test_core test_render test_oracle test_raster test_voxel test_dsm test_hard; do
+has tests && for t in test_core test_frame test_shadow test_oracle test_raster test_voxelizer test_dsm \
+    test_storage test_hard; do
   [ -x "$build/bin/$t" ] || continue
   timeout "$limit" "$build/bin/$t" --gtest_output="json:$work/$t.json" > "$work/$t.log" 2>&1 ||
     status=1
@@ -35,7 +36,7 @@ bin="$build/bin/deepvox-lean"
 has renders && for scene in demo ct-phantom intersecting-volumes knecht-fig56; do
   for shadows in reference shadowmap dsm; do
     for backend in cuda cpu; do
-      "$bin" render "scenes/$scene.json" --backend "$backend" --shadows "$shadows" \
+      "$bin" render "experiments/scenes/$scene.json" --backend "$backend" --shadows "$shadows" \
         --out "$work/$scene-$shadows-$backend.png" --stats "$work/$scene-$shadows-$backend.json" \
         >> "$work/render.log" 2>&1 || status=1
     done

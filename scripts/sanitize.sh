@@ -1,19 +1,20 @@
 #!/usr/bin/env bash
 # Builds the `asan` preset (build-asan/: Debug -O1, CPU only, AddressSanitizer + UBSan, every
 # report fatal) and runs CPU tests under it. SANITIZE_LABELS is a ctest label regex: by default
-# the loader suites (test_meshes: OBJ/OFF/PLY/STL, test_gltf: glTF/glb, test_volumes: raw
-# volumes and generators), which need the libraries up to deepvox_load (no tests of the rest);
+# the loader suites (test_io: OBJ/OFF/PLY/STL and raw volumes, test_scene: mesh topology and ray
+# queries, test_load: glTF/glb and the generators), which need the libraries up to deepvox_load
+# (no tests of the rest);
 # SANITIZE_LABELS=hard adds the hard cases of every area (the bad-input corpus through the
 # CLI, the fuzz regression inputs; builds the whole library), "." runs everything. Extra
 # arguments go to ctest. .ci/run calls it after scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-labels=${SANITIZE_LABELS:-test_meshes|test_gltf|test_volumes}
+labels=${SANITIZE_LABELS:-test_io|test_scene|test_load}
 jobs=${DEEPVOX_JOBS:-$(nproc)}
 cmake --preset asan > /dev/null
-if [ "$labels" = "test_meshes|test_gltf|test_volumes" ]; then
-  cmake --build build-asan -j "$jobs" --target test_meshes test_gltf test_volumes
+if [ "$labels" = "test_io|test_scene|test_load" ]; then
+  cmake --build build-asan -j "$jobs" --target test_io test_scene test_load
 else
   cmake --build build-asan -j "$jobs"
 fi

@@ -1,8 +1,8 @@
 // `deepvox dsm SCENE [--out maps.exr] [--dsm-res N] [--eps E] [--backend cpu|cuda]
 //  [--heatmap layers.png] [--stats s.json]`: generates every light's deep shadow maps (always
 // with the compact storage: the strategy does not change the functions) and exports them as
-// deep EXR (io/deep_exr.h, full build only), as a layers-per-texel heatmap
-// (io/layer_heatmap.h, every build) and as generation figures with run metadata.
+// deep EXR (render/io/deep_exr.h, full build only), as a layers-per-texel heatmap
+// (render/io/layer_heatmap.h, every build) and as generation figures with run metadata.
 #include <fstream>
 
 #include "apps/deepvox/commands.h"
@@ -11,11 +11,11 @@
 #include "core/text.h"
 #include "core/wall_phases.h"
 #include "experiments/harness/run_metadata.h"
-#include "io/dsm_export.h"
-#include "io/image.h"
-#include "io/layer_heatmap.h"
-#include "io/output_path.h"
-#include "load/scene_loader.h"
+#include "render/io/dsm_export.h"
+#include "render/io/image.h"
+#include "render/io/layer_heatmap.h"
+#include "render/io/output_path.h"
+#include "render/load/scene_loader.h"
 
 namespace dv::cli {
 

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/deepvox/commands.h"
-#include "load/scene_loader.h"
-#include "scene/scene.h"
+#include "engine/scene/scene.h"
+#include "render/load/scene_loader.h"
 
 namespace dv::cli {
 
@@ -17,7 +17,7 @@ nlohmann::json vec(const dvec3& v) {
   return {v.x, v.y, v.z};
 }
 
-// Renderer units of a light's intensity (radiometric; see load/gltf_import.h).
+// Renderer units of a light's intensity (radiometric; see render/load/gltf_import.h).
 const char* intensity_unit(LightType type) {
   return type == LightType::directional ? "W/m^2" : "W/sr";
 }

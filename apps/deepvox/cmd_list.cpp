@@ -8,11 +8,11 @@
 
 #include "apps/deepvox/commands.h"
 #include "cuda/device_memory.h"
-#include "dsm/storage/dsm_storage.h"
 #include "experiments/harness/driver.h"
-#include "generators/mesh_generators.h"
-#include "generators/volume_generators.h"
+#include "render/load/mesh_generators.h"
+#include "render/load/volume_generators.h"
 #include "strategies/shadow/shadow_method.h"
+#include "strategies/storage/dsm_storage.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv::cli {

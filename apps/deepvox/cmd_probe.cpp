@@ -4,15 +4,15 @@
 // are still written (nothing computed is lost), reported, and make the exit code 3.
 #include <cstdio>
 
+#include "apps/common/shadow_options.h"
 #include "apps/deepvox/commands.h"
-#include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
 #include "cuda/device_memory.h"
 #include "cuda/execute.h"
-#include "io/output_path.h"
-#include "io/points_csv.h"
-#include "load/scene_loader.h"
-#include "scene/scene_view.h"
+#include "engine/scene/scene_view.h"
+#include "render/io/output_path.h"
+#include "render/io/points_csv.h"
+#include "render/load/scene_loader.h"
 #include "strategies/shadow/probe.h"
 
 namespace dv::cli {

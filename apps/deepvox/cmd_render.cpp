@@ -7,20 +7,20 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/common/shadow_options.h"
 #include "apps/deepvox/commands.h"
-#include "apps/deepvox/shadow_options.h"
 #include "core/log.h"
 #include "core/wall_phases.h"
 #include "cuda/kernel_timing.h"
+#include "engine/raster/camera_rays.h"
+#include "engine/scene/default_staging.h"
 #include "experiments/harness/run_metadata.h"
-#include "frame/raster_render.h"
-#include "frame/reference_render.h"
-#include "io/image.h"
-#include "io/output_path.h"
-#include "io/tone_mapping.h"
-#include "load/scene_loader.h"
-#include "renderer/camera_rays.h"
-#include "scene/default_staging.h"
+#include "render/frame/raster_render.h"
+#include "render/frame/reference_render.h"
+#include "render/io/image.h"
+#include "render/io/output_path.h"
+#include "render/io/tone_mapping.h"
+#include "render/load/scene_loader.h"
 
 namespace dv::cli {
 

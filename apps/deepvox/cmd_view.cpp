@@ -2,8 +2,8 @@
 //  [--exposure EV] [--tonemap T] [--ground] [--view YAW,PITCH,DOLLY,PX,PY] [--frames N]
 //  [--screenshot out.png] [--screenshot-window win.png] [--script keys.txt] [--save-prefix P]`:
 // the interactive viewer (apps/viewer), built into the full binary where GLFW and OpenGL are.
+#include "apps/common/shadow_options.h"
 #include "apps/deepvox/commands.h"
-#include "apps/deepvox/shadow_options.h"
 #include "apps/viewer/viewer.h"
 #include "apps/viewer/viewer_keys.h"
 #include "core/error.h"

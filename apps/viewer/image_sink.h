@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "cuda/execute.h"
-#include "io/tone_mapping.h"
+#include "render/io/tone_mapping.h"
 
 namespace dv::viewer {
 
@@ -17,7 +17,8 @@ struct SinkFrame {
   // sRGB bytes, 3 a pixel, rows from the top (what the window shows): always given.
   const unsigned char* bytes = nullptr;
   // CUDA: the same picture before encoding, linear rgb in device memory, or null; the CUDA
-  // sink encodes it through `transform` (io/display_encoding.h) instead of uploading `bytes`.
+  // sink encodes it through `transform` (render/io/display_encoding.h) instead of uploading
+  // `bytes`.
   const float* device_rgb = nullptr;
   DisplayTransform transform;
 };

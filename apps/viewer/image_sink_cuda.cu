@@ -1,8 +1,8 @@
 // The CUDA-GL interop sink (see image_sink.h), compiled only in CUDA builds: a GL pixel buffer
 // object registered once with cudaGraphicsGLRegisterBuffer; per frame it is mapped, a kernel
-// encodes the renderer's device image into it (io/display_encoding.h: the bytes of `render`'s PNG),
-// it is unmapped (which orders the kernel before GL's use on the default stream), and the
-// texture is filled from it by upload_pixel_buffer. Frames without a device image (coarse
+// encodes the renderer's device image into it (render/io/display_encoding.h: the bytes of
+// `render`'s PNG), it is unmapped (which orders the kernel before GL's use on the default stream),
+// and the texture is filled from it by upload_pixel_buffer. Frames without a device image (coarse
 // frames, the error view) take the CPU path's upload.
 #include "apps/viewer/image_sink.h"
 
@@ -13,7 +13,7 @@
 
 #include "cuda/cuda_check.h"
 #include "cuda/execute.h"
-#include "io/display_encoding.h"
+#include "render/io/display_encoding.h"
 
 namespace dv::viewer {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/visible_surface.h"
+#include "engine/raster/visible_surface.h"
 #include "strategies/shadow/probe.h"
 #include "strategies/shadow/shadow_method.h"
 

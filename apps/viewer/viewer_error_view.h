@@ -1,7 +1,7 @@
 // The viewer's error view: per pixel, how far the current shadow method's light transmittance
-// is from the exact oracle's (the `reference` shadow method, oracle/transmittance.h) where the
-// pixel looks. Definition (docs/viewer.md): p is the surface point the pixel sees
-// (renderer/visible_surface.h: the nearest surface with alpha > 0 along the ray through the
+// is from the exact oracle's (the `reference` shadow method, engine/oracle/transmittance.h) where
+// the pixel looks. Definition (docs/viewer.md): p is the surface point the pixel sees
+// (engine/raster/visible_surface.h: the nearest surface with alpha > 0 along the ray through the
 // pixel centre), and
 //     E(pixel) = (1 / L) * sum over the L lights of |T'(p, light) - T(p, light)|
 // with T' the method's and T the oracle's answer, both through probe_transmittance (what
@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "cuda/execute.h"
-#include "io/image.h"
-#include "scene/scene.h"
-#include "scene/scene_view.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/scene_view.h"
+#include "render/io/image.h"
 
 namespace dv {
 class ShadowMethod;

@@ -10,15 +10,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/deepvox/shadow_options.h"
+#include "apps/common/shadow_options.h"
 #include "apps/viewer/viewer_error_view.h"
 #include "apps/viewer/viewer_script.h"
 #include "apps/viewer/viewer_voxel_overlay.h"
 #include "cuda/execute.h"
-#include "io/image.h"
-#include "io/tone_mapping.h"
-#include "renderer/camera_rays.h"
-#include "scene/scene.h"
+#include "engine/raster/camera_rays.h"
+#include "engine/scene/scene.h"
+#include "render/io/image.h"
+#include "render/io/tone_mapping.h"
 
 namespace dv {
 class SceneData;

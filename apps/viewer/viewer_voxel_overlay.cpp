@@ -3,7 +3,7 @@
 
 #include <bit>
 
-#include "renderer/raster/raster_projection.h"
+#include "engine/raster/raster_projection.h"
 
 namespace dv::viewer {
 

@@ -20,8 +20,8 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/gl_program.h"
-#include "io/display_encoding.h"
-#include "io/image.h"
+#include "render/io/display_encoding.h"
+#include "render/io/image.h"
 
 namespace dv::viewer {
 

@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
-#include "io/image.h"
+#include "render/io/image.h"
 
 namespace dv {
 

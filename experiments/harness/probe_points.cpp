@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "renderer/fragment_walk.h"
+#include "engine/raster/fragment_walk.h"
 #include "strategies/voxelizer/triangle_soup.h"
 
 namespace dv {

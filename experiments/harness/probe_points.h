@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/math.h"
-#include "scene/scene.h"
-#include "scene/scene_view.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/scene_view.h"
 
 namespace dv {
 

@@ -1,8 +1,8 @@
 // The per-run cache of scenes, probe sets and reference renders (scene_cache.h).
 #include "experiments/harness/scene_cache.h"
 
-#include "frame/raster_render.h"
-#include "load/scene_loader.h"
+#include "render/frame/raster_render.h"
+#include "render/load/scene_loader.h"
 #include "strategies/shadow/probe.h"
 
 namespace dv {

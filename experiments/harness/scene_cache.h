@@ -10,9 +10,9 @@
 
 #include "core/image.h"
 #include "cuda/execute.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/scene_view.h"
 #include "experiments/harness/probe_points.h"
-#include "scene/scene.h"
-#include "scene/scene_view.h"
 
 namespace dv {
 

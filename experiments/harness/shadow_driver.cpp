@@ -18,8 +18,8 @@
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/shadow_measure.h"
 #include "experiments/harness/timing.h"
-#include "frame/raster_render.h"
-#include "io/image.h"
+#include "render/frame/raster_render.h"
+#include "render/io/image.h"
 #include "strategies/shadow/probe.h"
 
 namespace dv {

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "frame/raster_render.h"
+#include "render/frame/raster_render.h"
 #include "strategies/shadow/shadow_method.h"
 
 namespace dv {

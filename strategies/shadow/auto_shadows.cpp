@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "cuda/pass_timer.h"
-#include "dsm/deep_shadow_maps.h"
 #include "strategies/shadow/depth_maps.h"
 #include "strategies/shadow/effect_planner.h"
 #include "strategies/shadow/shadow_method.h"
+#include "strategies/storage/deep_shadow_maps.h"
 
 namespace dv {
 

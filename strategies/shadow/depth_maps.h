@@ -13,7 +13,7 @@
 #include "core/registry.h"
 #include "cuda/buffer.h"
 #include "cuda/execute.h"
-#include "renderer/light_faces.h"
+#include "engine/raster/light_faces.h"
 #include "strategies/shadow/shadow_map_device.h"
 
 namespace dv {

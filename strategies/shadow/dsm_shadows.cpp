@@ -1,14 +1,14 @@
-// Shadow method "dsm": deep shadow maps (dsm/deep_shadow_maps.h). Parameters: dsm_param_table()
-// (storage and storage.KEY, res, eps, filter, bias and slope for surface receivers
-// (light_faces.h, receiver_depth), pre-filtering and volume steps, and the clustered maps of
-// dsm/light_clusters.h; lispsm without a camera acts as 0). Maps are generated when the scene data
-// or the backend changes and, clustered, when the clustering no longer holds for the camera
-// (DeepShadowMaps::clustering_holds).
+// Shadow method "dsm": deep shadow maps (strategies/storage/deep_shadow_maps.h). Parameters:
+// dsm_param_table() (storage and storage.KEY, res, eps, filter, bias and slope for surface
+// receivers (light_faces.h, receiver_depth), pre-filtering and volume steps, and the clustered maps
+// of engine/dsm/light_clusters.h; lispsm without a camera acts as 0). Maps are generated when the
+// scene data or the backend changes and, clustered, when the clustering no longer holds for the
+// camera (DeepShadowMaps::clustering_holds).
 #include <memory>
 #include <vector>
 
-#include "dsm/deep_shadow_maps.h"
 #include "strategies/shadow/shadow_method.h"
+#include "strategies/storage/deep_shadow_maps.h"
 
 namespace dv {
 

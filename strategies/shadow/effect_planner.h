@@ -20,7 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/scene_view.h"
+#include "engine/scene/scene_view.h"
 
 namespace dv {
 

@@ -10,8 +10,8 @@
 
 #include "core/hd.h"
 #include "cuda/buffer.h"
-#include "dsm/dsm_device.h"
 #include "strategies/shadow/shadow_map_device.h"
+#include "strategies/storage/dsm_device.h"
 
 namespace dv {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cuda/execute.h"
-#include "scene/scene_view.h"
+#include "engine/scene/scene_view.h"
 #include "strategies/shadow/shadow_method.h"
 
 namespace dv {

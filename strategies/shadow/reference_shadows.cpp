@@ -1,5 +1,5 @@
 // Shadow method "reference": the exact transmittance oracle evaluated per shaded sample.
-#include "oracle/transmittance.h"
+#include "engine/oracle/transmittance.h"
 #include "strategies/shadow/shadow_method.h"
 
 namespace dv {

@@ -12,13 +12,13 @@
 #include <variant>
 
 #include "core/hd.h"
-#include "dsm/dsm_device.h"
-#include "oracle/transmittance.h"
-#include "renderer/shadow_receiver.h"
-#include "scene/scene_view.h"
+#include "engine/oracle/transmittance.h"
+#include "engine/raster/shadow_receiver.h"
+#include "engine/scene/scene_view.h"
 #include "strategies/shadow/planned_shadow_device.h"
 #include "strategies/shadow/shadow_map_device.h"
 #include "strategies/shadow/transmittance_slicemap_device.h"
+#include "strategies/storage/dsm_device.h"
 
 namespace dv {
 

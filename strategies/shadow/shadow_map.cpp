@@ -1,5 +1,5 @@
 // Shadow method "shadowmap": conventional depth shadow maps rendered with the tile rasterizer
-// from each light (see shadow_map_source.h for the lookup). Parameters: those of depth maps
+// from each light (see shadow_map_device.h for the lookup). Parameters: those of depth maps
 // (depth_map_param_table()) and focus (1: fit spot and directional maps to what the camera can
 // see, Brabec 2003 §4.2). Focusing is geometric and conservative: the map covers the part of the
 // scene bounds inside the bounding box of the camera frustum (a control render with read-back, as
@@ -12,8 +12,8 @@
 
 #include "cuda/buffer.h"
 #include "cuda/pass_timer.h"
-#include "renderer/raster/tile_raster.h"
-#include "scene/ray_query.h"
+#include "engine/raster/tile_raster.h"
+#include "engine/scene/ray_query.h"
 #include "strategies/shadow/depth_maps.h"
 #include "strategies/shadow/shadow_method.h"
 

@@ -13,9 +13,9 @@
 
 #include "core/hd.h"
 #include "cuda/buffer.h"
-#include "renderer/light_faces.h"
-#include "renderer/shadow_receiver.h"
-#include "scene/scene_view.h"
+#include "engine/raster/light_faces.h"
+#include "engine/raster/shadow_receiver.h"
+#include "engine/scene/scene_view.h"
 
 namespace dv {
 

@@ -10,7 +10,7 @@
 
 #include "core/registry.h"
 #include "cuda/execute.h"
-#include "scene/scene_view.h"
+#include "engine/scene/scene_view.h"
 #include "strategies/shadow/shadow_device.h"
 
 namespace dv {

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/scene_view.h"
+#include "engine/scene/scene_view.h"
 #include "strategies/voxelizer/triangle_soup.h"
 
 namespace dv {

@@ -1,5 +1,5 @@
 // Shadow method "transmittance-slicemap" (Buchacher 2014 §5.1; lookup in
-// transmittance_slicemap_source.h). Per light face: a depth map of the opaque casters (alpha >=
+// transmittance_slicemap_device.h). Per light face: a depth map of the opaque casters (alpha >=
 // 1, the shadowmap method's code, depth_maps.h), then a grid of the translucent casters (0 <
 // alpha < 1) over the face's frustum (frustum_grid.h), filled by a registered voxelizer.
 // Parameters (table at the registration): voxelizer (voxelizer.KEY passes KEY on to it), slices

@@ -13,8 +13,8 @@
 
 #include "core/hd.h"
 #include "cuda/buffer.h"
-#include "renderer/light_faces.h"
-#include "renderer/shadow_receiver.h"
+#include "engine/raster/light_faces.h"
+#include "engine/raster/shadow_receiver.h"
 #include "strategies/shadow/shadow_map_device.h"
 #include "strategies/voxelizer/voxel_geometry.h"
 #include "strategies/voxelizer/voxel_grid.h"

@@ -6,7 +6,7 @@
 // (x, y + s + 1/2). The texel centres inside are exactly those (i, j) of the cell with
 // i + j <= s - 1 (none lies on an edge, so every fill rule agrees): s (s + 1) / 2 texels, each a
 // surface point at barycentric ((i + 1/2) / (s + 1/2), (j + 1/2) / (s + 1/2)) from the
-// right-angle corner (atlas_kernels.h).
+// right-angle corner (atlas_device.h).
 //
 // Cell sizes follow triangle area, as a real atlas has one texel density: s = max(1,
 // ceil(sqrt(2 * area) / texel_size)) with the area in grid units (voxels), so a texel_size of 1

@@ -7,7 +7,7 @@
 //     texel into the grid.
 //   `atlas-compute` (Buchacher §3.4): no rasterization; one compute thread per valid texel
 //     computes its point and writes it.
-// Both use the same texel points (atlas_kernels.h), so their grids are identical.
+// Both use the same texel points (atlas_device.h), so their grids are identical.
 #pragma once
 
 #include "strategies/voxelizer/voxelizer.h"

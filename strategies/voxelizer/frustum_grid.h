@@ -1,5 +1,5 @@
 // Voxel grids over a light's frustum (issue 5): one grid per light-map face of
-// renderer/light_faces.h, orthographic for directional lights and perspective for spot
+// engine/raster/light_faces.h, orthographic for directional lights and perspective for spot
 // lights and omni faces, columns = the face's texels, slices = planes at equal distances along
 // the face's axis between the casters' nearest and farthest depth (voxel_grid.h, kinds
 // orthographic and perspective). Reuses the faces rather than building frusta of its own.
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/math.h"
-#include "renderer/light_faces.h"
+#include "engine/raster/light_faces.h"
 #include "strategies/voxelizer/voxel_grid.h"
 
 namespace dv {

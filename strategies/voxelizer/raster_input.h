@@ -1,4 +1,4 @@
-// The triangle soup as the shared tile rasterizer takes it (renderer/raster/tile_raster.h):
+// The triangle soup as the shared tile rasterizer takes it (engine/raster/tile_raster.h):
 // three vertices per triangle and the trivial index list (3i, 3i+1, 3i+2), filled by the
 // rasterizing voxelizers' setup kernels (slicemap: corners in grid coordinates; atlas: corners
 // at their atlas texel positions), plus the checks both need.
@@ -12,7 +12,7 @@
 #include "core/math.h"
 #include "cuda/buffer.h"
 #include "cuda/execute.h"
-#include "renderer/raster/tile_raster.h"
+#include "engine/raster/tile_raster.h"
 
 namespace dv {
 

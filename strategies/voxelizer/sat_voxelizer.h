@@ -1,6 +1,6 @@
 // The `sat` conservative surface voxelizer (Schwarz & Seidel 2010; Buchacher 2014 §3.3) on the
 // CPU or CUDA backend: every voxel whose closed box meets a triangle, by the plane test plus
-// three 2D edge-function projections (sat_kernels.h). Triangles are classified by the size of
+// three 2D edge-function projections (sat_device.h). Triangles are classified by the size of
 // their voxel footprint: small ones (at most `small_items` work items: voxel columns, or slices
 // of a degenerate one) are voxelized whole by one thread, large ones split into one work item
 // per column so they do not serialise on one thread. CPU and CUDA grids are identical, and do

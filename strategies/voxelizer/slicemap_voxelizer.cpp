@@ -7,7 +7,7 @@
 //   raster  the shared tile rasterizer's per-tile fragment lists;
 //   slices  one thread per pixel: for each covering triangle, its depth where the pixel's ray
 //           (along +z through the pixel centre; perspective: the projection's pixel ray in
-//           world space) meets its plane (scene/ray_query.h triangle_plane_hit) picks the
+//           world space) meets its plane (engine/scene/ray_query.h triangle_plane_hit) picks the
 //           slice, whose bit is ORed into the pixel's column.
 #include "strategies/voxelizer/slicemap_voxelizer.h"
 
@@ -16,7 +16,7 @@
 #include <span>
 
 #include "cuda/pass_timer.h"
-#include "scene/ray_query.h"
+#include "engine/scene/ray_query.h"
 #include "strategies/voxelizer/raster_input.h"
 #include "strategies/voxelizer/voxel_geometry.h"
 

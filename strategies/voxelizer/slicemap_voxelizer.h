@@ -1,7 +1,7 @@
 // The `slicemap` voxelizer (Eisemann & Decoret 2006; Buchacher 2014 §3.1) on the CPU or CUDA
 // backend: the grid's camera looks along +z of the grid (orthographic over the grid box, pixel
 // (x, y) = voxel column (x, y), depth = grid z); the shared tile rasterizer
-// (renderer/raster/tile_raster.h) finds the triangles covering each pixel centre with its
+// (engine/raster/tile_raster.h) finds the triangles covering each pixel centre with its
 // top-left rule, and each such fragment sets the voxel of its slice: the half-open cell holding
 // the triangle's depth at the pixel centre (voxel_geometry.h point_voxel). A binary surface
 // voxelization, not a conservative one: faces parallel to the view direction are culled as

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "scene/scene.h"
+#include "engine/scene/scene.h"
 
 namespace dv {
 

@@ -29,7 +29,7 @@
 #include "core/math.h"
 #include "cuda/buffer.h"
 #include "cuda/execute.h"
-#include "renderer/raster/raster_projection.h"
+#include "engine/raster/raster_projection.h"
 
 namespace dv {
 

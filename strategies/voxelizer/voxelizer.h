@@ -1,7 +1,7 @@
 // Host side of the voxelizer family (slicemap, atlas, sat, atlas-compute, exact): a named
 // strategy with its parameters that fills a binary grid (voxel_grid.h) from a triangle soup.
 // Registered: `exact` (CPU reference, exact_voxelizer.h), `sat` (conservative, CPU and CUDA,
-// sat_kernels.h), `slicemap` (slicemap_voxelizer.h), `atlas` and `atlas-compute`
+// sat_device.h), `slicemap` (slicemap_voxelizer.h), `atlas` and `atlas-compute`
 // (atlas_voxelizer.h). OpenGL implementations (gl/gl_voxelizers.h) sit in a registry of their
 // own, filled only by programs that link the GL library.
 #pragma once

@@ -3,8 +3,8 @@
 // and echo them typed.
 #include <gtest/gtest.h>
 
-#include "dsm/storage/dsm_storage.h"
 #include "strategies/shadow/shadow_method.h"
+#include "strategies/storage/dsm_storage.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv {

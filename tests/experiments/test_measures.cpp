@@ -6,13 +6,13 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "engine/raster/fragment_walk.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/probe_points.h"
-#include "load/scene_loader.h"
-#include "renderer/fragment_walk.h"
+#include "experiments/source_paths.h"
+#include "render/load/scene_loader.h"
 #include "strategies/voxelizer/triangle_soup.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {
@@ -34,7 +34,7 @@ double distance_to_triangle(const dvec3& p, const dvec3& a, const dvec3& b, cons
 }
 
 TEST(ProbePoints, SeededPointsOnSurfacesAndInsideMedia) {
-  const Scene scene = load_scene(test::source_dir() + "/scenes/demo.json");
+  const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/demo.json");
   const SceneData host(scene, Memory::host);
   const ProbePoints p = make_probe_points(scene, host, 60, 0.25, 7);
   ASSERT_EQ(p.points.size(), 60u);
@@ -61,7 +61,7 @@ TEST(ProbePoints, SeededPointsOnSurfacesAndInsideMedia) {
 }
 
 TEST(ProbePoints, SceneWithoutMediaGivesSurfacePointsOnly) {
-  const Scene scene = load_scene(test::source_dir() + "/scenes/translucent-boxes.json");
+  const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/translucent-boxes.json");
   const SceneData host(scene, Memory::host);
   const ProbePoints p = make_probe_points(scene, host, 20, 0.5, 1);
   ASSERT_EQ(p.points.size(), 20u);

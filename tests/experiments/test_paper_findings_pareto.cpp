@@ -20,8 +20,8 @@
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
 #include "experiments/harness/suite_file.h"
+#include "experiments/source_paths.h"
 #include "tests/experiments/harness_test.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {
@@ -175,7 +175,7 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
     "machine": "a 1990 abacus", "units": {"*": "ms"}, "columns": ["", "64"],
     "rows": [["DSM generation", 11], ["range", [2, 3]], ["none", null], ["digits", 160.533]],
     "notes": "n"})");
-  const std::string scene = test::source_dir() + "/scenes/demo.json";
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
   const std::string suite = write("tiny.json", R"({"suite": "tiny-paper", "repeat": 1,
     "experiments": [{"name": "dsm", "kind": "shadow", "scene": ")" +
                                                    scene + R"(",
@@ -238,7 +238,7 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
 }
 
 TEST_F(PaperFindings, SmokeFormMergesOverridesAndIsCheckedStrictly) {
-  const std::string scene = test::source_dir() + "/scenes/demo.json";
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
   const std::string head = R"({"suite": "s", "experiments": [{"name": "e", "kind": "shadow",
     "scene": ")" + scene + R"(", "strategy": "dsm", "params": {"eps": 0.05},
     "sweep": {"res": [256, 512], "filter": ["none", "bilinear"]},
@@ -265,7 +265,8 @@ TEST_F(PaperFindings, SmokeFormMergesOverridesAndIsCheckedStrictly) {
 // Plots of experiments that did not run in a folder (--only, another shard) are left out
 // instead of failing the plot script (a log axis without positive values did).
 TEST_F(PaperFindings, PlotsSkipExperimentsNotRunHere) {
-  const std::string quad = test::source_dir() + "/scenes/seeds/buchacher-simple-quad.json";
+  const std::string quad =
+      test::source_dir() + "/experiments/scenes/seeds/buchacher-simple-quad.json";
   const std::string suite = write("plots.json", R"({"suite": "plots", "repeat": 1, "experiments": [
     {"name": "alpha", "kind": "voxelize", "scene": ")" +
                                                     quad + R"(", "strategy": "sat",
@@ -285,8 +286,9 @@ TEST_F(PaperFindings, PlotsSkipExperimentsNotRunHere) {
 // experiments/suites/seeds-plan.md); the default bounding cube gives another count. The shadow
 // driver's frame_ms is the median generation plus the median render.
 TEST_F(PaperFindings, VoxelizeBoundsSettingAndFrameTime) {
-  const std::string quad = test::source_dir() + "/scenes/seeds/buchacher-simple-quad.json";
-  const std::string scene = test::source_dir() + "/scenes/demo.json";
+  const std::string quad =
+      test::source_dir() + "/experiments/scenes/seeds/buchacher-simple-quad.json";
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
   const std::string suite = write("vox.json", R"({"suite": "vox", "repeat": 1, "experiments": [
     {"name": "box", "kind": "voxelize", "scene": ")" +
                                                   quad + R"(", "strategy": "sat",
@@ -344,7 +346,8 @@ TEST_F(PaperFindings, AccuracySmokeRunsOnTheCpuWithParetoFronts) {
   const SuiteOutcome r = run("accuracy", true);
   expect_clean_smoke(r, 2);
   const std::string md = read(fs::path(r.folder) / "report.md");
-  EXPECT_NE(md.find("Pareto front on `scenes/knecht-quick.json`, probe_error_all:mean vs frame_ms"),
+  EXPECT_NE(md.find("Pareto front on `experiments/scenes/knecht-quick.json`, probe_error_all:mean "
+                    "vs frame_ms"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("Cheapest: "), std::string::npos);

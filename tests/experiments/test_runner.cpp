@@ -1,5 +1,5 @@
-// The runner end to end on a tiny suite (scenes/demo.json at 48x32, CPU, about a second):
-// every output file, exact answers of the oracle against itself, shards merged equal one
+// The runner end to end on a tiny suite (experiments/scenes/demo.json at 48x32, CPU, about a
+// second): every output file, exact answers of the oracle against itself, shards merged equal one
 // unsharded run (timings aside), a failed experiment recorded while the suite goes on, and
 // Ctrl-C (a real SIGINT through the runner's handler) stopping after the current experiment
 // with a report of what was done.
@@ -17,8 +17,8 @@
 #include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
+#include "experiments/source_paths.h"
 #include "tests/experiments/harness_test.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {
@@ -26,7 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string tiny_suite(const std::string& extra_strategy = "") {
-  const std::string scene = test::source_dir() + "/scenes/demo.json";
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
   return R"({"suite": "tiny", "description": "harness test", "repeat": 1, "experiments": [
     {"name": "methods", "kind": "shadow", "scene": ")" +
          scene + R"(",

@@ -19,7 +19,7 @@
 #include "experiments/harness/shard_plan.h"
 #include "experiments/harness/slurm.h"
 #include "experiments/harness/workers.h"
-#include "tests/support/paths.h"
+#include "experiments/source_paths.h"
 #include "tests/support/scratch_dir.h"
 
 namespace dv {
@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 const std::string kBinary = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox";
 
 std::string small_suite() {
-  const std::string scene = test::source_dir() + "/scenes/demo.json";
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
   return R"({"suite": "small", "repeat": 1, "experiments": [
     {"name": "methods", "kind": "shadow", "scene": ")" +
          scene + R"(", "strategy": "reference",

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <thread>
 
-#include "tests/support/paths.h"
+#include "experiments/source_paths.h"
 #include "tests/support/scratch_dir.h"
 
 extern char** environ;
@@ -66,7 +66,7 @@ TEST(SuiteCli, BadSuiteFileExitsTwoNamingTheFileAndTheProblem) {
 
 TEST(SuiteCli, SigintStopsARunningSuiteWithRowsAndAReport) {
   const fs::path dir = temp_dir("cli_sigint");
-  const std::string scene = test::source_dir() + "/scenes/demo.json";
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
   std::string eps;
   for (int i = 1; i <= 40; ++i) eps += (i > 1 ? ", " : "") + std::to_string(0.01 * i);
   std::ofstream(dir / "slow.json") << R"({"suite": "slow", "repeat": 1, "experiments": [

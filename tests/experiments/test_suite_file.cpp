@@ -12,7 +12,7 @@
 #include "experiments/harness/shard_plan.h"
 #include "experiments/harness/suite_file.h"
 #include "experiments/harness/timing.h"
-#include "tests/support/paths.h"
+#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {

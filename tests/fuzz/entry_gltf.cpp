@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "core/error.h"
-#include "load/gltf_import.h"
+#include "render/load/gltf_import.h"
 #include "tests/fuzz/fuzz_entry.h"
 
 namespace dv::fuzz {

@@ -1,7 +1,7 @@
 // Fuzz entry: the mesh readers; the first byte picks the format (OBJ, OFF, PLY, STL by its
 // value modulo 4), the rest is the file (fuzz_entry.h).
 #include "core/error.h"
-#include "io/mesh_io.h"
+#include "render/io/mesh_io.h"
 #include "tests/fuzz/fuzz_entry.h"
 
 namespace dv::fuzz {

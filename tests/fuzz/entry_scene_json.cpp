@@ -1,6 +1,6 @@
 // Fuzz entry: the deepvox JSON scene loader (fuzz_entry.h).
 #include "core/error.h"
-#include "load/scene_loader.h"
+#include "render/load/scene_loader.h"
 #include "tests/fuzz/fuzz_entry.h"
 
 namespace dv::fuzz {

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <iterator>
 
+#include "experiments/source_paths.h"
 #include "tests/fuzz/fuzz_entry.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {

@@ -14,16 +14,16 @@
 
 #include "apps/deepvox/voxelize_job.h"
 #include "core/error.h"
-#include "generators/mesh_generators.h"
+#include "engine/raster/light_faces.h"
+#include "experiments/source_paths.h"
 #include "gl/gl_atlas.h"
 #include "gl/gl_voxelizers.h"
-#include "renderer/light_faces.h"
+#include "render/load/mesh_generators.h"
 #include "strategies/voxelizer/atlas_device.h"
 #include "strategies/voxelizer/atlas_voxelizer.h"
 #include "strategies/voxelizer/frustum_grid.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/support/light_face_cases.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {
@@ -99,7 +99,7 @@ int64_t expect_agreement(const TriangleSoup& soup, const GridSpec& spec, int sid
 TEST_F(GlAtlas, AgreesWithTheCpuAtlas) {
   std::printf("GL renderer: %s\n", context_->renderer().c_str());
   const std::vector<std::pair<const char*, TriangleSoup>> meshes = {
-      {"bunny", triangle_soup(make_bunny(test::source_dir() + "/assets", 0))},
+      {"bunny", triangle_soup(make_bunny(test::source_dir() + "/experiments/assets", 0))},
       {"icosphere", triangle_soup(make_icosphere(0.5, 3))},
       {"torus", triangle_soup(make_torus(0.35, 0.15, 48, 24))}};
   int64_t total_differ = 0;
@@ -142,7 +142,7 @@ TEST_F(GlAtlas, BadInputAndEmptySoup) {
 TEST_F(GlAtlas, VoxelizeCommandRunsItWithBackendGl) {
   gl::install_gl_voxelizers();
   VoxelizeJob job;
-  job.input = test::source_dir() + "/assets/meshes/stanford-bunny-lowres.obj";
+  job.input = test::source_dir() + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
   job.method = "atlas";
   job.backend = "gl";
   job.res = "64x64x64";

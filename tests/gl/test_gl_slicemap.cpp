@@ -11,13 +11,13 @@
 #include "core/error.h"
 
 #include "apps/deepvox/voxelize_job.h"
-#include "generators/mesh_generators.h"
+#include "experiments/source_paths.h"
 #include "gl/egl_context.h"
 #include "gl/gl_slicemap.h"
 #include "gl/gl_voxelizers.h"
+#include "render/load/mesh_generators.h"
 #include "strategies/voxelizer/slicemap_voxelizer.h"
 #include "tests/gl/gl_test_support.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {
@@ -29,7 +29,7 @@ using test::count_differences;
 TEST_F(GlSlicemap, AgreesWithTheSharedRasterizer) {
   std::printf("GL renderer: %s\n", context_->renderer().c_str());
   const std::vector<std::pair<const char*, TriangleSoup>> meshes = {
-      {"bunny", triangle_soup(make_bunny(test::source_dir() + "/assets", 0))},
+      {"bunny", triangle_soup(make_bunny(test::source_dir() + "/experiments/assets", 0))},
       {"icosphere", triangle_soup(make_icosphere(0.5, 3))},
       {"torus", triangle_soup(make_torus(0.35, 0.15, 48, 24))}};
   int64_t total_differ = 0, total_filled = 0;
@@ -83,7 +83,7 @@ TEST_F(GlSlicemap, LimitsAndDegenerateInput) {
 TEST_F(GlSlicemap, VoxelizeCommandRunsItWithBackendGl) {
   gl::install_gl_voxelizers();
   VoxelizeJob job;
-  job.input = test::source_dir() + "/assets/meshes/stanford-bunny-lowres.obj";
+  job.input = test::source_dir() + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
   job.method = "slicemap";
   job.backend = "gl";
   job.res = "64x64x64";

@@ -12,7 +12,7 @@
 
 #include "cuda/device_memory.h"
 #include "cuda/execute.h"
-#include "dsm/deep_shadow_maps.h"
+#include "strategies/storage/deep_shadow_maps.h"
 #include "tests/support/scene_builder.h"
 
 namespace dv::test {

@@ -1,4 +1,4 @@
-// Hard cases of the visibility compressor that tests/dsm does not already hold (those are
+// Hard cases of the visibility compressor that tests/engine/dsm does not already hold (those are
 // labelled `hard` there): a tiny eps (1e-7, below float32's spacing near 1), a million samples
 // of opacity accumulating towards 1 (into float32's subnormals and 0), and coincident surfaces
 // at one depth in every order, opaque ones included. Expectations: the exact bound |V' - V| <=
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <random>
 
-#include "tests/dsm/compressor_test_support.h"
+#include "tests/engine/dsm/compressor_test_support.h"
 
 namespace dv::test {
 namespace {

@@ -7,15 +7,15 @@
 
 #include <cstring>
 
-#include "frame/raster_render.h"
-#include "load/scene_loader.h"
+#include "experiments/source_paths.h"
+#include "render/frame/raster_render.h"
+#include "render/load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
 #include "strategies/voxelizer/sat_voxelizer.h"
 #include "strategies/voxelizer/slicemap_voxelizer.h"
 #include "strategies/voxelizer/triangle_soup.h"
-#include "tests/dsm/storage_test_support.h"
 #include "tests/hard/hard_test_support.h"
-#include "tests/support/paths.h"
+#include "tests/strategies/storage/storage_test_support.h"
 
 namespace dv::test {
 namespace {
@@ -23,7 +23,7 @@ namespace {
 constexpr int kRuns = 10;
 
 Scene small_demo() {
-  Scene scene = load_scene(source_dir() + "/scenes/demo.json");
+  Scene scene = load_scene(source_dir() + "/experiments/scenes/demo.json");
   scene.camera.width = 96;
   scene.camera.height = 72;
   return scene;

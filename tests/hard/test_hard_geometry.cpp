@@ -4,7 +4,8 @@
 // medium, duplicate triangles (two coincident surfaces: both count), zero-area triangles (no
 // crossing), and 300 surfaces on one texel. Grazing light, the camera inside a medium, near
 // plane crossings, huge and degenerate triangles and non-manifold or open meshes are the tests
-// of tests/render, tests/raster, tests/meshes and tests/gltf labelled hard there.
+// of tests/render/frame, tests/strategies/shadow, tests/engine/raster, tests/engine/scene,
+// tests/render/io and tests/render/load labelled hard there.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -76,7 +77,7 @@ TEST_P(HardGeometry, LightInsideATranslucentClosedMesh) {
 
 // An omni light inside a box of constant extinction sigma = 0.7 (surfaces of alpha 0): T =
 // exp(-sigma d), d the part of the segment inside. The DSM samples the medium's exponential,
-// so its bound is 1.5 eps (tests/dsm's rule for media).
+// so its bound is 1.5 eps (tests/engine/dsm's rule for media).
 TEST_P(HardGeometry, LightInsideAConstantMedium) {
   SceneBuilder b;
   b.add(make_box(dvec3(-1.0), dvec3(1.0)), 0.0, InteriorKind::constant, 0.7);

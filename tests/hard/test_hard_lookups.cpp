@@ -4,7 +4,7 @@
 // directional map (lit), and between two clusters' maps. Expectations are closed forms, (1 - alpha)
 // behind a translucent quad, checked against the exact oracle too; lookups must meet them within
 // eps. Depth exactly on a node, before the first and after the last, and twin nodes are
-// DsmLookups.ClampsAndTwinRule (tests/dsm, labelled hard).
+// DsmLookups.ClampsAndTwinRule (tests/strategies/storage, labelled hard).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -11,8 +11,8 @@
 
 #include "strategies/voxelizer/sat_voxelizer.h"
 #include "tests/hard/hard_test_support.h"
-#include "tests/voxel/voxel_meshes.h"
-#include "tests/voxel/voxel_test_support.h"
+#include "tests/strategies/voxelizer/voxel_meshes.h"
+#include "tests/strategies/voxelizer/voxel_test_support.h"
 
 namespace dv::test {
 namespace {

@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
-#include "dsm/storage/dsm_storage.h"
-#include "load/scene_loader.h"
+#include "experiments/source_paths.h"
+#include "render/load/scene_loader.h"
 #include "strategies/shadow/probe.h"
 #include "strategies/shadow/shadow_method.h"
+#include "strategies/storage/dsm_storage.h"
 #include "strategies/voxelizer/voxelizer.h"
 #include "tests/support/backends.h"
-#include "tests/support/paths.h"
 
 namespace dv {
 namespace {
@@ -76,7 +76,7 @@ std::vector<dvec3> probe_points(const Scene& scene, int count) {
 // The answers of shadow method `name` (with `params`) at points in the small translucent scene.
 std::vector<double> probe(const std::string& name, const std::vector<std::string>& params,
                           Backend backend) {
-  const Scene scene = load_scene(test::source_dir() + "/scenes/translucent-boxes.json");
+  const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/translucent-boxes.json");
   const SceneData data(scene, memory_of(backend));
   auto method = shadow_registry().create(name, StrategyParams::parse(params));
   return probe_transmittance(backend, data, *method, probe_points(scene, 400)).transmittance;

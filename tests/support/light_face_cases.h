@@ -3,8 +3,8 @@
 // to the box (-2, 0, -2)..(2, 2, 2).
 #pragma once
 
-#include "renderer/light_faces.h"
-#include "scene/scene_view.h"
+#include "engine/raster/light_faces.h"
+#include "engine/scene/scene_view.h"
 
 namespace dv::test {
 

@@ -6,10 +6,10 @@
 
 #include <utility>
 
-#include "generators/mesh_generators.h"
-#include "oracle/transmittance.h"
-#include "scene/scene.h"
-#include "scene/scene_view.h"
+#include "engine/oracle/transmittance.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/scene_view.h"
+#include "render/load/mesh_generators.h"
 
 namespace dv::test {
 

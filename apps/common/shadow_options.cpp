@@ -1,0 +1,60 @@
+// add_shadow_options / make_shadow_method (see shadow_options.h).
+#include "apps/common/shadow_options.h"
+
+#include <iostream>
+#include "strategies/shadow/effect_planner.h"
+#include "strategies/storage/dsm_storage.h"
+
+namespace dv::cli {
+
+void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
+  cmd->add_option("--shadows", o.name,
+                  "shadow method (see `deepvox list`); auto: per light what its casters need, "
+                  "a named method: that method for every light")
+      ->capture_default_str();
+  cmd->add_flag("--explain", o.explain,
+                "print the shadow planner's decisions (auto: per light method, maps, skips)");
+  cmd->add_option("--param", o.params, "shadow-method parameter key=value (repeatable)");
+  std::string storages;
+  for (const std::string& name : storage_registry().names())
+    storages += (storages.empty() ? "" : ", ") + name;
+  cmd->add_option("--storage", o.storage, "dsm: storage strategy (" + storages + ")");
+  cmd->add_option("--dsm-res", o.dsm_res, "dsm: texels per side of each map (its res parameter)");
+  cmd->add_option("--eps", o.eps,
+                  "dsm: error bound of the compressed visibility functions (its eps parameter)");
+  cmd->add_option("--filter", o.filter, "dsm: none or bilinear (its filter parameter)");
+  cmd->add_option("--voxelizer", o.voxelizer,
+                  "transmittance-slicemap: voxelizer filling its grids (see `deepvox list`)");
+}
+
+std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& o) {
+  std::vector<std::string> params = o.params;
+  if (!o.storage.empty()) params.push_back("storage=" + o.storage);
+  if (o.dsm_res) params.push_back("res=" + std::to_string(*o.dsm_res));
+  if (o.eps) {
+    char eps[64];
+    std::snprintf(eps, sizeof eps, "eps=%.9g", *o.eps);
+    params.push_back(eps);
+  }
+  if (!o.filter.empty()) params.push_back("filter=" + o.filter);
+  if (!o.voxelizer.empty()) params.push_back("voxelizer=" + o.voxelizer);
+  return shadow_registry().create(o.name, StrategyParams::parse(params));
+}
+
+}  // namespace dv::cli
+
+namespace dv::cli {
+
+void explain_shadows(const ShadowOptions& o, const ShadowMethod& method, const std::string& label) {
+  if (!o.explain) return;
+  const nlohmann::json plan = method.plan();
+  std::cout << label << ": ";
+  if (plan.is_null())
+    std::cout << "shadow method " << method.name()
+              << " was named, so it runs for every light (no plan)\n";
+  else
+    std::cout << "shadow plan\n" << explain_plan(plan);
+  std::cout << std::flush;
+}
+
+}  // namespace dv::cli

@@ -1,0 +1,129 @@
+// The deep-shadow-map pass's payload for the fragment walk (engine/raster/fragment_walk.h): along a
+// ray from the light it tracks the visibility V (transmittance from the light) and feeds a
+// visibility function to a target (the streaming compressor, engine/dsm/visibility_compressor.h) as
+// samples (z, V) at float32 depths z = the ray parameter (distance from the light, or from an
+// orthographic map's near plane):
+// - a surface crossing with opacity a: a step V -> V (1 - a) at its depth (twin nodes);
+// - volumes: the renderer's step rules (engine/raster/media_march.h), V after each step sampled at
+// the
+//   step's end, so the interpolant matches the camera pass's midpoint quadrature at step ends;
+//   or, with pre-compressed tables (engine/dsm/precompressed_table.h) and one volume at a time, the
+//   table's nodes inside each step from the densities at its two ends;
+// - constant media: exact values exp(-sigma d), sampled densely enough that the linear
+//   interpolant stays within eps / 2 of the exponential (the chord error of exp(-x) over a step h
+//   is at most (sigma h)^2 / 8), and at least at both ends.
+// The function starts at the first crossing (or where the walk starts inside a medium) with V = 1.
+// Host and device code.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "core/hd.h"
+#include "core/math.h"
+#include "engine/dsm/precompressed_table.h"
+#include "engine/raster/fragment_walk.h"
+#include "engine/raster/media_march.h"
+
+namespace dv {
+
+// Visibility below which a DSM ray stops: everything behind is dark within any useful eps.
+inline constexpr double kDsmSaturatedVisibility = 1e-6;
+// Most samples one constant-medium segment is split into.
+inline constexpr int kMaxConstantMediumSamples = 1024;
+
+// Target interface: void push(float z, float v); void push_step(float z, float before, float
+// after).
+template <class Target>
+struct VisibilityPayload {
+  const SceneView& s;
+  Target& target;
+  dvec3 origin;
+  dvec3 dir;
+  double eps;
+  double visibility = 1.0;
+  PrecompressedTables tables{};  // bins == 0: midpoint sampling
+  double step_scale = 1.0;       // multiplies the volumes' steps
+  bool started = false;
+  unsigned long long samples = 0;
+
+  DV_HD bool done() const { return visibility <= kDsmSaturatedVisibility; }
+
+  DV_HD void surface(const RayHit& h, int32_t object) {
+    const double alpha = s.objects[object].alpha;
+    if (alpha <= 0.0) return;
+    const double after = alpha >= 1.0 ? 0.0 : visibility * (1.0 - alpha);
+    target.push_step(float(h.t), float(visibility), float(after));
+    started = true;
+    visibility = after;
+  }
+
+  DV_HD void segment(const InsideSet& inside, double t0, double t1) {
+    if (!started) {
+      target.push(float(t0), 1.0f);
+      started = true;
+    }
+    march_media(s, inside, origin, dir, t0, t1, *this, step_scale);
+  }
+
+  DV_HD void absorb(double sigma_constant, double a, double b) {
+    if (b <= a) return;
+    if (sigma_constant <= 0.0) {  // an empty stretch: V is flat up to b
+      target.push(float(b), float(visibility));
+      return;
+    }
+    const double tolerance = max_value(eps, 1e-4);
+    const double optical = sigma_constant * (b - a);
+    const int n =
+        int(min_value(ceil(optical / sqrt(4.0 * tolerance)), double(kMaxConstantMediumSamples)));
+    const double v0 = visibility;
+    for (int k = 1; k <= max_value(n, 1); ++k) {
+      const double t = k == n ? b : a + (b - a) * double(k) / double(n);
+      visibility = v0 * exp(-sigma_constant * (t - a));
+      target.push(float(t), float(visibility));
+      ++samples;
+      if (done()) return;
+    }
+  }
+
+  DV_HD void sample(const InsideSet& inside, double sigma_constant, const dvec3& x, double a,
+                    double b) {
+    ++samples;
+    const int32_t volume = single_volume(inside);
+    if (volume >= 0 && tables.bins > 0 && tables.has(volume)) {
+      tabled_step(volume, sigma_constant, a, b);
+      return;
+    }
+    const double sigma = sigma_constant + volume_extinction(s, inside, x);
+    visibility *= exp(-sigma * (b - a));
+    target.push(float(b), float(visibility));
+  }
+
+  // The one volume object the ray is inside, or -1 (none or several).
+  DV_HD int32_t single_volume(const InsideSet& inside) const {
+    int32_t found = -1;
+    for (int i = 0; i < inside.count; ++i) {
+      if (s.objects[inside.object[i]].interior != InteriorKind::volume) continue;
+      if (found >= 0) return -1;
+      found = inside.object[i];
+    }
+    return found;
+  }
+
+  DV_HD void tabled_step(int32_t object, double sigma_constant, double a, double b) {
+    const ObjectView& o = s.objects[object];
+    const VolumeView& v = s.volumes[o.volume];
+    const double d0 = density_at_grid(s, v, world_to_grid(o, origin + dir * a));
+    const double d1 = density_at_grid(s, v, world_to_grid(o, origin + dir * b));
+    const PrecompressedStep& step = tables.step(object, d0, d1);
+    const double dt = b - a, v0 = visibility;
+    for (int i = 0; i < step.count; ++i) {
+      const double z = a + double(step.s[i]) * dt;
+      target.push(float(z), float(v0 * exp(-dt * double(step.tau[i]) - sigma_constant * (z - a))));
+    }
+    visibility = v0 * exp(-dt * (double(step.tau_end) + sigma_constant));
+    target.push(float(b), float(visibility));
+  }
+};
+
+}  // namespace dv

@@ -1,0 +1,49 @@
+// Host-side helpers of TileLists (views, host copies) and the stats as JSON for the render
+// stats file. Kept out of tile_raster.cpp so nvcc compiles only the kernels.
+#include <nlohmann/json.hpp>
+
+#include "engine/raster/tile_raster.h"
+
+namespace dv {
+
+TileListsView TileLists::view() const {
+  return {width, height, tiles_x, tiles_y, offsets.const_view(), entries.const_view()};
+}
+
+TileLists TileLists::to_host() const {
+  TileLists copy;
+  copy.width = width;
+  copy.height = height;
+  copy.tiles_x = tiles_x;
+  copy.tiles_y = tiles_y;
+  const std::vector<uint32_t> host_offsets = offsets.to_vector();
+  const std::vector<TileEntry> host_entries = entries.to_vector();
+  copy.offsets =
+      Buffer<uint32_t>(Memory::host, std::span<const uint32_t>(host_offsets), "tile offsets");
+  copy.entries =
+      Buffer<TileEntry>(Memory::host, std::span<const TileEntry>(host_entries), "tile entries");
+  copy.stats = stats;
+  return copy;
+}
+
+void to_json(nlohmann::json& out, const RasterStats& s) {
+  out = {{"triangles_in", s.triangles_in},
+         {"triangles_rasterized", s.triangles_rasterized},
+         {"triangles_clipped", s.triangles_clipped},
+         {"clipped_near", s.clipped_near},
+         {"clipped_guard", s.clipped_guard},
+         {"triangles_culled", s.triangles_culled},
+         {"culled_behind", s.culled_behind},
+         {"culled_offscreen", s.culled_offscreen},
+         {"culled_degenerate", s.culled_degenerate},
+         {"culled_invalid", s.culled_invalid},
+         {"pieces", s.pieces},
+         {"entries", s.entries},
+         {"entries_needed", s.entries_needed},
+         {"max_entries_per_tile", s.max_entries_per_tile},
+         {"overflow", s.overflow},
+         {"first_incomplete_tile", s.first_incomplete_tile},
+         {"dropped_tiles", s.dropped_tiles}};
+}
+
+}  // namespace dv

@@ -1,0 +1,389 @@
+// The passes of the tile rasterizer (see tile_raster.h), each a parallel_for that runs on CPU
+// threads or as a CUDA kernel (nvcc compiles this file when CUDA is on):
+//   setup   one thread per source triangle: clip, snap, orient; the first piece goes to the
+//           triangle's own record, further pieces of clipped triangles are counted, and so
+//           are the tiles of every piece's box;
+//   extras  only if clipping made extra pieces: they are set up again and appended;
+//   items   every tile of every record's box is one work item: the records' box sizes, scanned
+//           on the device, give each record its first item;
+//   count   one thread per item: the tile's coverage mask; non-zero ones are counted per tile
+//           (atomic);
+//   offsets the per-tile counts scanned on the device, then cut at the entry limit; the host
+//           reads back only the totals;
+//   write   the same masks again, each stored at its tile's next free slot (atomic cursor) of
+//           a scratch copy;
+//   sort    entries ordered by (triangle, mask) into the lists, so the arbitrary order of the
+//           atomic writes never shows: one thread per entry of a short list (at most
+//           rank_sorted_entries) puts it at its rank among its tile's entries, one thread per
+//           longer list sorts that list. The order is total up to equal entries, so both give
+//           the same lists.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "core/atomic.h"
+#include "core/error.h"
+#include "cuda/device_memory.h"
+#include "cuda/scan.h"
+#include "engine/raster/tile_raster.h"
+
+namespace dv {
+
+namespace {
+
+constexpr const char* kWhere = "rasterize_tiles";
+
+struct SetupCounters {
+  unsigned long long clipped, clipped_near, clipped_guard;
+  unsigned long long culled_behind, culled_offscreen, culled_degenerate, culled_invalid;
+  unsigned long long extra_pieces;
+  unsigned long long box_tiles;  // over every piece, the extra ones included
+};
+
+// Sets up source triangle t of the view (indices checked: a bad one culls it as invalid).
+template <class Emit>
+DV_HD uint32_t setup_source(const RasterView& view, int64_t t, Emit&& emit) {
+  const u32vec3 tri = view.triangles[t];
+  dvec3 world[3];
+  for (int k = 0; k < 3; ++k) {
+    if (int64_t(tri[k]) >= view.vertices.size) return kSetupCulledInvalid;
+    world[k] = view.vertices[tri[k]];
+  }
+  return setup_triangle(view.projection, world, uint32_t(t), emit);
+}
+
+DV_HD inline unsigned long long one_if(bool b) {
+  return b ? 1ull : 0ull;
+}
+
+// Every thread adds to the same counters (zero where its flag is not set): combined per warp.
+DV_HD inline void tally(SetupCounters* c, uint32_t flags, int pieces, int64_t box_tiles) {
+  const bool culled = (flags & kSetupCulledAny) != 0;
+  atomic_add_combined(&c->culled_behind, one_if(flags & kSetupCulledBehind));
+  atomic_add_combined(&c->culled_offscreen, one_if(flags & kSetupCulledOffscreen));
+  atomic_add_combined(&c->culled_degenerate, one_if(flags & kSetupCulledDegenerate));
+  atomic_add_combined(&c->culled_invalid, one_if(flags & kSetupCulledInvalid));
+  atomic_add_combined(&c->clipped,
+                      one_if(!culled && (flags & (kSetupClippedNear | kSetupClippedGuard))));
+  atomic_add_combined(&c->clipped_near, one_if(!culled && (flags & kSetupClippedNear)));
+  atomic_add_combined(&c->clipped_guard, one_if(!culled && (flags & kSetupClippedGuard)));
+  atomic_add_combined(&c->extra_pieces,
+                      (unsigned long long)(!culled && pieces > 1 ? pieces - 1 : 0));
+  atomic_add_combined(&c->box_tiles, (unsigned long long)(box_tiles));
+}
+
+// What the host reads back of the tile lists' sizes. tiles_from_first_dropped is tiles - t for
+// the first tile t whose list does not fit, 0 if every list fits (so zeroed memory starts it).
+struct ListTotals {
+  unsigned long long stored, needed, most_per_tile, dropped_tiles, tiles_from_first_dropped;
+};
+
+// Tiles of a record's box (0 for an empty record); at most 2^26 (kMaxRasterSide / kTileSide
+// squared).
+DV_HD inline int64_t box_tile_count(const RasterTriangle& t) {
+  if (t.tile_x0 > t.tile_x1 || t.tile_y0 > t.tile_y1) return 0;
+  return int64_t(t.tile_x1 - t.tile_x0 + 1) * (t.tile_y1 - t.tile_y0 + 1);
+}
+
+// The records: one per source triangle (possibly empty), then the extra pieces.
+struct Records {
+  View<const RasterTriangle> first, extra;
+  DV_HD int64_t size() const { return first.size + extra.size; }
+  DV_HD const RasterTriangle& operator[](int64_t r) const {
+    return r < first.size ? first[r] : extra[r - first.size];
+  }
+};
+
+// Work item `item` of the records: tile item - starts[r] of record r's box, row by row, where
+// starts holds each record's first item (records without tiles share the next one's, and the
+// search takes the last of equal starts). One thread per item spreads a large triangle over
+// the whole GPU: the floor of knecht-fig56 covers all 16,384 tiles of a 1024^2 light view, and
+// one warp per record walked them in 512 steps while the pass waited.
+template <class Visit>
+DV_HD void visit_box_tile(const Records& records, View<const int64_t> starts, int64_t item,
+                          Visit&& visit) {
+  const int64_t r = owner_of_item(starts, records.size(), item);
+  const RasterTriangle& t = records[r];
+  const int64_t k = item - starts[r];
+  if (k >= box_tile_count(t)) return;  // only if the items and the starts disagreed
+  const int columns = t.tile_x1 - t.tile_x0 + 1;
+  visit(t, t.tile_x0 + int(k % columns), t.tile_y0 + int(k / columns));
+}
+
+DV_HD inline bool entry_less(const TileEntry& a, const TileEntry& b) {
+  return a.triangle != b.triangle ? a.triangle < b.triangle : a.mask < b.mask;
+}
+
+DV_HD inline void sift_down(TileEntry* e, int64_t root, int64_t end) {
+  while (2 * root + 1 < end) {
+    int64_t child = 2 * root + 1;
+    if (child + 1 < end && entry_less(e[child], e[child + 1])) ++child;
+    if (!entry_less(e[root], e[child])) return;
+    const TileEntry swap = e[root];
+    e[root] = e[child];
+    e[child] = swap;
+    root = child;
+  }
+}
+
+// Lists up to this long are sorted by rank, one thread per entry (as many comparisons as the
+// list has entries, all in parallel); longer ones by one thread per list. On the GPU a thread
+// that heap-sorts a list of hundreds of entries alone held the whole pass (0.26 of the 0.59 ms
+// of tile binning on knecht-fig56), so ranks go much further there; CPU threads are few and
+// sort faster alone.
+int64_t rank_sorted_entries(Backend backend) {
+  return backend == Backend::cuda ? 4096 : 64;
+}
+
+// Insertion sort for short lists, heap sort (n log n, no extra memory) for long ones.
+DV_HD inline void sort_entries(TileEntry* e, int64_t n) {
+  if (n <= 16) {
+    for (int64_t i = 1; i < n; ++i) {
+      const TileEntry key = e[i];
+      int64_t j = i;
+      for (; j > 0 && entry_less(key, e[j - 1]); --j) e[j] = e[j - 1];
+      e[j] = key;
+    }
+    return;
+  }
+  for (int64_t start = n / 2 - 1; start >= 0; --start) sift_down(e, start, n);
+  for (int64_t end = n - 1; end > 0; --end) {
+    const TileEntry swap = e[0];
+    e[0] = e[end];
+    e[end] = swap;
+    sift_down(e, 0, end);
+  }
+}
+
+void check_view(const RasterView& view) {
+  const RasterProjection& p = view.projection;
+  if (p.width < 1 || p.height < 1 || p.width > kMaxRasterSide || p.height > kMaxRasterSide)
+    throw InputError(kWhere, "image size " + std::to_string(p.width) + "x" +
+                                 std::to_string(p.height) + " is outside 1.." +
+                                 std::to_string(kMaxRasterSide));
+  if (view.triangles.size * int64_t(kMaxPiecesPerTriangle) >= int64_t(UINT32_MAX))
+    throw InputError(kWhere, std::to_string(view.triangles.size) +
+                                 " triangles are more than the 32-bit triangle ids can hold");
+}
+
+struct SetupResult {
+  Buffer<RasterTriangle> first, extra;
+  SetupCounters counters{};
+};
+
+SetupResult setup_records(Backend backend, const RasterView& view) {
+  const Memory memory = memory_of(backend);
+  const int64_t n = view.triangles.size;
+  SetupResult out;
+  out.first = Buffer<RasterTriangle>(memory, n, "raster records");
+  Buffer<uint8_t> piece_counts(memory, n, "raster piece counts");
+  Buffer<SetupCounters> counters(memory, 1, "raster counters");
+  counters.fill_zero();
+  const View<RasterTriangle> first = out.first.view();
+  const View<uint8_t> pieces_of = piece_counts.view();
+  SetupCounters* c = counters.data();
+  parallel_for(
+      backend, "raster_setup", n, DV_KERNEL_LAMBDA(int64_t i) {
+        RasterTriangle head = empty_raster_triangle(uint32_t(i));
+        int pieces = 0;
+        int64_t box_tiles = 0;
+        const uint32_t flags = setup_source(view, i, [&](const RasterTriangle& t) {
+          if (pieces == 0) head = t;
+          ++pieces;
+          box_tiles += box_tile_count(t);
+        });
+        first[i] = head;
+        pieces_of[i] = uint8_t(pieces);
+        tally(c, flags, pieces, box_tiles);
+      });
+  out.counters = counters.to_vector()[0];
+  const int64_t extra_count = int64_t(out.counters.extra_pieces);
+  out.extra = Buffer<RasterTriangle>(memory, extra_count, "raster extra pieces");
+  if (extra_count == 0) return out;
+  Buffer<unsigned long long> cursor(memory, 1, "raster extra cursor");
+  cursor.fill_zero();
+  const View<RasterTriangle> extra = out.extra.view();
+  unsigned long long* next = cursor.data();
+  parallel_for(
+      backend, "raster_setup_extra", n, DV_KERNEL_LAMBDA(int64_t i) {
+        const int pieces = pieces_of[i];
+        if (pieces <= 1) return;
+        const unsigned long long base = atomic_add(next, (unsigned long long)(pieces - 1));
+        int k = 0;
+        setup_source(view, i, [&](const RasterTriangle& t) {
+          const int64_t slot = int64_t(base) + k - 1;
+          if (k > 0 && slot < extra.size) extra[slot] = t;
+          ++k;
+        });
+      });
+  return out;
+}
+
+}  // namespace
+
+TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterOptions& options) {
+  require_backend(backend);
+  check_view(view);
+  if (options.max_entries < 0)
+    throw InputError(
+        kWhere, "max_entries must not be negative, got " + std::to_string(options.max_entries));
+  const Memory memory = memory_of(backend);
+  const int width = view.projection.width, height = view.projection.height;
+  TileLists lists;
+  lists.width = width;
+  lists.height = height;
+  lists.tiles_x = tiles_along(width);
+  lists.tiles_y = tiles_along(height);
+  const int64_t tiles = lists.tile_count();
+  const int tiles_x = lists.tiles_x;
+
+  const SetupResult setup = setup_records(backend, view);
+  const Records records{setup.first.const_view(), setup.extra.const_view()};
+  const int64_t items = int64_t(setup.counters.box_tiles);
+  Buffer<int64_t> record_starts(memory, records.size() + 1, "raster record starts");
+  const View<int64_t> starts_out = record_starts.view();
+  parallel_for(
+      backend, "raster_box_sizes", records.size() + 1, DV_KERNEL_LAMBDA(int64_t r) {
+        starts_out[r] = r < records.size() ? box_tile_count(records[r]) : 0;
+      });
+  exclusive_scan_queued(backend, starts_out);
+  const View<const int64_t> starts = record_starts.const_view();
+
+  Buffer<uint32_t> tile_counts(memory, tiles, "raster tile counts");
+  tile_counts.fill_zero();
+  uint32_t* counts = tile_counts.data();
+  parallel_for(
+      backend, "raster_count", items, DV_KERNEL_LAMBDA(int64_t i) {
+        visit_box_tile(records, starts, i, [&](const RasterTriangle& t, int tx, int ty) {
+          if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
+            atomic_add(counts + (int64_t(ty) * tiles_x + tx), 1u);
+        });
+      });
+
+  // The offsets on the device: the counts scanned, then tiles whose list does not fit under
+  // the limit (and all tiles after the first such one) keep empty ranges. One small read-back
+  // brings the totals the host needs to size the entries.
+  const uint64_t limit = uint64_t(std::min<int64_t>(options.max_entries, int64_t(UINT32_MAX)));
+  Buffer<int64_t> tile_starts(memory, tiles + 1, "raster tile starts");
+  const View<int64_t> tile_start = tile_starts.view();
+  const View<const uint32_t> counted = tile_counts.const_view();
+  parallel_for(
+      backend, "raster_tile_sizes", tiles + 1,
+      DV_KERNEL_LAMBDA(int64_t t) { tile_start[t] = t < tiles ? int64_t(counted[t]) : 0; });
+  exclusive_scan_queued(backend, tile_start);
+  Buffer<ListTotals> totals_buffer(memory, 1, "raster list totals");
+  totals_buffer.fill_zero();
+  ListTotals* totals = totals_buffer.data();
+  parallel_for(
+      backend, "raster_list_limit", tiles, DV_KERNEL_LAMBDA(int64_t t) {
+        const unsigned long long count = counted[t];
+        const bool dropped = count > 0 && uint64_t(tile_start[t + 1]) > limit;
+        atomic_max_combined(&totals->most_per_tile, count);
+        atomic_add_combined(&totals->dropped_tiles, (unsigned long long)(dropped));
+        atomic_max_combined(&totals->tiles_from_first_dropped,
+                            (unsigned long long)(dropped ? tiles - t : 0));
+      });
+  lists.offsets = Buffer<uint32_t>(memory, tiles + 1, "raster tile offsets");
+  const View<uint32_t> offsets = lists.offsets.view();
+  parallel_for(
+      backend, "raster_offsets", tiles + 1, DV_KERNEL_LAMBDA(int64_t t) {
+        const int64_t first_dropped = tiles - int64_t(totals->tiles_from_first_dropped);
+        const int64_t stored = tile_start[first_dropped];
+        offsets[t] = uint32_t(min_value(tile_start[t], stored));
+        if (t == tiles) {
+          totals->stored = (unsigned long long)(stored);
+          totals->needed = (unsigned long long)(tile_start[tiles]);
+        }
+      });
+  const ListTotals sums = totals_buffer.to_vector()[0];
+  const uint64_t stored = sums.stored, needed = sums.needed;
+  RasterStats& s = lists.stats;
+  s.max_entries_per_tile = int64_t(sums.most_per_tile);
+  s.dropped_tiles = int64_t(sums.dropped_tiles);
+  s.first_incomplete_tile = tiles - int64_t(sums.tiles_from_first_dropped);
+  s.overflow = s.dropped_tiles > 0;
+  lists.entries = Buffer<TileEntry>(memory, int64_t(stored), "raster tile entries");
+
+  Buffer<uint32_t> tile_fill(memory, tiles, "raster tile cursors");
+  tile_fill.fill_zero();
+  uint32_t* fill = tile_fill.data();
+  const View<const uint32_t> range = lists.offsets.const_view();
+  Buffer<TileEntry> unsorted_entries(memory, int64_t(stored), "raster unsorted tile entries");
+  const View<TileEntry> unsorted = unsorted_entries.view();
+  parallel_for(
+      backend, "raster_write", items, DV_KERNEL_LAMBDA(int64_t i) {
+        visit_box_tile(records, starts, i, [&](const RasterTriangle& t, int tx, int ty) {
+          const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
+          if (mask == 0) return;
+          const int64_t tile = int64_t(ty) * tiles_x + tx;
+          const uint32_t slot = atomic_add(fill + tile, 1u);
+          if (slot < range[tile + 1] - range[tile])
+            unsorted[range[tile] + slot] = {mask, t.source, 0u};
+        });
+      });
+  const View<TileEntry> entries = lists.entries.view();
+  const int64_t rank_sorted = rank_sorted_entries(backend);
+  parallel_for(
+      backend, "raster_rank_sort", int64_t(stored), DV_KERNEL_LAMBDA(int64_t e) {
+        const int64_t tile = owner_of_item(range, tiles, e);
+        const int64_t first = range[tile], end = range[tile + 1];
+        if (end - first > rank_sorted) return;
+        const TileEntry mine = unsorted[e];
+        int64_t rank = 0;
+        for (int64_t j = first; j < end; ++j) {
+          const TileEntry other = unsorted[j];
+          rank += entry_less(other, mine) || (j < e && !entry_less(mine, other));
+        }
+        entries[first + rank] = mine;
+      });
+  if (s.max_entries_per_tile > rank_sorted)
+    parallel_for(
+        backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
+          const int64_t first = range[t], count = int64_t(range[t + 1] - range[t]);
+          if (count <= rank_sorted) return;
+          for (int64_t j = first; j < first + count; ++j) entries[j] = unsorted[j];
+          sort_entries(entries.data + first, count);
+        });
+  if (backend == Backend::cuda) device_synchronize(kWhere);
+
+  const SetupCounters& c = setup.counters;
+  s.triangles_in = view.triangles.size;
+  s.culled_behind = int64_t(c.culled_behind);
+  s.culled_offscreen = int64_t(c.culled_offscreen);
+  s.culled_degenerate = int64_t(c.culled_degenerate);
+  s.culled_invalid = int64_t(c.culled_invalid);
+  s.triangles_culled =
+      s.culled_behind + s.culled_offscreen + s.culled_degenerate + s.culled_invalid;
+  s.triangles_rasterized = s.triangles_in - s.triangles_culled;
+  s.triangles_clipped = int64_t(c.clipped);
+  s.clipped_near = int64_t(c.clipped_near);
+  s.clipped_guard = int64_t(c.clipped_guard);
+  s.pieces = s.triangles_rasterized + int64_t(c.extra_pieces);
+  s.entries = int64_t(stored);
+  s.entries_needed = int64_t(needed);
+  return lists;
+}
+
+TileLists rasterize_tiles(Backend backend, const SceneView& scene,
+                          const RasterProjection& projection, const RasterOptions& options) {
+  return rasterize_tiles(backend, make_raster_view(scene, projection), options);
+}
+
+Buffer<uint32_t> count_pixel_fragments(Backend backend, const TileLists& lists) {
+  require_backend(backend);
+  const Memory memory = memory_of(backend);
+  if (lists.offsets.memory() != memory)
+    throw Error("count_pixel_fragments: tile lists are not in the backend's memory");
+  const int width = lists.width;
+  Buffer<uint32_t> counts(memory, int64_t(lists.width) * lists.height, "fragment counts");
+  const View<uint32_t> out = counts.view();
+  const TileListsView v = lists.view();
+  parallel_for(
+      backend, "raster_fragment_count", out.size, DV_KERNEL_LAMBDA(int64_t i) {
+        out[i] = uint32_t(fragment_count(v, int(i % width), int(i / width)));
+      });
+  if (backend == Backend::cuda) device_synchronize("count_pixel_fragments");
+  return counts;
+}
+
+}  // namespace dv

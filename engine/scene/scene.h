@@ -1,0 +1,134 @@
+// The scene model: closed or open triangle meshes with a transform and a material, interiors
+// (none, constant extinction, or a density volume under a transfer function), lights and a
+// camera. Host-side owning types; engine/scene/scene_view.h flattens them for kernels.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace dv {
+
+// Triangle mesh in object space. Indices are 0-based into positions.
+struct TriangleMesh {
+  std::string name;  // generator name or file path, for messages
+  std::vector<dvec3> positions;
+  std::vector<u32vec3> triangles;
+};
+
+// Surface material: Phong parameters plus surface opacity. Light through one surface crossing
+// is multiplied by (1 - alpha). `transmission` (at most 1 - alpha) is the part of that light
+// which passes through the material (glass) rather than past it (holes, coverage): the camera
+// pass shows Phong highlights on it and tints it by `color`; shadows see only 1 - alpha.
+struct Material {
+  dvec3 color{0.8, 0.8, 0.8};
+  double ambient = 0.1;
+  double diffuse = 0.8;
+  double specular = 0.2;
+  double shininess = 32.0;
+  double alpha = 1.0;
+  double transmission = 0.0;
+};
+
+// One control point of a piecewise-linear transfer function: density -> colour and extinction
+// (per world unit). Outside the first/last point the end values hold.
+struct TransferPoint {
+  double density = 0.0;
+  dvec3 color{1.0, 1.0, 1.0};
+  double sigma = 0.0;
+};
+
+struct TransferFunction {
+  std::vector<TransferPoint> points;  // sorted by density, at least one
+};
+
+// Densities on a vertex-centred grid: sample (i,j,k) sits at origin + (i,j,k) * spacing in the
+// object's space; lookups outside the grid clamp to the edge samples.
+struct VolumeGrid {
+  std::string name;
+  ivec3 dims{0, 0, 0};
+  dvec3 origin{0.0};
+  dvec3 spacing{1.0};
+  std::vector<float> density;  // x fastest, then y, then z
+
+  int64_t voxel_count() const { return int64_t(dims.x) * dims.y * dims.z; }
+  Aabb bounds() const { return {origin, origin + dvec3(dims - 1) * spacing}; }
+};
+
+enum class InteriorKind : uint8_t { none, constant, volume };
+
+struct Interior {
+  InteriorKind kind = InteriorKind::none;
+  double sigma = 0.0;  // constant: extinction per world unit (absorption only), for shadows
+  // constant: the camera pass's extinction of channel c is sigma * sigma_tint[c] (tinted
+  // media, mean 1); shadows are scalar and use sigma alone. Grey media keep [1, 1, 1].
+  dvec3 sigma_tint{1.0};
+  int volume = -1;  // volume: index into Scene::volumes
+  TransferFunction transfer;
+  double step = 0.0;  // volume: ray-marching step of the renderer in world units (0: half a cell)
+};
+
+struct Object {
+  std::string name;
+  int mesh = -1;  // index into Scene::meshes
+  dmat4 transform{1.0};
+  Material material;
+  Interior interior;
+};
+
+enum class LightType : uint8_t { spot, omni, directional };
+
+struct Light {
+  LightType type = LightType::spot;
+  dvec3 position{0.0};
+  dvec3 direction{0.0, -1.0, 0.0};  // spot and directional: where the light shines
+  double cutoff_deg = 30.0;         // spot: half-angle of the cone
+  double penumbra_deg = 0.0;        // spot: width of the fade inside the cone edge
+  dvec3 color{1.0, 1.0, 1.0};
+  // spot/omni: radiant intensity I (falls off with 1/d^2): a white surface of diffuse 1
+  // facing the light at distance d shows I / d^2 before exposure; directional: irradiance.
+  double intensity = 1.0;
+  // glTF lights (KHR_lights_punctual): the spec's cone falloff (squared, linear in the cosine)
+  // instead of the smoothstep penumbra, and the range window (0: no range).
+  bool gltf_cone = false;
+  double range = 0.0;
+  // Where the intensity came from, for `info`: the unit ("cd", "lx") and value before the
+  // conversion, or an empty unit for deepvox's own scale.
+  std::string source_unit;
+  double source_intensity = 0.0;
+};
+
+struct Camera {
+  dvec3 position{0.0, 1.0, 5.0};
+  dvec3 target{0.0};
+  dvec3 up{0.0, 1.0, 0.0};
+  double fov_deg = 45.0;  // vertical
+  int width = 640;
+  int height = 480;
+  double near_plane = 0.01;
+};
+
+struct Scene {
+  std::string source;  // file the scene came from, for messages
+  std::vector<TriangleMesh> meshes;
+  std::vector<VolumeGrid> volumes;
+  std::vector<Object> objects;
+  std::vector<Light> lights;
+  Camera camera;
+  dvec3 background{0.0, 0.0, 0.0};
+};
+
+const char* to_string(LightType type);
+const char* to_string(InteriorKind kind);
+
+// World-space bounds of all objects (vertices after transforms).
+Aabb world_bounds(const Scene& scene);
+
+// Checks invariants the renderer and oracle rely on (indices in range, finite numbers, closed
+// meshes for interiors, sorted transfer functions); throws InputError naming scene.source.
+// Closed meshes of objects with an interior are oriented outward (the oracle relies on it).
+void validate_scene(Scene& scene);
+
+}  // namespace dv

@@ -1,0 +1,106 @@
+// Launch of the rasterizing renderer's passes (see raster_render.h).
+#include "render/frame/raster_render.h"
+
+#include <variant>
+
+#include "core/atomic.h"
+#include "cuda/buffer.h"
+#include "cuda/pass_timer.h"
+#include "engine/raster/fragment_walk.h"
+#include "engine/raster/raster_fragments.h"
+#include "render/frame/fragment_lanes.h"
+#include "render/frame/shade_payload.h"
+
+namespace dv {
+
+namespace {
+
+template <class Source>
+void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& projection,
+                  const TileListsView lists, const FragmentOrderView tile_order,
+                  const Source& source, const dvec3& background, const InsideSet* eye_media,
+                  View<float> rgb, RenderCounters* counters) {
+  const int width = projection.width, height = projection.height;
+  parallel_for(
+      backend, "raster_fragment_pass", fragment_thread_count(tile_order.order.size),
+      DV_KERNEL_LAMBDA(int64_t t) {
+        int x, y;
+        LaneGroup lanes;
+        if (!pixel_of_fragment_thread(t, tile_order, width, height, x, y, lanes)) return;
+        if (!DV_IN_DEVICE_CODE && lanes.rank > 0) return;  // a CPU thread marches every share
+        const int64_t i = int64_t(y) * width + x;
+        const PixelRay ray = pixel_ray(projection, x, y);
+        const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
+        ShadePayload<Source> payload{s, source, ray.origin, ray.direction};
+        payload.lanes = lanes;
+        const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
+        const WalkStatus status =
+            walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
+        if (lanes.rank > 0) return;  // the group's lanes ended with the same pixel
+        const dvec3 c = payload.color + payload.transmittance * background;
+        rgb[3 * i + 0] = float(c.x);
+        rgb[3 * i + 1] = float(c.y);
+        rgb[3 * i + 2] = float(c.z);
+        count_pixel(counters, status.crossings, payload.samples,
+                    status.overflow || front.status.overflow, payload.cursor.flags);
+      });
+}
+
+}  // namespace
+
+nlohmann::json RasterRenderResult::stats() const {
+  nlohmann::json j = render.stats();
+  j["renderer"] = "raster";
+  j["raster_ms"] = raster_ms;
+  j["fragment_ms"] = fragment_ms;
+  j["volume_tiles"] = volume_tiles;
+  j["raster"] = raster;
+  return j;
+}
+
+RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
+                                 ShadowMethod& shadows, const dvec3& background) {
+  const Memory memory = memory_of(backend);
+  if (scene.memory() != memory) throw Error("render_raster: scene data is in the wrong memory");
+  const SceneView& view = scene.view();
+  const RasterProjection projection = make_camera_projection(camera, view.bounds);
+  RasterRenderResult result;
+  const ShadowSourceVariant source = shadows.prepare(scene, backend, &camera);
+  PassTimer total(backend);
+  PassTimer raster_timer(backend);
+  const TileLists lists = rasterize_tiles(backend, view, projection);
+  result.raster_ms = raster_timer.stop();
+  result.raster = lists.stats;
+  if (lists.stats.overflow)
+    throw Error("render_raster: tile lists overflowed (" +
+                std::to_string(lists.stats.entries_needed) +
+                " entries needed); nothing was shaded");
+  Buffer<InsideSet> eye_media(memory, 1, "eye media");
+  const View<InsideSet> eye = eye_media.view();
+  const dvec3 eye_position = camera.position;
+  parallel_for(
+      backend, "eye_media", 1,
+      DV_KERNEL_LAMBDA(int64_t) { eye[0] = media_containing(view, eye_position).inside; });
+  Buffer<float> rgb(memory, int64_t(projection.width) * projection.height * 3, "image");
+  Buffer<RenderCounters> counters(memory, 1, "render counters");
+  counters.fill_zero();
+  PassTimer fragment_timer(backend);
+  const FragmentOrder tile_order =
+      order_fragment_tiles(backend, view, projection, lists.view(), eye_media.data());
+  std::visit(
+      [&](const auto& s) {
+        shade_pixels(backend, view, projection, lists.view(), tile_order.view(), s, background,
+                     eye_media.data(), rgb.view(), counters.data());
+      },
+      source);
+  result.fragment_ms = fragment_timer.stop();
+  result.render.milliseconds = total.stop();
+  result.render.image = Image(projection.width, projection.height);
+  result.render.image.rgb = rgb.to_vector();
+  if (backend == Backend::cuda) result.device_rgb = std::move(rgb);
+  result.render.counters = counters.to_vector()[0];
+  result.volume_tiles = tile_order.volume_tiles();
+  return result;
+}
+
+}  // namespace dv

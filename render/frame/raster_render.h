@@ -1,0 +1,33 @@
+// The rasterizing renderer (Knecht 2011 §3.1, §4.1; Bornik 2012 §3): the scene is binned into
+// 8x8-tile lists by the tile rasterizer, then every pixel gathers its fragments from its tile,
+// sorts them by exact depth and walks them with the shading payload. The walk starts inside
+// the media that contain the eye; crossings between the eye and the near plane (clipped away
+// by the rasterizer) come from the BVH, so they toggle inside-ness but are never shaded.
+// CPU threads or CUDA from the same code; per-pass times and counters in RasterRenderResult.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "cuda/buffer.h"
+#include "cuda/execute.h"
+#include "engine/raster/tile_raster.h"
+#include "render/frame/reference_render.h"
+
+namespace dv {
+
+struct RasterRenderResult {
+  RenderResult render;       // image, walk counters, total milliseconds
+  RasterStats raster;        // triangles, clipping, tile entries, overflow
+  double raster_ms = 0.0;    // binning into tile lists
+  double fragment_ms = 0.0;  // tile order, per-pixel gather, sort, walk and shading
+  int64_t volume_tiles = 0;  // tiles whose pixels split their volume steps between lanes
+  // CUDA: the image still in device memory (linear rgb, as render.image.rgb), for display
+  // without a host round trip (the viewer's CUDA-GL interop); empty on the CPU.
+  Buffer<float> device_rgb;
+  nlohmann::json stats() const;
+};
+
+RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
+                                 ShadowMethod& shadows, const dvec3& background);
+
+}  // namespace dv

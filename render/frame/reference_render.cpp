@@ -1,0 +1,68 @@
+// Launch of the reference renderer's pixel walk on the chosen backend (see reference_render.h).
+#include "render/frame/reference_render.h"
+
+#include <chrono>
+#include <variant>
+
+#include "cuda/buffer.h"
+#include "render/frame/ray_walk.h"
+
+namespace dv {
+
+namespace {
+
+template <class Source>
+void render_pixels(Backend backend, const SceneView& view, const CameraView& cam,
+                   const Source& source, const dvec3& background, View<float> rgb,
+                   RenderCounters* counters) {
+  parallel_for(
+      backend, "render_reference", int64_t(cam.width) * cam.height, DV_KERNEL_LAMBDA(int64_t i) {
+        const int x = int(i % cam.width), y = int(i / cam.width);
+        const dvec3 c = walk_pixel(view, cam, source, x, y, background, counters);
+        rgb[3 * i + 0] = float(c.x);
+        rgb[3 * i + 1] = float(c.y);
+        rgb[3 * i + 2] = float(c.z);
+      });
+}
+
+}  // namespace
+
+nlohmann::json RenderResult::stats() const {
+  const double pixels = double(image.width) * image.height;
+  return {{"milliseconds", milliseconds},
+          {"width", image.width},
+          {"height", image.height},
+          {"hits", counters.hits},
+          {"hits_per_pixel_mean", pixels > 0 ? double(counters.hits) / pixels : 0.0},
+          {"hits_per_pixel_max", counters.max_hits},
+          {"volume_samples", counters.volume_samples},
+          {"overflow_pixels", counters.overflow_pixels},
+          {"oracle_flag_pixels", counters.oracle_flag_pixels}};
+}
+
+RenderResult render_reference(Backend backend, const SceneData& scene, const Camera& camera,
+                              ShadowMethod& shadows, const dvec3& background) {
+  const Memory memory = memory_of(backend);
+  if (scene.memory() != memory) throw Error("render_reference: scene data is in the wrong memory");
+  const CameraView cam = make_camera_view(camera);
+  Buffer<float> rgb(memory, int64_t(cam.width) * cam.height * 3, "image");
+  Buffer<RenderCounters> counters(memory, 1, "render counters");
+  counters.fill_zero();
+  const ShadowSourceVariant source = shadows.prepare(scene, backend, &camera);
+  const auto start = std::chrono::steady_clock::now();
+  std::visit(
+      [&](const auto& s) {
+        render_pixels(backend, scene.view(), cam, s, background, rgb.view(), counters.data());
+      },
+      source);
+  if (backend == Backend::cuda) device_synchronize("render_reference");
+  RenderResult result;
+  result.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.image = Image(cam.width, cam.height);
+  result.image.rgb = rgb.to_vector();
+  result.counters = counters.to_vector()[0];
+  return result;
+}
+
+}  // namespace dv

@@ -1,0 +1,173 @@
+// The camera pass's payload for the fragment walk: Phong-shaded translucent surfaces and
+// volume samples composited front to back (Knecht eq. 3.10/3.11), constant media absorbing
+// exactly, the shadow term of every shaded sample from a shadow source. Host and device code.
+// What the camera sees through things is RGB: transmissive surfaces tint it by their colour
+// and constant media by their per-channel extinction; shadows stay scalar (the oracle's).
+#pragma once
+
+#include <cmath>
+
+#include "core/hd.h"
+#include "core/lane_group.h"
+#include "engine/raster/fragment_walk.h"
+#include "engine/raster/media_march.h"
+#include "engine/scene/volume_sampling.h"
+#include "render/frame/shading.h"
+
+namespace dv {
+
+// Opacity at which a ray stops: what is behind contributes less than this fraction.
+inline constexpr double kSaturatedTransmittance = 1e-6;
+
+template <class Source>
+struct ShadePayload {
+  const SceneView& s;
+  const Source& shadows;
+  dvec3 origin;
+  dvec3 dir;
+  typename Source::Cursor cursor{};
+  dvec3 color{0.0};
+  dvec3 transmittance{1.0};
+  unsigned long long samples = 0;
+  dvec3 segment_sigma_rgb{0.0};    // the constant media's extinction in the current segment
+  LaneGroup lanes{};               // lanes that split this pixel's volume steps between them
+  dvec3 transmittance_scale{1.0};  // while marching a share: the transmittance before it
+
+  DV_HD static bool saturated(const dvec3& t) {
+    return max_value(t.x, max_value(t.y, t.z)) <= kSaturatedTransmittance;
+  }
+
+  DV_HD bool done() const { return saturated(transmittance * transmittance_scale); }
+
+  // A translucent surface: its Phong colour over what lies behind, weighted by its opacity;
+  // its transmissive part adds highlights and tints what lies behind by its colour. The shaded
+  // point is the crossing moved onto its triangle (a rasterized crossing can lie just outside
+  // it, on the plane's extension behind a neighbour, and would shadow itself), and its shadow
+  // receiver carries the geometric normal.
+  DV_HD void surface(const RayHit& h, int32_t object) {
+    const ObjectView& o = s.objects[object];
+    if (o.alpha <= 0.0 && o.transmission <= 0.0) return;
+    const u32vec3 tri = s.triangles[h.triangle];
+    const dvec3 p0 = s.vertices[tri.x], p1 = s.vertices[tri.y], p2 = s.vertices[tri.z];
+    dvec3 n = glm::cross(p1 - p0, p2 - p0);
+    const double len = glm::length(n);
+    n = len > 0.0 ? n / len : -dir;
+    if (glm::dot(n, dir) > 0.0) n = -n;  // two-sided: face the viewer
+    const ShadowReceiver at{nearest_point_on_triangle(origin + dir * h.t, p0, p1, p2), n};
+    if (o.alpha > 0.0) {
+      const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir);
+      color += transmittance * o.alpha * c;
+    }
+    if (o.transmission <= 0.0) {
+      transmittance *= 1.0 - o.alpha;
+      return;
+    }
+    const dvec3 highlight = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir, true);
+    color += transmittance * o.transmission * highlight;
+    transmittance *= (1.0 - o.alpha - o.transmission) + o.transmission * o.color;
+  }
+
+  // Media over [t0, t1], stepped by march_media (engine/raster/media_march.h); volume steps in
+  // shares when lanes split them.
+  DV_HD void segment(const InsideSet& inside, double t0, double t1) {
+    segment_sigma_rgb = constant_extinction_rgb(s, inside);
+    if (lanes.count > 1 && has_volume(s, inside)) return segment_in_shares(inside, t0, t1);
+    march_media(s, inside, origin, dir, t0, t1, *this);
+  }
+
+  // What one share of a segment's steps adds, composited from clear (colour 0, transmittance 1).
+  struct SharePart {
+    dvec3 color;
+    dvec3 transmittance;
+    unsigned long long samples;
+  };
+
+  // The segment's steps in lanes.count contiguous shares, each composited from clear (a share
+  // stops where the ray is saturated even if the shares before it were clear), then folded in
+  // order: what a share adds is kept only while the ray before it is not saturated. In device
+  // code each lane of the group marches its own share and the lanes exchange the parts; a CPU
+  // thread marches every share itself. Both fold the same parts in the same order.
+  DV_HD void segment_in_shares(const InsideSet& inside, double t0, double t1) {
+    const dvec3 color_before = color, transmittance_before = transmittance;
+    const unsigned long long samples_before = samples;
+    const auto march_share = [&](int part) {
+      color = dvec3(0.0), transmittance = dvec3(1.0), samples = 0;
+      transmittance_scale = transmittance_before;
+      march_media(s, inside, origin, dir, t0, t1, *this, 1.0, StepShare{part, lanes.count});
+      return SharePart{color, transmittance, samples};
+    };
+#if DV_IN_DEVICE_CODE
+    const SharePart mine = march_share(lanes.rank);
+#endif
+    dvec3 folded_color = color_before, folded_transmittance = transmittance_before;
+    unsigned long long folded_samples = samples_before;
+    for (int part = 0; part < lanes.count; ++part) {
+#if DV_IN_DEVICE_CODE
+      const SharePart p{lane_value(lanes, mine.color, part),
+                        lane_value(lanes, mine.transmittance, part),
+                        lane_value(lanes, mine.samples, part)};
+      cursor.flags |= lane_value(lanes, cursor.flags, part);
+#else
+      const SharePart p = march_share(part);
+#endif
+      folded_samples += p.samples;
+      if (saturated(folded_transmittance)) continue;
+      folded_color += folded_transmittance * p.color;
+      folded_transmittance *= p.transmittance;
+    }
+    color = folded_color, transmittance = folded_transmittance, samples = folded_samples;
+    transmittance_scale = dvec3(1.0);
+  }
+
+  // Constant media only over [a, b]: they absorb, exactly, per channel.
+  DV_HD void absorb(double, double a, double b) {
+    const double length = b - a;
+    transmittance.x *= exp(-segment_sigma_rgb.x * length);
+    transmittance.y *= exp(-segment_sigma_rgb.y * length);
+    transmittance.z *= exp(-segment_sigma_rgb.z * length);
+  }
+
+  DV_HD void sample(const InsideSet& inside, double, const dvec3& x, double a, double b) {
+    volume_sample(inside, segment_sigma_rgb, x, b - a);
+  }
+
+  // One volume sample of length dt at x: alpha = 1 - exp(-sigma * dt), emission from the volumes'
+  // share of the extinction, shaded with the dominant volume's density gradient as normal (the
+  // exact gradient of the trilinear interpolant: the same eight samples, no extra lookups).
+  DV_HD void volume_sample(const InsideSet& inside, const dvec3& sigma_constant, const dvec3& x,
+                           double dt) {
+    double sigma_volume = 0.0, strongest = 0.0;
+    dvec3 weighted_color(0.0), gradient(0.0);
+    int32_t dominant = -1;
+    for (int i = 0; i < inside.count; ++i) {
+      const ObjectView& o = s.objects[inside.object[i]];
+      if (o.interior != InteriorKind::volume) continue;
+      const GridCell cell = grid_cell(s, s.volumes[o.volume], world_to_grid(o, x));
+      const TransferSample ts = apply_transfer(s, o, trilinear(cell));
+      sigma_volume += ts.sigma;
+      weighted_color += ts.sigma * ts.color;
+      if (ts.sigma > strongest) {
+        strongest = ts.sigma, dominant = inside.object[i];
+        gradient = world_gradient(o, trilinear_gradient(cell));
+      }
+    }
+    ++samples;
+    const dvec3 sigma = sigma_constant + sigma_volume;
+    if (max_value(sigma.x, max_value(sigma.y, sigma.z)) <= 0.0) return;
+    const dvec3 alpha(1.0 - exp(-sigma.x * dt), 1.0 - exp(-sigma.y * dt), 1.0 - exp(-sigma.z * dt));
+    if (dominant >= 0) {
+      const ObjectView& o = s.objects[dominant];
+      dvec3 n = gradient;
+      const double len = glm::length(n);
+      n = len > 1e-12 ? -n / len : dvec3(0.0);
+      if (glm::dot(n, dir) > 0.0) n = -n;
+      const ShadowReceiver at{x};  // a medium point: no surface bias
+      const dvec3 c =
+          shade_phong(s, shadows, cursor, o, weighted_color / sigma_volume, at, n, -dir);
+      color += transmittance * alpha * (sigma_volume / sigma) * c;
+    }
+    transmittance *= 1.0 - alpha;
+  }
+};
+
+}  // namespace dv

@@ -1,0 +1,672 @@
+// glTF 2.0 import: tinygltf parses the file, this file validates every index, accessor and
+// factor it uses and maps nodes, primitives, cameras, punctual lights and materials onto
+// dv::Scene as documented in render/load/gltf_import.h.
+#include "render/load/gltf_import.h"
+
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "core/text.h"
+#include "engine/scene/default_staging.h"
+#include "engine/scene/mesh_topology.h"
+
+namespace dv {
+namespace {
+
+using tinygltf::Model;
+
+constexpr double kPi = 3.14159265358979323846;
+
+double degrees(double radians) {
+  return radians * 180.0 / kPi;
+}
+
+std::string quoted_name(const std::string& name, const char* kind, int index) {
+  return name.empty() ? std::string(kind) + " " + std::to_string(index)
+                      : std::string(kind) + " " + std::to_string(index) + " '" + name + "'";
+}
+
+// Embedded images are accepted unread: deepvox has no textures.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                const unsigned char*, int, void*) {
+  return true;
+}
+
+void warn_lines(const std::string& file, const std::string& text) {
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (!line.empty()) log_warning(file + ": " + line);
+  }
+}
+
+std::vector<unsigned char> read_whole_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, "file not found (or not a regular file)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open file");
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, "read error");
+  if (bytes.empty()) throw InputError(path, "file is empty");
+  if (bytes.size() >= std::numeric_limits<uint32_t>::max())
+    throw InputError(path, "file is too large for glTF (4 GiB or more)");
+  return bytes;
+}
+
+uint32_t read_le32(const unsigned char* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+void check_glb_header(const std::string& path, const std::vector<unsigned char>& bytes) {
+  if (bytes.size() < 20)
+    throw InputError(path, "truncated .glb: " + std::to_string(bytes.size()) +
+                               " bytes, but the header and JSON chunk header need 20");
+  uint32_t version = read_le32(&bytes[4]);
+  uint32_t length = read_le32(&bytes[8]);
+  if (version != 2) throw InputError(path, "GLB version " + std::to_string(version) + ", not 2");
+  if (length > bytes.size())
+    throw InputError(path, "truncated .glb: the header declares " + std::to_string(length) +
+                               " bytes but the file has " + std::to_string(bytes.size()));
+}
+
+Model parse_model(const std::string& path) {
+  std::vector<unsigned char> bytes = read_whole_file(path);
+  bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  if (!binary && lowercase_extension(path) == ".glb")
+    throw InputError(path, "not a binary glTF: the file does not start with 'glTF'");
+  if (binary) check_glb_header(path, bytes);
+
+  std::string base_dir = std::filesystem::path(path).parent_path().string();
+  if (base_dir.empty()) base_dir = ".";
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&skip_image, nullptr);
+  Model model;
+  std::string err, warn;
+  bool ok = false;
+  try {
+    unsigned int size = static_cast<unsigned int>(bytes.size());
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
+                : loader.LoadASCIIFromString(&model, &err, &warn,
+                                             reinterpret_cast<const char*>(bytes.data()), size,
+                                             base_dir);
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("cannot load glTF: ") + e.what());
+  }
+  if (!ok) {
+    std::string problem;  // tinygltf's message lines, joined
+    std::istringstream lines(err);
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty()) problem += (problem.empty() ? "" : "; ") + line;
+    throw InputError(path, std::string("cannot load ") + (binary ? ".glb" : "glTF") + ": " +
+                               (problem.empty() ? "unknown error" : problem));
+  }
+  warn_lines(path, warn);
+  warn_lines(path, err);
+  // glTF 2.0 only: a later major version may change what the same keys mean.
+  const std::string& version = model.asset.version;
+  if (version.substr(0, 2) != "2." && version != "2")
+    throw InputError(path, "glTF asset version '" + version + "', but only 2.x is read");
+  return model;
+}
+
+void check_extensions(const std::string& path, const Model& model) {
+  static const std::set<std::string> supported = {
+      "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_volume",
+      "KHR_materials_emissive_strength", "KHR_texture_transform"};
+  for (const std::string& name : model.extensionsRequired) {
+    if (!supported.count(name))
+      throw InputError(path, "required extension " + name + " is not supported by deepvox");
+  }
+  for (const std::string& name : model.extensionsUsed) {
+    if (!supported.count(name))
+      log_warning(path + ": extension " + name + " is not supported and is ignored");
+  }
+}
+
+bool all_finite(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+// A validated accessor: element i starts at first + i * stride; `where` names it in messages.
+struct AccessorView {
+  std::string where;
+  const unsigned char* first = nullptr;
+  size_t stride = 0;
+  size_t count = 0;
+  int component_type = 0;
+};
+
+int component_size(int component_type) {
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+// Validates accessor `index` completely (indices, types, byte ranges) before anything is read.
+AccessorView checked_accessor(const Model& model, int index, const std::string& role,
+                              const std::string& path, bool is_position) {
+  std::string where = path + ": accessor " + std::to_string(index) + " (" + role + ")";
+  if (index < 0 || size_t(index) >= model.accessors.size())
+    throw InputError(where, "accessor index out of range (the file has " +
+                                std::to_string(model.accessors.size()) + " accessors)");
+  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+  if (acc.sparse.isSparse) throw InputError(where, "sparse accessors are not supported");
+  if (is_position) {
+    if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || acc.type != TINYGLTF_TYPE_VEC3)
+      throw InputError(where, "POSITION must be a FLOAT VEC3 accessor");
+  } else if (acc.type != TINYGLTF_TYPE_SCALAR || component_size(acc.componentType) == 0 ||
+             acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+    throw InputError(where,
+                     "indices must be an UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT "
+                     "SCALAR accessor");
+  }
+  if (acc.bufferView < 0 || size_t(acc.bufferView) >= model.bufferViews.size())
+    throw InputError(where, "buffer view " + std::to_string(acc.bufferView) +
+                                " does not exist (the file has " +
+                                std::to_string(model.bufferViews.size()) + ")");
+  const tinygltf::BufferView& view = model.bufferViews[size_t(acc.bufferView)];
+  std::string view_name = "buffer view " + std::to_string(acc.bufferView);
+  if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+    throw InputError(where, view_name + " refers to buffer " + std::to_string(view.buffer) +
+                                ", which does not exist");
+  const std::vector<unsigned char>& data = model.buffers[size_t(view.buffer)].data;
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+    throw InputError(where, view_name + " (byteOffset " + std::to_string(view.byteOffset) +
+                                ", byteLength " + std::to_string(view.byteLength) +
+                                ") runs past the end of buffer " + std::to_string(view.buffer) +
+                                " (" + std::to_string(data.size()) + " bytes)");
+  size_t element = size_t(component_size(acc.componentType)) * (is_position ? 3 : 1);
+  size_t stride = view.byteStride ? view.byteStride : element;
+  if (stride < element)
+    throw InputError(where, view_name + " byteStride " + std::to_string(stride) +
+                                " is smaller than the element size " + std::to_string(element));
+  size_t length = view.byteLength;
+  if (acc.count > 0 && (element > length || acc.byteOffset > length - element ||
+                        (acc.count - 1) > (length - element - acc.byteOffset) / stride))
+    throw InputError(where, std::to_string(acc.count) + " elements of " + std::to_string(element) +
+                                " bytes (stride " + std::to_string(stride) + ") from byteOffset " +
+                                std::to_string(acc.byteOffset) + " run past the end of " +
+                                view_name + " (byteLength " + std::to_string(length) + ")");
+  AccessorView out;
+  out.where = where;
+  out.first = data.data() + view.byteOffset + (acc.count > 0 ? acc.byteOffset : 0);
+  out.stride = stride;
+  out.count = acc.count;
+  out.component_type = acc.componentType;
+  return out;
+}
+
+std::vector<dvec3> read_positions(const AccessorView& view) {
+  std::vector<dvec3> positions(view.count);
+  for (size_t i = 0; i < view.count; ++i) {
+    float xyz[3];
+    std::memcpy(xyz, view.first + i * view.stride, sizeof xyz);
+    positions[i] = dvec3(xyz[0], xyz[1], xyz[2]);
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
+      throw InputError(view.where, "position " + std::to_string(i) + " is not finite (NaN or Inf)");
+  }
+  return positions;
+}
+
+std::vector<uint32_t> read_indices(const AccessorView& view, size_t vertex_count) {
+  std::vector<uint32_t> indices(view.count);
+  for (size_t i = 0; i < view.count; ++i) {
+    const unsigned char* p = view.first + i * view.stride;
+    uint32_t value = 0;
+    if (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+      value = *p;
+    } else if (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+      uint16_t v16;
+      std::memcpy(&v16, p, 2);
+      value = v16;
+    } else {
+      std::memcpy(&value, p, 4);
+    }
+    if (value >= vertex_count)
+      throw InputError(view.where, "index " + std::to_string(i) + " is " + std::to_string(value) +
+                                       " but the primitive has " + std::to_string(vertex_count) +
+                                       " vertices");
+    indices[i] = value;
+  }
+  return indices;
+}
+
+// Triangles of a TRIANGLES / TRIANGLE_STRIP / TRIANGLE_FAN index list (glTF 2.0 §3.7.2.1),
+// dropping triangles that repeat a vertex.
+std::vector<u32vec3> assemble_triangles(const std::vector<uint32_t>& idx, int mode) {
+  std::vector<u32vec3> triangles;
+  auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
+    if (a != b && b != c && a != c) triangles.emplace_back(a, b, c);
+  };
+  size_t n = idx.size();
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    for (size_t i = 0; i + 2 < n; i += 3) add(idx[i], idx[i + 1], idx[i + 2]);
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (size_t i = 0; i + 2 < n; ++i) {
+      if (i % 2 == 0)
+        add(idx[i], idx[i + 1], idx[i + 2]);
+      else
+        add(idx[i], idx[i + 2], idx[i + 1]);
+    }
+  } else {
+    for (size_t i = 1; i + 1 < n; ++i) add(idx[i], idx[i + 1], idx[0]);
+  }
+  return triangles;
+}
+
+dmat4 local_transform(const tinygltf::Node& node, const std::string& where) {
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16 || !all_finite(node.matrix))
+      throw InputError(where, "matrix must have 16 finite numbers");
+    return glm::make_mat4(node.matrix.data());  // both column-major
+  }
+  dmat4 m(1.0);
+  if (!node.translation.empty()) {
+    if (node.translation.size() != 3 || !all_finite(node.translation))
+      throw InputError(where, "translation must have 3 finite numbers");
+    m = glm::translate(m, glm::make_vec3(node.translation.data()));
+  }
+  if (!node.rotation.empty()) {
+    const std::vector<double>& q = node.rotation;
+    if (q.size() != 4 || !all_finite(q))
+      throw InputError(where, "rotation must be a quaternion of 4 finite numbers");
+    glm::dquat rotation(q[3], q[0], q[1], q[2]);  // glTF stores x, y, z, w
+    if (glm::length(rotation) < 1e-12) throw InputError(where, "rotation quaternion is zero");
+    m = m * glm::mat4_cast(glm::normalize(rotation));
+  }
+  if (!node.scale.empty()) {
+    if (node.scale.size() != 3 || !all_finite(node.scale))
+      throw InputError(where, "scale must have 3 finite numbers");
+    m = glm::scale(m, glm::make_vec3(node.scale.data()));
+  }
+  return m;
+}
+
+// Phong material and interior of one glTF material (mapping documented in gltf_import.h).
+struct MappedMaterial {
+  Material material;
+  Interior interior;
+};
+
+const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& extensions, const char* name) {
+  auto found = extensions.find(name);
+  return found == extensions.end() ? nullptr : &found->second;
+}
+
+// A finite number field of an extension object, or `fallback` when absent.
+double number_field(const tinygltf::Value& object, const char* key, double fallback,
+                    const std::string& where) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& value = object.Get(key);
+  if (!value.IsNumber() || !std::isfinite(value.GetNumberAsDouble()))
+    throw InputError(where, std::string(key) + " must be a finite number");
+  return value.GetNumberAsDouble();
+}
+
+void require(bool ok, const std::string& where, const std::string& problem) {
+  if (!ok) throw InputError(where, problem);
+}
+
+bool unit_range(double v) {
+  return v >= 0.0 && v <= 1.0;
+}
+
+dvec3 attenuation_color(const tinygltf::Value& volume, const std::string& where) {
+  if (!volume.Has("attenuationColor")) return dvec3(1.0);
+  const tinygltf::Value& array = volume.Get("attenuationColor");
+  dvec3 color(1.0);
+  bool ok = array.IsArray() && array.ArrayLen() == 3;
+  for (int i = 0; ok && i < 3; ++i) {
+    ok = array.Get(i).IsNumber() && unit_range(array.Get(i).GetNumberAsDouble());
+    if (ok) color[i] = array.Get(i).GetNumberAsDouble();
+  }
+  require(ok, where, "attenuationColor must be 3 numbers in [0, 1]");
+  return color;
+}
+
+// Constant interior from KHR_materials_volume, or none when thin-walled.
+Interior volume_interior(const tinygltf::Value& volume, const std::string& where) {
+  Interior interior;
+  double thickness = number_field(volume, "thicknessFactor", 0.0, where);
+  require(thickness >= 0.0, where, "thicknessFactor must be >= 0");
+  dvec3 color = attenuation_color(volume, where);
+  double distance =
+      number_field(volume, "attenuationDistance", std::numeric_limits<double>::infinity(), where);
+  require(distance > 0.0, where, "attenuationDistance must be > 0");
+  if (thickness == 0.0) return interior;  // thin-walled: no medium inside
+  dvec3 sigma(0.0);
+  if (std::isfinite(distance)) sigma = -glm::log(glm::max(color, dvec3(1e-6))) / distance;
+  interior.kind = InteriorKind::constant;
+  interior.sigma = (sigma.x + sigma.y + sigma.z) / 3.0;
+  if (interior.sigma > 0.0) interior.sigma_tint = sigma / interior.sigma;
+  return interior;
+}
+
+MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string& where) {
+  MappedMaterial out;
+  const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
+  require(base.size() == 4 && std::all_of(base.begin(), base.end(), unit_range), where,
+          "baseColorFactor must be 4 numbers in [0, 1]");
+  double roughness = m.pbrMetallicRoughness.roughnessFactor;
+  require(unit_range(roughness), where, "roughnessFactor must lie in [0, 1]");
+  out.material.color = dvec3(base[0], base[1], base[2]);
+  out.material.diffuse = 0.8;
+  out.material.specular = 0.2 * (1.0 - roughness) + 0.04;
+  double r4 = roughness * roughness * roughness * roughness;
+  out.material.shininess = clamp_value(2.0 / std::max(r4, 1e-4) - 2.0, 1.0, 512.0);
+
+  double coverage = 1.0;
+  if (m.alphaMode == "BLEND") {
+    coverage = base[3];
+  } else if (m.alphaMode == "MASK") {
+    coverage = base[3] >= m.alphaCutoff ? 1.0 : 0.0;
+  } else {
+    require(m.alphaMode == "OPAQUE", where, "alphaMode must be OPAQUE, MASK or BLEND");
+  }
+  double transmission = 0.0;
+  if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_transmission")) {
+    std::string ext_where = where + ": KHR_materials_transmission";
+    transmission = number_field(*ext, "transmissionFactor", 0.0, ext_where);
+    require(unit_range(transmission), ext_where, "transmissionFactor must lie in [0, 1]");
+  }
+  out.material.alpha = coverage * (1.0 - transmission);
+  out.material.transmission = coverage * transmission;
+  if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_volume"))
+    out.interior = volume_interior(*ext, where + ": KHR_materials_volume");
+  return out;
+}
+
+class Importer {
+ public:
+  Importer(std::string path, const Model& model, const GltfImportOptions& options)
+      : path_(std::move(path)), model_(model), options_(options) {}
+
+  Scene run();
+
+ private:
+  int scene_mesh(int mesh_index, int primitive_index);
+  const MappedMaterial& material(int index);
+  void add_node(int node_index, const dmat4& world);
+  void add_light(const tinygltf::Node& node, const std::string& where, const dmat4& world);
+  void finish_camera();
+  std::string at(const std::string& what) const { return path_ + ": " + what; }
+
+  std::string path_;
+  const Model& model_;
+  GltfImportOptions options_;
+  Scene scene_;
+  std::map<std::pair<int, int>, int> primitive_meshes_;  // (mesh, primitive) -> scene mesh or -1
+  std::map<int, MappedMaterial> materials_;
+  bool has_camera_ = false;
+  dmat4 camera_world_{1.0};
+  int camera_index_ = -1;
+  std::vector<char> visited_;  // nodes already placed (the hierarchy must be a tree)
+};
+
+int Importer::scene_mesh(int mesh_index, int primitive_index) {
+  auto found = primitive_meshes_.find({mesh_index, primitive_index});
+  if (found != primitive_meshes_.end()) return found->second;
+  const tinygltf::Mesh& mesh = model_.meshes[size_t(mesh_index)];
+  const tinygltf::Primitive& prim = mesh.primitives[size_t(primitive_index)];
+  std::string mesh_name = quoted_name(mesh.name, "mesh", mesh_index);
+  std::string where = at(mesh_name + " primitive " + std::to_string(primitive_index));
+  int& result = primitive_meshes_[{mesh_index, primitive_index}];
+  result = -1;
+  if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
+    log_warning(where + ": points/lines primitive (mode " + std::to_string(prim.mode) +
+                ") skipped: deepvox renders triangles only");
+    return result;
+  }
+  if (prim.mode < TINYGLTF_MODE_TRIANGLES || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+    throw InputError(where, "unknown primitive mode " + std::to_string(prim.mode));
+  auto position = prim.attributes.find("POSITION");
+  if (position == prim.attributes.end()) throw InputError(where, "primitive has no POSITION");
+  std::string of = " of " + mesh_name + " primitive " + std::to_string(primitive_index);
+  AccessorView pos_view = checked_accessor(model_, position->second, "POSITION" + of, path_, true);
+  std::vector<uint32_t> indices;
+  if (prim.indices >= 0) {
+    AccessorView idx_view = checked_accessor(model_, prim.indices, "indices" + of, path_, false);
+    indices = read_indices(idx_view, pos_view.count);
+  } else {
+    indices.resize(pos_view.count);
+    for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i);
+  }
+  TriangleMesh out;
+  out.name = (mesh.name.empty() ? "mesh" + std::to_string(mesh_index) : mesh.name) +
+             (mesh.primitives.size() > 1 ? "#" + std::to_string(primitive_index) : "");
+  out.positions = read_positions(pos_view);
+  out.triangles = assemble_triangles(indices, prim.mode);
+  if (prim.mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0)
+    log_warning(where + ": " + std::to_string(indices.size()) +
+                " indices is not a multiple of 3; the last ones are ignored");
+  if (out.triangles.empty()) {
+    log_warning(where + ": primitive has no triangles; skipped");
+    return result;
+  }
+  merge_duplicate_vertices(out);
+  result = int(scene_.meshes.size());
+  scene_.meshes.push_back(std::move(out));
+  return result;
+}
+
+const MappedMaterial& Importer::material(int index) {
+  auto found = materials_.find(index);
+  if (found != materials_.end()) return found->second;
+  if (index >= 0 && size_t(index) >= model_.materials.size())
+    throw InputError(at("material " + std::to_string(index)), "material index out of range");
+  tinygltf::Material fallback;  // glTF's default material: white, rough, opaque
+  const tinygltf::Material& m = index >= 0 ? model_.materials[size_t(index)] : fallback;
+  std::string where = at(quoted_name(m.name, "material", index));
+  return materials_.emplace(index, map_gltf_material(m, where)).first->second;
+}
+
+void Importer::add_node(int root, const dmat4& root_world) {
+  std::vector<std::pair<int, dmat4>> stack{{root, root_world}};
+  while (!stack.empty()) {
+    auto [index, parent] = stack.back();
+    stack.pop_back();
+    if (index < 0 || size_t(index) >= model_.nodes.size())
+      throw InputError(at("node " + std::to_string(index)), "node index out of range");
+    if (visited_[size_t(index)])
+      throw InputError(at("node " + std::to_string(index)),
+                       "node is reached twice: the node hierarchy must be a tree");
+    visited_[size_t(index)] = 1;
+    const tinygltf::Node& node = model_.nodes[size_t(index)];
+    std::string node_name = quoted_name(node.name, "node", index);
+    dmat4 world = parent * local_transform(node, at(node_name));
+    if (node.mesh >= 0) {
+      if (size_t(node.mesh) >= model_.meshes.size())
+        throw InputError(at(node_name),
+                         "mesh index " + std::to_string(node.mesh) + " out of range");
+      const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
+      for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+        int mesh_id = scene_mesh(node.mesh, int(p));
+        if (mesh_id < 0) continue;
+        const MappedMaterial& mat = material(mesh.primitives[p].material);
+        Object obj;
+        obj.name = (node.name.empty() ? "node" + std::to_string(index) : node.name) +
+                   (mesh.primitives.size() > 1 ? "#" + std::to_string(p) : "");
+        obj.mesh = mesh_id;
+        obj.transform = world;
+        obj.material = mat.material;
+        obj.interior = mat.interior;
+        scene_.objects.push_back(std::move(obj));
+      }
+    }
+    if (node.camera >= 0) {
+      if (size_t(node.camera) >= model_.cameras.size())
+        throw InputError(at(node_name),
+                         "camera index " + std::to_string(node.camera) + " out of range");
+      if (model_.cameras[size_t(node.camera)].type != "perspective") {
+        log_warning(at(node_name) + ": orthographic camera ignored");
+      } else if (!has_camera_) {
+        has_camera_ = true;
+        camera_world_ = world;
+        camera_index_ = node.camera;
+      }
+    }
+    add_light(node, at(node_name), world);
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+      stack.emplace_back(*child, world);
+  }
+}
+
+void Importer::add_light(const tinygltf::Node& node, const std::string& where, const dmat4& world) {
+  const tinygltf::Value* ext = find_extension(node.extensions, "KHR_lights_punctual");
+  if (!ext) return;
+  const tinygltf::Value& ref = ext->Has("light") ? ext->Get("light") : tinygltf::Value();
+  double ref_number = ref.IsNumber() ? ref.GetNumberAsDouble() : -1.0;
+  if (!(ref_number >= 0.0 && ref_number < double(model_.lights.size()) &&
+        ref_number == std::floor(ref_number)))
+    throw InputError(where,
+                     "KHR_lights_punctual light index is missing or out of range (the "
+                     "file has " +
+                         std::to_string(model_.lights.size()) + " lights)");
+  int index = int(ref_number);
+  const tinygltf::Light& src = model_.lights[size_t(index)];
+  std::string light_where = at(quoted_name(src.name, "light", index));
+  Light light;
+  light.position = dvec3(world[3]);
+  dvec3 direction = glm::dmat3(world) * dvec3(0.0, 0.0, -1.0);
+  require(glm::length(direction) > 1e-12, where, "node transform collapses the light direction");
+  light.direction = glm::normalize(direction);
+  if (src.type == "spot") {
+    double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
+    require(std::isfinite(inner) && std::isfinite(outer) && inner >= 0.0 && inner <= outer &&
+                outer > 0.0 && outer <= 0.5 * kPi + 1e-9,
+            light_where, "spot cone angles need 0 <= innerConeAngle <= outerConeAngle <= pi/2");
+    light.type = LightType::spot;
+    light.cutoff_deg = std::min(degrees(outer), 90.0);
+    // cos_inner = cos(cutoff - penumbra) = cos(innerConeAngle): the spec's falloff window.
+    light.penumbra_deg = degrees(outer - inner);
+  } else if (src.type == "point") {
+    light.type = LightType::omni;
+  } else if (src.type == "directional") {
+    light.type = LightType::directional;
+  } else {
+    throw InputError(light_where, "unknown light type '" + src.type + "'");
+  }
+  if (!src.color.empty()) {
+    require(src.color.size() == 3 && all_finite(src.color) &&
+                std::all_of(src.color.begin(), src.color.end(), [](double c) { return c >= 0; }),
+            light_where, "color must be 3 numbers >= 0");
+    light.color = dvec3(src.color[0], src.color[1], src.color[2]);
+  }
+  require(std::isfinite(src.intensity) && src.intensity >= 0.0, light_where,
+          "intensity must be a finite number >= 0");
+  require(std::isfinite(src.range) && src.range >= 0.0, light_where,
+          "range must be a finite number >= 0 (0: no range)");
+  light.intensity = photometric_to_radiometric(src.intensity);
+  light.source_intensity = src.intensity;
+  light.source_unit = light.type == LightType::directional ? "lx" : "cd";
+  light.gltf_cone = light.type == LightType::spot;
+  light.range = light.type == LightType::directional ? 0.0 : src.range;
+  scene_.lights.push_back(light);
+}
+
+void Importer::finish_camera() {
+  Aabb box = world_bounds(scene_);
+  Camera& cam = scene_.camera;
+  cam.width = 640;
+  cam.height = 480;
+  cam.up = dvec3(0.0, 1.0, 0.0);
+  if (!has_camera_) {
+    cam = default_camera(box);
+    return;
+  }
+  const tinygltf::Camera& src = model_.cameras[size_t(camera_index_)];
+  const tinygltf::PerspectiveCamera& p = src.perspective;
+  std::string where = at(quoted_name(src.name, "camera", camera_index_));
+  require(p.yfov > 0.0 && p.yfov < kPi, where, "yfov must lie in (0, pi) radians");
+  require(p.znear > 0.0 && std::isfinite(p.znear), where, "znear must be a finite number > 0");
+  require(p.aspectRatio >= 0.0 && std::isfinite(p.aspectRatio), where, "aspectRatio must be > 0");
+  glm::dmat3 basis(camera_world_);
+  dvec3 forward = basis * dvec3(0.0, 0.0, -1.0);
+  dvec3 up = basis * dvec3(0.0, 1.0, 0.0);
+  require(glm::length(glm::cross(forward, up)) > 1e-12, where,
+          "the camera node's transform is degenerate");
+  cam.position = dvec3(camera_world_[3]);
+  double distance = glm::length(box.center() - cam.position);
+  if (!(distance > 1e-9)) distance = 1.0;
+  cam.target = cam.position + glm::normalize(forward) * distance;
+  cam.up = glm::normalize(up);
+  cam.fov_deg = degrees(p.yfov);
+  if (p.aspectRatio > 0.0)
+    cam.height = int(std::clamp(std::round(640.0 / p.aspectRatio), 0.0, 1e6));
+  cam.near_plane = p.znear;
+}
+
+Scene Importer::run() {
+  if (model_.scenes.empty()) throw InputError(path_, "the file has no scenes");
+  int scene_index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+  if (size_t(scene_index) >= model_.scenes.size())
+    throw InputError(path_, "default scene " + std::to_string(scene_index) + " does not exist");
+  visited_.assign(model_.nodes.size(), 0);
+  for (int root : model_.scenes[size_t(scene_index)].nodes) add_node(root, dmat4(1.0));
+  if (scene_.objects.empty())
+    throw InputError(path_, "the scene has no triangle primitives: nothing to render");
+  std::set<int> with_interior;
+  for (const Object& obj : scene_.objects)
+    if (obj.interior.kind != InteriorKind::none) with_interior.insert(obj.mesh);
+  for (int mesh : with_interior) {
+    if (is_closed(scene_.meshes[size_t(mesh)])) orient_outward(scene_.meshes[size_t(mesh)]);
+  }
+  if (scene_.lights.empty() && options_.default_lights) {
+    scene_.lights = default_lights(world_bounds(scene_));
+    log_info(path_ + ": no lights in the file; added the default key and fill lights");
+  }
+  finish_camera();
+  scene_.source = path_;
+  validate_scene(scene_);
+  return std::move(scene_);
+}
+
+}  // namespace
+
+Scene load_gltf_scene(const std::string& path, const GltfImportOptions& options) {
+  Model model = parse_model(path);
+  check_extensions(path, model);
+  return Importer(path, model, options).run();
+}
+
+double photometric_to_radiometric(double photometric) {
+  return photometric / kLumensPerWatt;
+}
+
+bool is_gltf_file(const std::string& path) {
+  const std::string ext = lowercase_extension(path);
+  return ext == ".gltf" || ext == ".glb";
+}
+
+}  // namespace dv

@@ -1,0 +1,113 @@
+// glTF 2.0 import (.gltf with embedded or external buffers, and .glb) into deepvox's scene
+// model, so scenes made in Blender & co. can be rendered and shadowed. tinygltf parses the file
+// (compiled in render/load/gltf_impl.cpp); this importer validates everything it reads and maps it
+// as documented below. The README points here for the mapping.
+//
+// How glTF maps onto dv::Scene
+// ----------------------------
+// Files and errors
+//   - The file is read whole; bytes starting with "glTF" are parsed as GLB, anything else as
+//     JSON. Missing or empty files, malformed JSON, a truncated or corrupt .glb, a bad buffer
+//     URI: dv::InputError naming the file. tinygltf's own warnings become dv::log_warning.
+//   - extensionsRequired may only name KHR_lights_punctual, KHR_materials_transmission,
+//     KHR_materials_volume, KHR_materials_emissive_strength and KHR_texture_transform (the last
+//     two change nothing here: deepvox has no emission and reads no textures). Any other
+//     (KHR_mesh_quantization, KHR_draco_mesh_compression, ...) is an InputError naming it.
+//     Unknown names in extensionsUsed only warn.
+// Nodes and meshes
+//   - The default scene (else scene 0) is walked; node transforms (matrix, or T * R * S) are
+//     composed into world matrices. The hierarchy must be a tree (a node reached twice is an
+//     InputError). Skins, morph targets and animations are ignored.
+//   - Each primitive of mode TRIANGLES (4, the default), TRIANGLE_STRIP (5) or TRIANGLE_FAN
+//     (6) becomes one dv::Object with its own TriangleMesh: positions (object space) from the
+//     POSITION accessor, triangles from the indices accessor or 0..n-1; strips and fans are
+//     converted to triangles and triangles that repeat a vertex index are dropped. The node's
+//     world matrix goes into Object::transform. Vertices at identical positions are merged
+//     (glTF splits them at normal seams) so closed shapes are closed by index. A primitive
+//     used by several nodes shares one TriangleMesh. POINTS and LINES primitives (modes 0-3)
+//     and primitives without triangles are skipped with a warning.
+//   - Every accessor is validated before it is read: indices of accessor, buffer view and
+//     buffer in range; POSITION must be FLOAT VEC3, indices UNSIGNED_BYTE/SHORT/INT SCALAR;
+//     byteOffset + stride * (count - 1) + element size must fit in the buffer view, and the
+//     view in its buffer; sparse accessors and accessors without a buffer view are refused;
+//     index values must be below the vertex count; positions must be finite. Each violation
+//     is an InputError naming the file, the accessor and the mesh.
+// Camera
+//   - The first node in the walk with a perspective camera: position and orientation from its
+//     world matrix (looks along local -Z, up is local +Y; target = position + view direction
+//     times the distance to the centre of the scene bounds), fov_deg = yfov in degrees,
+//     width = 640, height = round(640 / aspectRatio) (480 without aspectRatio), near_plane =
+//     znear. Orthographic cameras are skipped with a warning.
+//   - No camera: dv::default_camera (engine/scene/default_staging.h): fov 45 degrees, a
+//   three-quarter
+//     view of the world bounds' centre (35 degrees round from +Z towards +X, 25 degrees up),
+//     far enough that the bounding sphere fits the vertical field of view.
+// Lights (KHR_lights_punctual, attached to nodes)
+//   - Position = node origin; a light shines along its node's local -Z. spot -> spot with
+//     cutoff_deg = outerConeAngle (default pi/4) and penumbra_deg = outer - inner cone angle,
+//     both in degrees, and the spec's cone falloff (Light::gltf_cone: (clamp((cos a - cos
+//     outer) / max(cos inner - cos outer, 0.001), 0, 1))^2, a the angle to the axis); point
+//     -> omni; directional -> directional. color is copied.
+//   - Units: glTF intensity is photometric (candela = lm/sr for point and spot, lux = lm/m^2
+//     for directional). deepvox's scale is radiometric: a light of intensity I gives
+//     irradiance I / d^2 (W/m^2) at distance d, and a white surface of diffuse 1 facing it
+//     shows I / d^2 before exposure (render --exposure, --tonemap). The conversion is the
+//     spec's luminous efficacy of 683 lm/W: I = candela / 683 W/sr, E = lux / 683 W/m^2
+//     (photometric_to_radiometric). So a 100 cd lamp 0.5 m away lights a white diffuse
+//     surface to 400 / 683 = 0.59. The original value and unit are kept for `info`.
+//   - range (point and spot, 0 = none) multiplies the 1/d^2 falloff by the spec's window
+//     clamp(1 - (d / range)^4, 0, 1).
+//   - No light at all: dv::default_lights (engine/scene/default_staging.h): a key spot light from
+//     above and beside the default view, irradiance 1 at the bounds' centre, and a dim fill
+//     (log_info); not when GltfImportOptions::default_lights is false (a JSON scene that
+//     imports the file adds its own).
+// Materials (one per primitive; no material means glTF's default white material)
+//   - color = baseColorFactor rgb; diffuse = 0.8; ambient stays 0.1.
+//   - Phong from PBR roughness r: specular = 0.2 * (1 - r) + 0.04 (a dielectric's 4 % plus a
+//     gloss term that fades with roughness); shininess = 2 / max(r^4, 1e-4) - 2 clamped to
+//     [1, 512] (the Blinn-Phong exponent whose lobe matches a GGX lobe of alpha = r^2).
+//   - Surface alpha (opacity per crossing): coverage a times (1 - t). a = 1 for OPAQUE, the
+//     baseColorFactor alpha for BLEND, and 1 or 0 for MASK (alpha >= alphaCutoff or not);
+//     t = KHR_materials_transmission transmissionFactor (0 without the extension). So
+//     transmission 0.25 gives alpha 0.75, and a BLEND material without it its factor's alpha.
+//     Shadows see exactly this alpha. Material::transmission = a * t: in the camera image
+//     that part of the surface shows Phong highlights and tints what is seen through it by
+//     the base colour (glass with transmission 1 casts no shadow but is visible); `info`
+//     warns about fully transmissive materials.
+//   - KHR_materials_volume: thicknessFactor 0 (the default) is thin-walled: no interior.
+//     thicknessFactor > 0 gives a constant interior with sigma = -ln(c) / d per channel from
+//     attenuationColor c (default [1,1,1], channels clamped to >= 1e-6) and
+//     attenuationDistance d (default +infinity, giving sigma 0). Shadows (the oracle and every
+//     shadow method) are scalar and use the mean of the three sigmas (Interior::sigma); the
+//     camera pass attenuates each channel by its own (Interior::sigma_tint), so a red medium
+//     tints what is seen through it red. An object with an interior must have a closed
+//     mesh; dv::validate_scene, called at the end, reports open edges.
+//   - Factors outside their glTF ranges ([0,1] colours, roughness, transmission; d > 0;
+//     thickness >= 0) or of the wrong JSON type are InputErrors naming the material.
+// The scene must contain at least one triangle; scene.source is set to the path.
+#pragma once
+
+#include <string>
+
+#include "engine/scene/scene.h"
+
+namespace dv {
+
+// Luminous efficacy the KHR_lights_punctual spec uses to relate its photometric units to
+// radiometric ones (lm/W).
+inline constexpr double kLumensPerWatt = 683.0;
+
+// candela -> W/sr (point, spot) or lux -> W/m^2 (directional): photometric / 683.
+double photometric_to_radiometric(double photometric);
+
+struct GltfImportOptions {
+  bool default_lights = true;  // add dv::default_lights when the file has no light
+};
+
+// Loads a .gltf or .glb file as described above; throws InputError naming the file.
+Scene load_gltf_scene(const std::string& path, const GltfImportOptions& options = {});
+
+// True when the path ends in .gltf or .glb (any letter case).
+bool is_gltf_file(const std::string& path);
+
+}  // namespace dv

@@ -1,0 +1,54 @@
+// See node_replay_scratch.h.
+#include "strategies/storage/node_replay_scratch.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "cuda/memory_check.h"
+
+namespace dv {
+
+NodeReplay NodeReplayScratch::begin(const DsmGenerationContext& c) {
+  const int64_t texels = c.generator.texel_count();
+  // Chunk indices and the lost texels' threads are 32-bit: beyond that the replay stays inactive
+  // and every texel is walked twice, as without it.
+  const int64_t most_chunks = std::numeric_limits<int32_t>::max();
+  if (texels == 0 || texels >= most_chunks || c.generator.thread_count() > most_chunks)
+    return replay_ = {};
+  const int64_t wanted = largest_stripe_ < 0 ? texels / 4 / kReplayStripes + 1
+                                             : largest_stripe_ + largest_stripe_ / 8 + 1;
+  const int64_t share = std::min(wanted, (most_chunks - texels) / kReplayStripes);
+  const int64_t chunks = replay_chunks(texels, share);
+  const Memory memory = memory_of(c.backend);
+  check_reservation(memory, chunks * kReplayChunkNodes * int64_t(sizeof(DsmNode)),
+                    "dsm node replay chunks");
+  nodes_ = Buffer<DsmNode>(memory, chunks * kReplayChunkNodes, "dsm node replay chunks");
+  next_ = Buffer<int32_t>(memory, chunks, "dsm node replay chunk links");
+  kept_ = Buffer<KeptTexel>(memory, texels, "dsm node replay texels");
+  lost_ = Buffer<int32_t>(memory, texels, "dsm node replay lost texels");
+  counters_ = Buffer<unsigned long long>(memory, kReplayCounters, "dsm node replay counters");
+  counters_.fill_zero();
+  bytes_ = nodes_.bytes() + next_.bytes() + kept_.bytes() + lost_.bytes() + counters_.bytes();
+  replay_ = {nodes_.view(), next_.view(),     kept_.view(),
+             lost_.view(),  counters_.view(), int32_t(share)};
+  return replay_;
+}
+
+void NodeReplayScratch::end() {
+  if (counters_.size() == 0) return;
+  const ReplayClaims claims = replay_claims(counters_.to_vector());
+  largest_stripe_ = claims.largest_stripe;
+  walked_ = claims.walked;
+  nodes_ = Buffer<DsmNode>();
+  next_ = Buffer<int32_t>();
+  kept_ = Buffer<KeptTexel>();
+  lost_ = Buffer<int32_t>();
+  counters_ = Buffer<unsigned long long>();
+  replay_ = {};
+}
+
+nlohmann::json NodeReplayScratch::figures() const {
+  return {{"replay_scratch_bytes", bytes_}, {"replay_walked_texels", walked_}};
+}
+
+}  // namespace dv

@@ -1,0 +1,44 @@
+// The buffers of a NodeReplay (engine/dsm/node_replay.h) for one generation of a storage: allocated
+// when its first pass starts (inside that pass's timing: the counters' clear is GPU work),
+// freed when its write pass is done (device memory comes from the pool of
+// cuda/device_memory.cpp, so this costs no cudaMalloc in steady state), and not part of the
+// storage's bytes_allocated: the storage holds none of it between generations. A chunk per
+// texel, and per stripe what the busiest stripe asked for in the last generation's first pass,
+// an eighth more (the first generation: a chunk for every fourth texel, over the stripes); a
+// record and a slot in the list of lost texels per texel.
+#pragma once
+
+#include <cstdint>
+
+#include <nlohmann/json.hpp>
+
+#include "cuda/buffer.h"
+#include "engine/dsm/node_replay.h"
+#include "strategies/storage/dsm_storage.h"
+
+namespace dv {
+
+class NodeReplayScratch {
+ public:
+  // The replay over fresh buffers for c's texels.
+  NodeReplay begin(const DsmGenerationContext& c);
+  // The replay begun, or an inactive one (every texel walked) when none is.
+  NodeReplay replay() const { return replay_; }
+  // Reads back what the first pass asked for and frees the buffers; nothing when none began.
+  void end();
+  // replay_scratch_bytes and replay_walked_texels of the last generation.
+  nlohmann::json figures() const;
+
+ private:
+  Buffer<DsmNode> nodes_;
+  Buffer<int32_t> next_;
+  Buffer<KeptTexel> kept_;
+  Buffer<int32_t> lost_;
+  Buffer<unsigned long long> counters_;
+  NodeReplay replay_;
+  int64_t largest_stripe_ = -1;  // the most chunks one stripe asked for in the last first pass
+  int64_t walked_ = 0;           // texels it did not keep
+  int64_t bytes_ = 0;            // bytes of the last generation's buffers
+};
+
+}  // namespace dv

@@ -1,0 +1,485 @@
+// The deepvox executable end to end: subcommands and their help, probe output against the
+// in-process oracle, render outputs, and clear errors (file named, non-zero exit, no crash)
+// for bad input of every kind.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/oracle/transmittance.h"
+#include "render/io/deep_exr.h"
+#include "render/io/layer_heatmap.h"
+#include "render/load/scene_loader.h"
+#include "tests/apps/deepvox/cli_run.h"
+#include "tests/render/load/gltf_builder.h"
+
+#if DEEPVOX_FULL_BINARY
+#include <OpenImageIO/imageio.h>
+#endif
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(DEEPVOX_BINARY_DIR) / "test_cli_tmp" / info->name();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // Expects a clean failure whose message contains every fragment.
+  void expect_error(const std::string& args, std::initializer_list<std::string> fragments) {
+    const CommandResult r = run(args);
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_LT(r.exit_code, 128) << "crashed: " << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
+    for (const std::string& f : fragments)
+      EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+  }
+  fs::path dir_;
+};
+
+const std::string kSmallScene = R"({
+  "camera": {"position": [0, 1, 4], "target": [0, 0.3, 0], "width": 40, "height": 30},
+  "lights": [{"type": "omni", "position": [0.5, 3, 0.5], "intensity": 9}],
+  "objects": [
+    {"mesh": {"generator": "box", "min": [-2, -0.1, -2], "max": [2, 0, 2]}},
+    {"name": "glass", "mesh": {"generator": "box", "size": 0.6}, "transform": {"translate": [0, 0.6, 0]},
+     "material": {"alpha": 0.4}, "interior": {"type": "constant", "sigma": 1.5}}
+  ]
+})";
+
+TEST_F(Cli, HelpAndList) {
+  for (const char* sub : {"probe", "render", "info", "list", "dsm"}) {
+    const CommandResult r = run(std::string(sub) + " --help");
+    EXPECT_EQ(r.exit_code, 0) << sub;
+    EXPECT_NE(r.output.find(sub), std::string::npos);
+  }
+  const CommandResult list = run("list");
+  EXPECT_EQ(list.exit_code, 0);
+  for (const char* name : {"reference", "none", "transmittance-slicemap", "storage", "voxelizer",
+                           "icosphere", "shepp_logan", "cpu"})
+    EXPECT_NE(list.output.find(name), std::string::npos) << name;
+  EXPECT_NE(run("").exit_code, 0);
+}
+
+// docs/strategies.md is the output of `deepvox list --markdown`: the parameter tables the
+// strategies register with, so the documentation cannot drift from the code.
+TEST_F(Cli, StrategyDocsAreTheRegisteredTables) {
+  const CommandResult r = run("list --markdown");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(std::string(DEEPVOX_SOURCE_DIR) + "/docs/strategies.md");
+  std::stringstream committed;
+  committed << in.rdbuf();
+  EXPECT_EQ(committed.str(), r.output)
+      << "regenerate: build/bin/deepvox list --markdown > docs/strategies.md";
+  for (const char* row : {"| `eps` | 0.02 | >= 0 |", "| `storage.KEY` |", "| `slices` | 64 |",
+                          "| `small` | 256 | an integer [0, 1048576] |"})
+    EXPECT_NE(r.output.find(row), std::string::npos) << row;
+  const CommandResult text = run("list");
+  EXPECT_NE(text.output.find("res=1024"), std::string::npos) << text.output;
+}
+
+// The CLI's shortcuts pass through the same table checks as --param: exit 2 naming the key.
+TEST_F(Cli, ShortcutsMeetTheParameterTable) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string out = " --backend cpu --shadows dsm --out " + path("x.png");
+  for (const auto& [args, key] : std::vector<std::pair<std::string, std::string>>{
+           {" --eps -1", "eps"},
+           {" --filter cubic", "filter"},
+           {" --dsm-res 0", "res"},
+           {" --param subrays=3", "subrays"},
+           {" --param storage.layers=0 --storage texture3d", "layers"}}) {
+    const CommandResult r = run("render " + scene + out + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(key), std::string::npos) << args << ": " << r.output;
+  }
+}
+
+TEST_F(Cli, ProbeMatchesTheOracle) {
+  const std::string scene = write("scene.json", kSmallScene);
+  write("points.csv", "x,y,z\n0,0,0\n0.1,0.6,0.05\n1.5,0,1.5\n0,-1,0\n");
+  const CommandResult r = run("probe " + scene + " --points " + path("points.csv") + " --out " +
+                              path("t.csv") + " --backend cpu --shadows reference");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(path("t.csv"));
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "x,y,z,light0");
+  const Scene s = load_scene(scene);
+  const SceneData data(s, Memory::host);
+  std::string line;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    double x, y, z, t;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &z, &t), 4) << line;
+    const double expected =
+        exact_transmittance(data.view(), data.view().lights[0], {x, y, z}).transmittance;
+    EXPECT_DOUBLE_EQ(t, expected);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 4);
+  // The point inside the glass cube sees its top face and part of its medium.
+  const double inside =
+      exact_transmittance(data.view(), data.view().lights[0], {0.1, 0.6, 0.05}).transmittance;
+  EXPECT_GT(inside, 0.0);
+  EXPECT_LT(inside, 0.6);
+}
+
+TEST_F(Cli, RenderWritesImagesAndStats) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const CommandResult r =
+      run("render " + scene + " --backend cpu --out " + path("img.png") + " --stats " +
+          path("s.json") + " --frames 2 --orbit 30 --dsm-res 128");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("img_0000.png")));
+  EXPECT_TRUE(fs::exists(path("img_0001.png")));
+  std::ifstream in(path("s.json"));
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  ASSERT_EQ(stats["frames"].size(), 2u);
+  EXPECT_GT(stats["frames"][0]["hits"].get<long long>(), 0);
+  EXPECT_EQ(stats["frames"][0]["overflow_pixels"].get<long long>(), 0);
+  EXPECT_EQ(stats["meta"]["backend"], "cpu");
+  EXPECT_EQ(stats["shadows"]["name"], "auto");  // the default: the effect planner
+  EXPECT_EQ(stats["frames"][1]["plan"]["lights"][0]["map"], "reused");
+  const CommandResult info = run("info " + scene + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_EQ(nlohmann::json::parse(info.output)["triangles"].get<int>(), 24);
+}
+
+TEST_F(Cli, AutoShadowsAreTheDefaultAndExplainTheirPlan) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const CommandResult planned =
+      run("render " + scene + " --backend cpu --dsm-res 64 --out " + path("a.png") + " --explain");
+  ASSERT_EQ(planned.exit_code, 0) << planned.output;
+  EXPECT_NE(planned.output.find("frame 0: shadow plan\ncamera rays: no volume in the scene, no "
+                                "volume sampling\nlight 0 (omni): dsm, it reaches 1 "
+                                "constant medium but no volume"),
+            std::string::npos)
+      << planned.output;
+  EXPECT_NE(planned.output.find("map built (no map yet)"), std::string::npos) << planned.output;
+  write("points.csv", "x,y,z\n0,0,0\n");
+  const CommandResult forced =
+      run("probe " + scene + " --points " + path("points.csv") + " --out " + path("t.csv") +
+          " --shadows dsm --dsm-res 64 --explain");
+  ASSERT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_NE(forced.output.find("shadow method dsm was named, so it runs for every light"),
+            std::string::npos)
+      << forced.output;
+}
+
+TEST_F(Cli, RenderViewMovesTheCameraAndRejectsBadMoves) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string common =
+      "render " + scene + " --backend cpu --width 32 --height 24 --dsm-res 128";
+  ASSERT_EQ(run(common + " --out " + path("plain.png")).exit_code, 0);
+  ASSERT_EQ(run(common + " --out " + path("still.png") + " --view 0,0,1,0,0").exit_code, 0);
+  ASSERT_EQ(run(common + " --out " + path("moved.png") + " --view 20,-5,0.8,0.1,0").exit_code, 0);
+  const auto bytes = [&](const std::string& name) {
+    std::ifstream in(path(name), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_TRUE(bytes("plain.png") == bytes("still.png"));
+  EXPECT_FALSE(bytes("plain.png") == bytes("moved.png"));
+  const CommandResult zero = run(common + " --out " + path("z.png") + " --view 0,0,0,0,0");
+  EXPECT_EQ(zero.exit_code, 2) << zero.output;
+  EXPECT_NE(zero.output.find("--view: the dolly factor must be positive"), std::string::npos)
+      << zero.output;
+  EXPECT_EQ(run(common + " --out " + path("z.png") + " --view 1,2").exit_code, 2);
+}
+
+// Width and height from a PNG file's IHDR chunk.
+std::pair<int, int> png_size(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), sizeof h);
+  const auto be = [&](int i) {
+    return (h[i] << 24) | (h[i + 1] << 16) | (h[i + 2] << 8) | h[i + 3];
+  };
+  return {be(16), be(20)};
+}
+
+TEST_F(Cli, DsmExportsDeepExrHeatmapAndStats) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string tail = " --dsm-res 16 --eps 0.05 --backend cpu --heatmap " +
+                           path("layers.png") + " --stats " + path("s.json");
+  const CommandResult r =
+      run("dsm " + scene + tail + (DEEPVOX_FULL_BINARY ? " --out " + path("maps.exr") : ""));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto [width, height] = png_size(path("layers.png"));
+  EXPECT_LT(width, 6 * 16 + 5);  // a 3 x 2 grid, narrower than the six faces in a row
+  EXPECT_GT(height, 2 * 16 + 4);
+  std::ifstream in(path("s.json"));
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["faces"].get<int>(), 6);
+  EXPECT_GT(stats["figures"]["nodes"].get<long long>(), 0);
+  EXPECT_GT(stats["passes"].size(), 1u);
+  EXPECT_EQ(stats["meta"]["backend"], "cpu");
+  EXPECT_EQ(stats["settings"]["storage"], "compact");
+#if DEEPVOX_FULL_BINARY
+  const DeepMapFile maps = read_deep_exr(path("maps.exr"));
+  ASSERT_EQ(maps.faces.size(), 6u);
+  size_t nodes = 0;
+  for (const DeepMapFace& f : maps.faces) nodes += f.nodes.size();
+  EXPECT_EQ(nodes, stats["figures"]["nodes"].get<size_t>());
+  EXPECT_EQ(maps.commit, stats["meta"]["git_sha"]);
+#endif
+  expect_error("dsm " + scene + " --out " + path("maps.png"), {"maps.png", ".exr"});
+  expect_error("dsm " + scene, {"--out", "--heatmap"});
+  expect_error("dsm " + path("none.json") + " --heatmap " + path("h.png"), {"none.json"});
+}
+
+TEST_F(Cli, MeshFileIsASceneOfOneObject) {
+  const std::string mesh =
+      std::string(DEEPVOX_SOURCE_DIR) + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
+  const CommandResult r = run("info " + mesh + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["objects"].size(), 1u);
+  EXPECT_EQ(j["triangles"].get<int>(), 3674);
+  EXPECT_EQ(j["lights"].size(), 2u);  // the default key and fill lights
+}
+
+TEST_F(Cli, InfoListsLightColoursAndUnitsAndWarnsAboutFullyTransmissiveGlass) {
+  test::GltfBuilder b;
+  b.use_extension("KHR_lights_punctual");
+  b.use_extension("KHR_materials_transmission");
+  const int glass = b.add_material(
+      {{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}});
+  b.add_node({{"name", "vase"}, {"mesh", test::add_box_mesh(b, {{"material", glass}})}});
+  const int lamp =
+      b.add_light({{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 68.3}});
+  b.add_node(
+      {{"translation", {0, 3, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", lamp}}}}}});
+  const std::string gltf = b.write_gltf(path("glass.gltf"));
+  const CommandResult text = run("info " + gltf);
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  for (const char* needle : {"color [1.0,0.5,0.25]", "intensity 0.1 W/sr (from 68.3 cd)", "warning",
+                             "'vase' is fully transmissive"})
+    EXPECT_NE(text.output.find(needle), std::string::npos) << needle << " in " << text.output;
+  const CommandResult js = run("info " + gltf + " --json");
+  ASSERT_EQ(js.exit_code, 0) << js.output;
+  const nlohmann::json j = nlohmann::json::parse(js.output);
+  ASSERT_EQ(j["lights"].size(), 1u);
+  EXPECT_EQ(j["lights"][0]["unit"], "W/sr");
+  EXPECT_EQ(j["lights"][0]["source"]["unit"], "cd");
+  EXPECT_DOUBLE_EQ(j["lights"][0]["source"]["intensity"].get<double>(), 68.3);
+  EXPECT_DOUBLE_EQ(j["lights"][0]["color"][2].get<double>(), 0.25);
+  ASSERT_EQ(j["warnings"].size(), 1u);
+  const CommandResult own = run("info " + write("scene.json", kSmallScene) + " --json");
+  EXPECT_TRUE(nlohmann::json::parse(own.output)["warnings"].empty());
+}
+
+std::string file_bytes(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+#if DEEPVOX_FULL_BINARY
+// The float pixels of an EXR file (its header holds a capture date, so files never match).
+std::vector<float> exr_pixels(const std::string& file) {
+  auto in = OIIO::ImageInput::open(file);
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  return pixels;
+}
+#endif
+
+TEST_F(Cli, ExposureAndToneCurveChangePngsOnlyAndGroundAddsAPlane) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string base =
+      "render " + scene + " --backend cpu --width 32 --height 24 --dsm-res 128 --out ";
+  const std::string look = " --exposure 1.5 --tonemap aces";
+  ASSERT_EQ(run(base + path("plain.png")).exit_code, 0);
+  const CommandResult r = run(base + path("look.png") + look + " --stats " + path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(file_bytes(path("plain.png")), file_bytes(path("look.png")));
+  std::ifstream in(path("s.json"));
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["display"]["tonemap"], "aces");
+  EXPECT_DOUBLE_EQ(stats["display"]["exposure_ev"].get<double>(), 1.5);
+#if DEEPVOX_FULL_BINARY
+  ASSERT_EQ(run(base + path("plain.exr")).exit_code, 0);
+  ASSERT_EQ(run(base + path("look.exr") + look).exit_code, 0);
+  EXPECT_EQ(exr_pixels(path("plain.exr")), exr_pixels(path("look.exr")));  // linear, untouched
+  EXPECT_FALSE(exr_pixels(path("plain.exr")).empty());
+#endif
+  const std::string mesh =
+      std::string(DEEPVOX_SOURCE_DIR) + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
+  const CommandResult g =
+      run("render " + mesh + " --backend cpu --width 32 --height 24 --ground --out " +
+          path("g.png") + " --stats " + path("g.json"));
+  ASSERT_EQ(g.exit_code, 0) << g.output;
+  std::ifstream gin(path("g.json"));
+  EXPECT_EQ(nlohmann::json::parse(gin)["triangles"].get<int>(), 3674 + 2);
+  const CommandResult bad = run(base + path("x.png") + " --tonemap filmic");
+  EXPECT_NE(bad.exit_code, 0) << bad.output;  // CLI11 rejects it, naming the value
+  EXPECT_LT(bad.exit_code, 128) << bad.output;
+  EXPECT_NE(bad.output.find("filmic"), std::string::npos) << bad.output;
+}
+
+TEST_F(Cli, BadInputGivesClearErrors) {
+  const std::string probe_tail =
+      " --points " + write("p.csv", "0,0,0\n") + " --out " + path("o.csv");
+  expect_error("info " + path("missing.json"), {"missing.json", "not found"});
+  expect_error("info " + write("bad.json", "{\"objects\": [}"), {"bad.json", "malformed JSON"});
+  expect_error("info " + write("key.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
+      "objects": [{"mesh": {"generator": "box"}, "colour": [1,0,0]}]})"),
+               {"key.json", "colour"});
+  expect_error("info " + write("gen.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
+      "objects": [{"mesh": {"generator": "dodecahedron"}}]})"),
+               {"gen.json", "dodecahedron", "icosphere"});
+  expect_error("info " + write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n"), {"nan.obj"});
+  expect_error("info " + write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), {"range.obj"});
+  expect_error("info " + write("zero.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
+      "volumes": {"v": {"generator": "block", "dims": [0, 4, 4]}},
+      "objects": [{"mesh": {"generator": "box"}}]})"),
+               {"zero.json", "zero-size"});
+  expect_error("info " + write("open.json", R"({"lights": [{"type": "omni", "position": [0,1,0]}],
+      "objects": [{"mesh": {"generator": "quad"}, "interior": {"type": "constant", "sigma": 1}}]})"),
+               {"open.json", "not closed", "open edge"});
+  expect_error("info " + write("light.json", R"({"lights": [{"type": "area", "position": [0,1,0]}],
+      "objects": [{"mesh": {"generator": "box"}}]})"),
+               {"light.json", "area", "spot"});
+  const std::string scene = write("scene.json", kSmallScene);
+  expect_error("probe " + scene + " --shadows magic" + probe_tail, {"magic", "reference"});
+  expect_error("probe " + scene + " --points " + write("garbage.csv", "x,y,z\n1,2,3\n1,two,3\n") +
+                   " --out " + path("o.csv"),
+               {"garbage.csv:3"});
+  expect_error("probe " + scene + probe_tail + " --backend opencl", {"opencl"});
+  expect_error("render " + scene + " --out " + path("img.bmp") + " --backend cpu",
+               {"img.bmp", ".png"});
+  expect_error("info " + write("scene.txt", "hello"), {"scene.txt", ".json"});
+}
+
+// Expects exit code 2 and a message holding every fragment.
+void expect_usage_error(const std::string& args, std::initializer_list<std::string> fragments) {
+  const CommandResult r = run(args);
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find("deepvox: error: "), std::string::npos) << r.output;
+  for (const std::string& f : fragments)
+    EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+}
+
+TEST_F(Cli, CommandLineMistakesExitTwoNamingTheWord) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string out = " --out " + path("img.png");
+  expect_usage_error("renderr " + scene + out,
+                     {"unknown subcommand 'renderr'", "did you mean 'render'?"});
+  expect_usage_error("voxelise " + scene, {"'voxelise'", "did you mean 'voxelize'?"});
+  expect_usage_error("render " + scene + out + " --shadow dsm",
+                     {"unknown option '--shadow'", "did you mean '--shadows'?"});
+  expect_usage_error("render " + scene + " --shadow dsm", {"'--shadow'", "'--shadows'"});
+  expect_usage_error("dsm " + scene + " --heatmpa " + path("h.png"),
+                     {"'--heatmpa'", "did you mean '--heatmap'?"});
+  expect_usage_error("render " + scene + out + " --backend foo", {"foo", "cpu, cuda"});
+  expect_usage_error("render " + scene + out + " --frames -1", {"--frames", "-1"});
+  expect_usage_error("render " + scene + out + " --renderer rays", {"--renderer", "rays"});
+  expect_usage_error("render " + scene, {"--out", "required"});
+  expect_usage_error("probe " + scene + " --out " + path("t.csv"), {"--points", "required"});
+  expect_usage_error("render " + scene + " " + scene + out, {"unexpected argument"});
+  expect_usage_error("--verbose render " + scene + out, {"'--verbose'"});
+  expect_usage_error("", {"subcommand", "render"});
+  for (const char* help : {"--help", "render --help", "dsm -h"}) {
+    const CommandResult r = run(help);
+    EXPECT_EQ(r.exit_code, 0) << help << ": " << r.output;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << r.output;
+  }
+}
+
+// Every output is checked before any input is read or any work is done: with a missing input
+// and a bad output, the output is what fails; with one good and one bad output, nothing is
+// written.
+TEST_F(Cli, OutputsAreCheckedBeforeAnyWork) {
+  const std::string scene = write("scene.json", kSmallScene);
+  const std::string missing_dir = path("no_such_dir");
+  const std::string missing_scene = path("missing.json");
+  expect_usage_error("render " + scene + " --backend cpu --out " + path("img.png") + " --stats " +
+                         missing_dir + "/s.json",
+                     {missing_dir + "/s.json", "does not exist"});
+  EXPECT_FALSE(fs::exists(path("img.png"))) << "the render ran before the stats path was checked";
+  expect_usage_error("dsm " + scene + " --backend cpu --dsm-res 8 --heatmap " + path("h.png") +
+                         " --stats " + missing_dir + "/s.json",
+                     {missing_dir + "/s.json"});
+  EXPECT_FALSE(fs::exists(path("h.png"))) << "the maps were generated before the stats check";
+  expect_usage_error("render " + missing_scene + " --out " + missing_dir + "/img.png",
+                     {missing_dir + "/img.png", "does not exist"});
+  expect_usage_error("probe " + missing_scene + " --points " + path("missing.csv") + " --out " +
+                         missing_dir + "/t.csv",
+                     {missing_dir + "/t.csv"});
+  expect_usage_error(
+      "probe " + scene + " --points " + path("missing.csv") + " --out " + path("t.txt"),
+      {"t.txt", ".csv"});
+  expect_usage_error("voxelize " + missing_scene + " --out " + missing_dir + "/g.binvox",
+                     {missing_dir + "/g.binvox"});
+  expect_usage_error(
+      "voxelize " + missing_scene + " --out " + path("g.binvox") + " --stats " + path("s.txt"),
+      {"s.txt", ".json"});
+  expect_usage_error("render " + missing_scene + " --out " + write("file", "x") + "/img.png",
+                     {"img.png"});
+  fs::create_directories(path("read_only"));
+  fs::permissions(path("read_only"), fs::perms::owner_read | fs::perms::owner_exec);
+  if (geteuid() != 0)  // root writes anywhere
+    expect_usage_error("render " + missing_scene + " --out " + path("read_only") + "/img.png",
+                       {"read_only/img.png", "permission denied"});
+  fs::permissions(path("read_only"), fs::perms::owner_all);
+}
+
+// Five omni lights (30 faces, each 16 x 16): a labelled grid instead of one row 509 pixels wide.
+TEST_F(Cli, HeatmapLaysManyFacesInAGrid) {
+  std::string scene = kSmallScene;
+  const std::string light = R"({"type": "omni", "position": [0.5, 3, 0.5], "intensity": 9})";
+  scene.replace(scene.find(light), light.size(),
+                light + "," + light + "," + light + "," + light + "," + light);
+  const CommandResult r = run("dsm " + write("five.json", scene) +
+                              " --dsm-res 16 --backend cpu --heatmap " + path("h.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto [width, height] = png_size(path("h.png"));
+  EXPECT_LE(width, 7 * 32);   // 6 columns of at most 32 pixels
+  EXPECT_GE(height, 5 * 16);  // 5 rows
+}
+
+// The grid itself: 30 faces in 6 columns and 5 rows, each face's label drawn in white in the
+// band above it (absent without labels).
+TEST(Heatmap, GridOfLabelledFaces) {
+  const int faces = 30, res = 16;
+  const std::vector<int32_t> layers(size_t(faces) * res * res, 1);
+  std::vector<std::string> labels;
+  for (int f = 0; f < faces; ++f) labels.push_back("L" + std::to_string(f / 6) + " +X");
+  const Image plain = layer_heatmap(layers, faces, res);
+  EXPECT_EQ(plain.width, 6 * res + 5);
+  EXPECT_GE(plain.height, 5 * res);
+  const Image labelled = layer_heatmap(layers, faces, res, labels);
+  const int cell = (labelled.width - 5) / 6;
+  ASSERT_EQ(labelled.width, 6 * cell + 5);
+  EXPECT_GT(labelled.height, plain.height);
+  const int row = (labelled.height - (plain.height - 5 * (res + 1))) / 5;
+  for (int f = 0; f < faces; ++f) {
+    int white = 0;
+    for (int y = (f / 6) * row; y < (f / 6) * row + row - res - 1; ++y)
+      for (int x = (f % 6) * (cell + 1); x < (f % 6) * (cell + 1) + cell; ++x)
+        white += labelled.at(x, y) == dvec3(1.0);
+    EXPECT_GT(white, 10) << "no label above face " << f;
+  }
+}
+
+}  // namespace
+}  // namespace dv

@@ -1,0 +1,245 @@
+// What makes pictures a user would trust: the tone curves, exposure and sRGB bytes of 8-bit
+// output (the display encoding that PNG writing and the viewer share), the
+// KHR_lights_punctual cone falloff and range window, and the default staging of scenes that
+// bring no camera or lights (three-quarter view, key light above and beside it, ground plane).
+#include <gtest/gtest.h>
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "engine/raster/camera_rays.h"
+#include "engine/scene/default_staging.h"
+#include "render/frame/shading.h"
+#include "render/io/display_encoding.h"
+#include "render/io/image.h"
+#include "render/io/tone_mapping.h"
+#include "tests/support/scene_builder.h"
+#include "tests/support/scratch_dir.h"
+
+namespace dv {
+namespace {
+
+using test::SceneBuilder;
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+TEST(ToneCurves, StartAtZeroAreMonotoneAndHitKnownValues) {
+  for (ToneCurve curve : {ToneCurve::none, ToneCurve::reinhard, ToneCurve::aces}) {
+    EXPECT_EQ(apply_tone_curve(curve, 0.0), 0.0) << to_string(curve);
+    EXPECT_EQ(apply_tone_curve(curve, -1.0), 0.0) << to_string(curve);
+    double previous = 0.0;
+    for (double x = 0.001; x < 100.0; x *= 1.05) {
+      const double y = apply_tone_curve(curve, x);
+      EXPECT_GE(y, previous) << to_string(curve) << " at " << x;
+      previous = y;
+    }
+  }
+  EXPECT_DOUBLE_EQ(apply_tone_curve(ToneCurve::none, 2.5), 2.5);  // the encoder clamps
+  EXPECT_DOUBLE_EQ(apply_tone_curve(ToneCurve::reinhard, 1.0), 0.5);
+  EXPECT_DOUBLE_EQ(apply_tone_curve(ToneCurve::reinhard, 3.0), 0.75);
+  EXPECT_NEAR(apply_tone_curve(ToneCurve::aces, 1.0), 2.54 / 3.16, 1e-15);
+  EXPECT_NEAR(apply_tone_curve(ToneCurve::aces, 0.18),
+              0.18 * (2.51 * 0.18 + 0.03) / (0.18 * (2.43 * 0.18 + 0.59) + 0.14), 1e-15);
+  EXPECT_EQ(apply_tone_curve(ToneCurve::aces, 1000.0), 1.0);
+  EXPECT_LT(apply_tone_curve(ToneCurve::reinhard, 1000.0), 1.0);
+  EXPECT_EQ(parse_tone_curve("aces"), ToneCurve::aces);
+  EXPECT_THROW(parse_tone_curve("filmic"), InputError);
+}
+
+TEST(Exposure, PlusOneEvDoublesLinearValues) {
+  Image linear(2, 1);
+  linear.rgb = {0.0f, 0.1f, 0.25f, 0.5f, 1.0f, 3.0f};
+  const Image same = apply_display_transform(linear, {});
+  EXPECT_EQ(same.rgb, linear.rgb);
+  const Image doubled = apply_display_transform(linear, {1.0, ToneCurve::none});
+  for (size_t i = 0; i < linear.rgb.size(); ++i)
+    EXPECT_EQ(doubled.rgb[i], 2.0f * linear.rgb[i]) << i;
+  const Image halved_then_mapped = apply_display_transform(linear, {-1.0, ToneCurve::reinhard});
+  EXPECT_FLOAT_EQ(halved_then_mapped.rgb[4], float(0.5 / 1.5));
+}
+
+// A spot light at the origin shining along -y; the point at `angle_deg` from the axis, 2 away.
+double spot_arrival(const Light& light, double angle_deg) {
+  const LightView view = make_light_view(light);
+  const dvec3 p = 2.0 * dvec3(std::sin(angle_deg * kDeg), -std::cos(angle_deg * kDeg), 0.0);
+  return light_arrival(view, p).intensity;
+}
+
+TEST(DisplayEncoding, BytesEqualRenderPngBytes) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> value(-0.1f, 1.5f);
+  std::vector<float> samples = {0.0f, -0.0f, 1.0f, 0.0031308f, 2.0f, -1.0f};
+  for (int i = 0; i < 200000; ++i) samples.push_back(value(rng));
+  for (const DisplayTransform transform :
+       {DisplayTransform{}, DisplayTransform{1.5, ToneCurve::none},
+        DisplayTransform{-0.5, ToneCurve::reinhard}, DisplayTransform{0.0, ToneCurve::aces}}) {
+    const DisplayEncoding encoding = make_display_encoding(transform);
+    for (int b = 0; b < 255; ++b) {  // the thresholds themselves and their neighbours
+      const float at = encoding.thresholds[b];
+      samples.push_back(at);
+      samples.push_back(std::nextafter(at, 0.0f));
+    }
+    Image linear(int(samples.size() + 2) / 3, 1);
+    for (size_t i = 0; i < samples.size(); ++i) linear.rgb[i] = samples[i];
+    const Image shown = apply_display_transform(linear, transform);
+    int wrong = 0;
+    for (size_t i = 0; i < linear.rgb.size(); ++i)
+      wrong += encoding.byte(linear.rgb[i]) != srgb_byte(shown.rgb[i]);
+    EXPECT_EQ(wrong, 0) << to_string(transform.curve) << " " << transform.exposure_ev;
+  }
+}
+
+TEST(DisplayEncoding, PngFilesHoldSrgbBytesOfTheShownValues) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> value(-0.2f, 1.7f);
+  Image linear(97, 61);
+  for (float& v : linear.rgb) v = value(rng);
+  linear.rgb[0] = 0.0031308f;
+  linear.rgb[1] = 1.0f;
+  for (const DisplayTransform transform :
+       {DisplayTransform{}, DisplayTransform{0.7, ToneCurve::reinhard},
+        DisplayTransform{-1.0, ToneCurve::aces}}) {
+    const std::string path = (test::scratch_dir("render_scratch") / "encoded.png").string();
+    write_image(path, linear, transform);
+    int width = 0, height = 0, channels = 0;
+    unsigned char* read = stbi_load(path.c_str(), &width, &height, &channels, 3);
+    ASSERT_NE(read, nullptr) << path;
+    ASSERT_EQ(width, linear.width);
+    ASSERT_EQ(height, linear.height);
+    const Image shown = apply_display_transform(linear, transform);
+    int wrong = 0;
+    for (size_t i = 0; i < shown.rgb.size(); ++i) wrong += read[i] != srgb_byte(shown.rgb[i]);
+    stbi_image_free(read);
+    EXPECT_EQ(wrong, 0) << to_string(transform.curve) << " " << transform.exposure_ev;
+  }
+}
+
+TEST(GltfLights, SpotConeFallsOffAsTheSpecSays) {
+  Light spot;
+  spot.type = LightType::spot;
+  spot.direction = {0.0, -1.0, 0.0};
+  spot.cutoff_deg = 30.0;    // outerConeAngle
+  spot.penumbra_deg = 10.0;  // inner = 20 degrees
+  spot.intensity = 8.0;
+  spot.gltf_cone = true;
+  // The spec: t = clamp((cos a - cos outer) / (cos inner - cos outer), 0, 1), attenuation t^2.
+  for (double a : {0.0, 15.0, 20.0, 22.0, 25.0, 28.0, 29.9, 30.5}) {
+    const double t = std::clamp((std::cos(a * kDeg) - std::cos(30.0 * kDeg)) /
+                                    (std::cos(20.0 * kDeg) - std::cos(30.0 * kDeg)),
+                                0.0, 1.0);
+    EXPECT_NEAR(spot_arrival(spot, a), 8.0 / 4.0 * t * t, 1e-12) << a;
+  }
+  spot.gltf_cone = false;  // deepvox's smoothstep penumbra is unchanged
+  const double x = (std::cos(25.0 * kDeg) - std::cos(30.0 * kDeg)) /
+                   (std::cos(20.0 * kDeg) - std::cos(30.0 * kDeg));
+  EXPECT_NEAR(spot_arrival(spot, 25.0), 2.0 * x * x * (3.0 - 2.0 * x), 1e-12);
+}
+
+TEST(GltfLights, RangeWindowAsTheSpecRecommends) {
+  Light omni;
+  omni.type = LightType::omni;
+  omni.intensity = 5.0;
+  omni.range = 2.0;
+  const LightView view = make_light_view(omni);
+  for (double d : {0.5, 1.0, 1.9, 2.0, 3.0}) {
+    const double window = std::clamp(1.0 - std::pow(d / 2.0, 4.0), 0.0, 1.0);
+    EXPECT_NEAR(light_arrival(view, {d, 0.0, 0.0}).intensity, 5.0 * window / (d * d), 1e-12) << d;
+  }
+  omni.range = 0.0;  // no range: plain inverse square
+  EXPECT_DOUBLE_EQ(light_arrival(make_light_view(omni), {3.0, 0.0, 0.0}).intensity, 5.0 / 9.0);
+}
+
+// Whether world point p lies inside the camera's image (in front, within both half-angles).
+bool in_view(const Camera& cam, const dvec3& p) {
+  const CameraView v = make_camera_view(cam);
+  const dvec3 d = p - cam.position;
+  const double z = glm::dot(d, v.forward);
+  if (z <= cam.near_plane) return false;
+  const double sx = glm::dot(d, glm::normalize(v.right)) / (z * glm::length(v.right));
+  const double sy = glm::dot(d, glm::normalize(v.up)) / (z * glm::length(v.up));
+  return std::abs(sx) <= 1.0 && std::abs(sy) <= 1.0;
+}
+
+std::vector<dvec3> corners(const Aabb& b) {
+  std::vector<dvec3> out;
+  for (int i = 0; i < 8; ++i)
+    out.push_back({i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z});
+  return out;
+}
+
+TEST(DefaultStaging, ThreeQuarterViewSeesTheWholeBounds) {
+  for (const Aabb& box : {Aabb{dvec3(-1.0), dvec3(1.0)}, Aabb{{4, 0, -1}, {5, 3, 0}},
+                          Aabb{{0, 0, 0}, {10, 0.2, 0.5}}}) {
+    const Camera cam = default_camera(box);
+    for (const dvec3& c : corners(box)) EXPECT_TRUE(in_view(cam, c)) << c.x << "," << c.y;
+    const dvec3 view = glm::normalize(cam.position - box.center());
+    EXPECT_GT(view.y, 0.3);            // from above
+    EXPECT_GT(std::abs(view.x), 0.3);  // and from the side: not head-on
+    EXPECT_GT(view.z, 0.3);            // the front (+z) stays in sight
+    EXPECT_EQ(cam.target, box.center());
+  }
+}
+
+TEST(DefaultStaging, KeyLightIsAboveAndBesideTheCameraAndCoversTheBounds) {
+  const Aabb box{{4, 0, -1}, {5, 3, 0}};
+  const Camera cam = default_camera(box);
+  const std::vector<Light> lights = default_lights(box);
+  ASSERT_EQ(lights.size(), 2u);
+  const Light& key = lights[0];
+  ASSERT_EQ(key.type, LightType::spot);
+  EXPECT_GT(key.position.y, box.hi.y);  // above
+  const dvec3 to_key = glm::normalize(key.position - box.center());
+  const dvec3 to_cam = glm::normalize(cam.position - box.center());
+  EXPECT_GT(to_key.y, to_cam.y);  // higher than the camera
+  const double apart = std::acos(glm::dot(glm::normalize(dvec3(to_key.x, 0, to_key.z)),
+                                          glm::normalize(dvec3(to_cam.x, 0, to_cam.z))));
+  EXPECT_NEAR(apart / kDeg, 60.0, 1e-9);  // beside the camera
+  const LightView view = make_light_view(key);
+  for (const dvec3& c : corners(box))  // the whole model in the cone's full-intensity core
+    EXPECT_GE(glm::dot(glm::normalize(c - key.position), view.direction), view.cos_inner);
+  EXPECT_NEAR(light_arrival(view, box.center()).intensity, 1.0, 1e-12);
+  EXPECT_EQ(lights[1].type, LightType::directional);  // fill from the camera's side
+  EXPECT_GT(glm::dot(-lights[1].direction, to_cam), 0.999);
+}
+
+TEST(DefaultStaging, GroundPlaneLiesBelowTheBoundsAndCatchesTheKeyLightsShadow) {
+  SceneBuilder b;
+  b.add(make_box({-0.5, 0.0, -0.5}, {0.5, 1.0, 0.5}));
+  const Aabb box = world_bounds(b.scene);
+  b.scene.lights = default_lights(box);
+  b.scene.camera = default_camera(box);
+  add_ground_plane(b.scene);
+  add_ground_plane(b.scene);  // once only
+  ASSERT_EQ(b.scene.objects.size(), 2u);
+  const Object& ground = b.scene.objects[1];
+  EXPECT_EQ(ground.name, "ground");
+  const Aabb ground_box = world_bounds(b.scene);
+  for (const dvec3& v : b.scene.meshes[ground.mesh].positions) {
+    EXPECT_LT(v.y, box.lo.y);
+    EXPECT_GT(v.y, box.lo.y - 1e-3);
+  }
+  EXPECT_LT(ground_box.lo.x, box.lo.x - 2.0);
+  EXPECT_GT(ground_box.hi.z, box.hi.z + 2.0);
+  const SceneData data = b.build();
+  // The key light's ray through the box's centre meets the ground in the box's shadow, a
+  // point the camera sees and the cone lights.
+  const Light& key = b.scene.lights[0];
+  const dvec3 through = glm::normalize(box.center() - key.position);
+  const double y = b.scene.meshes[ground.mesh].positions[0].y;
+  const dvec3 shadowed = key.position + through * ((y - key.position.y) / through.y);
+  EXPECT_EQ(test::oracle_at(data, 0, shadowed), 0.0);
+  EXPECT_GT(light_arrival(data.view().lights[0], shadowed).intensity, 0.0);
+  EXPECT_TRUE(in_view(b.scene.camera, shadowed));
+  // Ground on the light's side of the box is lit.
+  const dvec3 towards_key = glm::normalize(dvec3(-through.x, 0.0, -through.z));
+  const dvec3 lit = dvec3(box.center().x, y, box.center().z) + 1.2 * towards_key;
+  EXPECT_EQ(test::oracle_at(data, 0, lit), 1.0);
+  EXPECT_GT(light_arrival(data.view().lights[0], lit).intensity, 0.5);
+}
+
+}  // namespace
+}  // namespace dv
