@@ -1,18 +1,17 @@
 // Where tests and benchmarks find the repository's files: $DEEPVOX_SOURCE_DIR when set (a
-// build carried to another machine), else the source tree the binary was built from; and the
-// names of tests parameterised over scene files.
+// build carried to another machine), else the source tree the binary was built from; the build
+// tree they write scratch files and find bin/deepvox in; and the names of tests parameterised
+// over scene files. The two folders are compiled into source_paths.cpp alone, so no other file's
+// object depends on where the tree lies (a compiler cache serves any clone).
 #pragma once
 
 #include <cctype>
-#include <cstdlib>
 #include <string>
 
 namespace dv::test {
 
-inline std::string source_dir() {
-  const char* env = std::getenv("DEEPVOX_SOURCE_DIR");
-  return env && *env ? env : DEEPVOX_SOURCE_DIR;
-}
+std::string source_dir();
+std::string binary_dir();
 
 // Readable names for tests parameterised over scene files: "knecht-fig56.json" -> knecht_fig56.
 struct SceneFileName {

@@ -12,7 +12,8 @@
 #   OUT               output folder (default ab-<UTC date>_<time>); it must be empty or new
 # Environment:
 #   AB_BENCH_ARGS       extra arguments for every binary, e.g. '--benchmark_repetitions=3'
-#   DEEPVOX_SOURCE_DIR  where the benchmarks find scenes/ and assets/ (default: this folder)
+#   DEEPVOX_SOURCE_DIR  where the benchmarks find experiments/scenes/ and experiments/assets/
+#                       (default: this folder)
 # Writes OUT/meta.txt (date, host, GPU, driver, clocks, commits, binaries' sha256), for every
 # round, side and binary OUT/<side>-<bench>-r<r>.json (--benchmark_out) and .log (its console
 # output), and OUT/summary.txt: per benchmark and side the median and min-max over the rounds

@@ -20,5 +20,6 @@ Runner add_suite(CLI::App& app);
 Runner add_merge(CLI::App& app);
 Runner add_report(CLI::App& app);
 Runner add_view(CLI::App& app);  // only where the viewer is built (DEEPVOX_WITH_VIEWER)
+Runner add_help(CLI::App& app);  // after the others: it prints theirs
 
 }  // namespace dv::cli

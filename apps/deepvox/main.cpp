@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
   // since CUDA 12.2; older runtimes loaded eagerly). A value set by the user wins.
   setenv("CUDA_MODULE_LOADING", "LAZY", 0);
   CLI::App app{"deepvox " DEEPVOX_VERSION
-               ": deep shadow maps and voxelization for translucent scenes (research testbed)"};
+               ": deep shadow maps and voxelization for translucent scenes (research testbed)",
+               "deepvox"};
   app.require_subcommand(1);
   dv::remember_command_line(argc, argv);
 #if DEEPVOX_WITH_GL
@@ -58,6 +59,7 @@ int main(int argc, char** argv) {
 #if DEEPVOX_WITH_VIEWER
   runners["view"] = dv::cli::add_view(app);
 #endif
+  runners["help"] = dv::cli::add_help(app);
   if (const int parse_exit = dv::cli::parse_command_line(app, argc, argv); parse_exit >= 0)
     return parse_exit;
   dv::mark_wall_phase("arguments parsed");

@@ -14,9 +14,9 @@
 // cache line. A texel that finds its stripe full is listed as lost and walked again by a kernel
 // of its own after the replay (strategies/storage/replay_write.h): a short pool costs time, never
 // nodes. The first pass is slower than the counting pass it replaces (0.74 against 0.57 ms at
-// 1024^2 on an H200; results/2026-12-03-replay-h200): its node stores cost it, kept in a local
-// array or written to the chunks alike (0.61 ms without them); an out-of-line keep made it 2.3 ms.
-// Host and device code; strategies/storage/node_replay_scratch.h owns the buffers.
+// 1024^2 on an H200; results/perf/rounds/09-dsm-node-replay): its node stores cost it, kept in a
+// local array or written to the chunks alike (0.61 ms without them); an out-of-line keep made
+// it 2.3 ms. Host and device code; strategies/storage/node_replay_scratch.h owns the buffers.
 #pragma once
 
 #include <cstdint>
@@ -148,8 +148,8 @@ struct NodeReplay {
   // the first pass's. kWalk: walked again (a lost texel, or every texel of an inactive replay);
   // else replayed (a kept texel). Two instantiations, so that the replaying kernel does not carry
   // the walk's code: with it, its registers and stack made compact's write pass 0.17 ms against
-  // 0.04 (results/2026-12-03-walk-h200). Reads only what the first pass wrote, so a write pass
-  // may run again (chunked's retries).
+  // 0.04 (results/perf/rounds/10-replay-without-walk). Reads only what the first pass wrote, so a
+  // write pass may run again (chunked's retries).
   template <bool kWalk, class Sink>
   DV_HD DsmTexelResult<Sink> generate(const DsmGenerator& g, const DsmTexel& t, float eps,
                                       Sink sink) const {

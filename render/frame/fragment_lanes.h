@@ -3,14 +3,15 @@
 // step is thousands of cycles of dependent double-precision work, and the few such warps leave
 // most of the GPU idle while they run (a per-warp timeline of knecht-fig56's 0.93 ms pass on the
 // H200: its slowest warps ran for 0.85-0.89 ms, and after the first 0.3 ms fewer than 450 of its
-// 10,800 warps were left running; results/2026-12-03-lanes-h200). So the tiles
+// 10,800 warps were left running; results/perf/rounds/07-fragment-lanes). So the tiles
 // whose lists hold a crossing of a volume's boundary (all of them when the eye is inside a
 // volume) give each pixel kVolumeLanes lanes that split its volume steps between them
 // (render/frame/shade_payload.h), and they go first, heaviest first: more of their warps are ready
 // than the GPU runs at once, and taken in tile order the heaviest of them started up to 0.24 ms
 // into the 0.73 ms pass (the same timeline with lanes). Heaviest first took the pass to 0.65 ms
 // (0.83 with a shadow map, was 1.06) for about 0.07 ms of ordering, 0.02 ms more than the tile
-// order took (results/2026-12-03-order-h200). The other tiles keep one thread per pixel.
+// order took (results/perf/rounds/08-heaviest-tiles-first). The other tiles keep one thread per
+// pixel.
 #pragma once
 
 #include <cstdint>

@@ -41,8 +41,8 @@ struct DsmTaps {
 };
 
 // A union, not one member per storage: the shading kernel keeps a copy of the reader on its stack
-// as the reader call's `this`, so its size is the largest reader's (the measurement behind this
-// is in results/perf/README.md, round 12).
+// as the reader call's `this`, so its size is the largest reader's (measured in
+// results/perf/rounds/12-reader-union/README.md).
 struct DsmReader : DsmReaders {
   using DsmReaders::DsmReaders;
 
@@ -56,7 +56,7 @@ struct DsmReader : DsmReaders {
   // coherent-search state: one call and one dispatch for the lookup's taps. Out of line on the
   // GPU: inlined into each of the fragment kernel's lookups, or called once a tap, the readers
   // took the shading kernel to 255 registers and spills; called once a lookup it needs neither
-  // (ptxas -v; the figures are in results/perf/README.md).
+  // (ptxas -v: results/perf/rounds/11-lookup-taps/README.md).
   DV_HD DV_NOINLINE void visibilities(const DsmTaps& taps, float z, int* hint, float* v) const {
     dispatch([&](const auto& r) {
       for (int i = 0; i < taps.count; ++i)

@@ -159,7 +159,7 @@ DV_HD inline bool sat_plane_passes(const SatTriangle& t, const ivec3& p) {
 // One projection's three edges at box corner (pu, pv). The walk's per-voxel tests combine with &
 // rather than && (here, in sat_plane_passes and sat_walk_side_tests_pass): each is a short chain
 // of arithmetic, and evaluating all of them without a branch keeps the independent chains in
-// flight together; the walk is bound by latency (results/2026-12-02-perf4-h200).
+// flight together; the walk is bound by latency (results/perf/rounds/04-sat-walk).
 DV_HD inline bool sat_edges_pass(const SatEdge (&e)[3], double pu, double pv) {
   return e[0].inside(pu, pv) & e[1].inside(pu, pv) & e[2].inside(pu, pv);
 }

@@ -27,7 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kBinary = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox";
+const std::string kBinary = test::binary_dir() + "/bin/deepvox";
 
 std::string small_suite() {
   const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";

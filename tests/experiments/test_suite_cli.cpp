@@ -22,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kBinary = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox";
+const std::string kBinary = test::binary_dir() + "/bin/deepvox";
 
 struct CommandResult {
   int exit_code;

@@ -205,7 +205,7 @@ TEST(SuiteFile, OnlyFiltersByExperimentKindOrStrategy) {
 }
 
 TEST(Rows, CsvRoundTripKeepsQuotesCommasLineBreaksAndNumbers) {
-  const fs::path path = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_rows.csv";
+  const fs::path path = fs::path(test::binary_dir()) / "test_harness_rows.csv";
   const std::vector<Row> rows = {
       {"s", 3, "e,1", "shadow", "a.json", "dsm", "eps=0.05 res=64", "m", "median", 0.1 + 0.2, "ms",
        ""},
@@ -235,7 +235,7 @@ TEST(Timing, MedianMinMax) {
 }
 
 TEST(RunFolder, NeverOverwritesAnExistingFolder) {
-  const fs::path out = fs::path(DEEPVOX_BINARY_DIR) / "test_harness_folders";
+  const fs::path out = fs::path(test::binary_dir()) / "test_harness_folders";
   fs::remove_all(out);
   const fs::path a = make_run_folder(out, "quick", "0123456789ab-dirty", "");
   std::ofstream(a / "rows.csv") << "keep me\n";

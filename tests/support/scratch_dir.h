@@ -6,11 +6,12 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include "experiments/source_paths.h"
 
 namespace dv::test {
 
 inline std::filesystem::path scratch_dir(const std::string& area, const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(DEEPVOX_BINARY_DIR) / area / name;
+  const std::filesystem::path dir = std::filesystem::path(test::binary_dir()) / area / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

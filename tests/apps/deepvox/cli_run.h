@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <string>
+#include "experiments/source_paths.h"
 
 namespace dv {
 
@@ -15,7 +16,7 @@ struct CommandResult {
 };
 
 inline CommandResult run(const std::string& args) {
-  const std::string cmd = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox " + args + " 2>&1";
+  const std::string cmd = test::binary_dir() + "/bin/deepvox " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   char buf[4096];

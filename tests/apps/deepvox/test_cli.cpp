@@ -23,6 +23,7 @@
 
 #if DEEPVOX_FULL_BINARY
 #include <OpenImageIO/imageio.h>
+#include "experiments/source_paths.h"
 #endif
 
 namespace dv {
@@ -34,7 +35,7 @@ class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(DEEPVOX_BINARY_DIR) / "test_cli_tmp" / info->name();
+    dir_ = fs::path(test::binary_dir()) / "test_cli_tmp" / info->name();
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -84,7 +85,7 @@ TEST_F(Cli, HelpAndList) {
 TEST_F(Cli, StrategyDocsAreTheRegisteredTables) {
   const CommandResult r = run("list --markdown");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream in(std::string(DEEPVOX_SOURCE_DIR) + "/docs/strategies.md");
+  std::ifstream in(test::source_dir() + "/docs/strategies.md");
   std::stringstream committed;
   committed << in.rdbuf();
   EXPECT_EQ(committed.str(), r.output)
@@ -94,6 +95,26 @@ TEST_F(Cli, StrategyDocsAreTheRegisteredTables) {
     EXPECT_NE(r.output.find(row), std::string::npos) << row;
   const CommandResult text = run("list");
   EXPECT_NE(text.output.find("res=1024"), std::string::npos) << text.output;
+}
+
+// docs/cli.md is the output of `deepvox help --markdown`: every command's own --help, so the
+// reference cannot drift from the options the commands take. The file is the full binary's
+// (with `view`); a binary without the viewer cannot reproduce it.
+TEST_F(Cli, CliReferenceIsTheCommandsHelp) {
+  if (run("view --help").exit_code != 0)
+    GTEST_SKIP() << "this deepvox has no viewer (built without GLFW or OpenGL): docs/cli.md is "
+                    "the full binary's help";
+  const CommandResult r = run("help --markdown");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(test::source_dir() + "/docs/cli.md");
+  std::stringstream committed;
+  committed << in.rdbuf();
+  EXPECT_EQ(committed.str(), r.output)
+      << "regenerate: build/bin/deepvox help --markdown > docs/cli.md";
+  for (const char* heading :
+       {"## deepvox render", "## deepvox suite", "## deepvox view", "--backend"})
+    EXPECT_NE(r.output.find(heading), std::string::npos) << heading;
+  EXPECT_EQ(r.output.find("## deepvox help"), std::string::npos);
 }
 
 // The CLI's shortcuts pass through the same table checks as --param: exit 2 naming the key.
@@ -247,7 +268,7 @@ TEST_F(Cli, DsmExportsDeepExrHeatmapAndStats) {
 
 TEST_F(Cli, MeshFileIsASceneOfOneObject) {
   const std::string mesh =
-      std::string(DEEPVOX_SOURCE_DIR) + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
+      test::source_dir() + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
   const CommandResult r = run("info " + mesh + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(r.output);
@@ -323,7 +344,7 @@ TEST_F(Cli, ExposureAndToneCurveChangePngsOnlyAndGroundAddsAPlane) {
   EXPECT_FALSE(exr_pixels(path("plain.exr")).empty());
 #endif
   const std::string mesh =
-      std::string(DEEPVOX_SOURCE_DIR) + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
+      test::source_dir() + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
   const CommandResult g =
       run("render " + mesh + " --backend cpu --width 32 --height 24 --ground --out " +
           path("g.png") + " --stats " + path("g.json"));

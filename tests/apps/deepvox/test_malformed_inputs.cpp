@@ -77,7 +77,7 @@ class HardMalformedInputs : public ::testing::TestWithParam<std::string> {};
 TEST_P(HardMalformedInputs, RejectedWithExitTwoNamingTheFile) {
   const fs::path file = corpus_dir() / GetParam();
   const std::string folder = fs::path(GetParam()).parent_path().string();
-  const fs::path scratch = fs::path(DEEPVOX_BINARY_DIR) / "test_malformed_tmp" / GetParam();
+  const fs::path scratch = fs::path(test::binary_dir()) / "test_malformed_tmp" / GetParam();
   fs::remove_all(scratch);
   fs::create_directories(scratch);
   if (folder == "binvox") {

@@ -11,12 +11,13 @@
 #include "strategies/shadow/shadow_method.h"
 #include "tests/apps/viewer/viewer_test_support.h"
 #include "tests/support/scratch_dir.h"
+#include "experiments/source_paths.h"
 
 namespace dv::viewer {
 namespace {
 
 const std::string kScene =
-    std::string(DEEPVOX_SOURCE_DIR) + "/experiments/scenes/translucent-boxes.json";
+    test::source_dir() + "/experiments/scenes/translucent-boxes.json";
 
 ViewerSetup small_setup(const std::string& method) {
   ViewerSetup s;

@@ -12,13 +12,14 @@
 #include "render/frame/raster_render.h"
 #include "render/load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
+#include "experiments/source_paths.h"
 
 namespace dv::viewer {
 namespace {
 
 ViewerSetup small_dsm_setup() {
   ViewerSetup s;
-  s.scene_path = std::string(DEEPVOX_SOURCE_DIR) + "/experiments/scenes/translucent-boxes.json";
+  s.scene_path = test::source_dir() + "/experiments/scenes/translucent-boxes.json";
   s.backend = "cpu";
   s.width = 48;
   s.height = 32;

@@ -15,6 +15,7 @@
 #include "engine/raster/camera_rays.h"
 #include "render/load/scene_loader.h"
 #include "tests/apps/viewer/viewer_test_support.h"
+#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {
@@ -26,12 +27,12 @@ using Result = test::ShellResult;
 using test::shell;
 
 const std::string kScene =
-    std::string(DEEPVOX_SOURCE_DIR) + "/experiments/scenes/translucent-boxes.json";
+    test::source_dir() + "/experiments/scenes/translucent-boxes.json";
 
 class ViewerXvfb : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(DEEPVOX_BINARY_DIR) / "test_viewer_tmp" /
+    dir_ = fs::path(test::binary_dir()) / "test_viewer_tmp" /
            ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(dir_);
     fs::create_directories(dir_);

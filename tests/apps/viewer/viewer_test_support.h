@@ -21,6 +21,7 @@
 #include "engine/raster/camera_rays.h"
 #include "engine/scene/ray_query.h"
 #include "engine/scene/scene_view.h"
+#include "experiments/source_paths.h"
 
 namespace dv::test {
 
@@ -45,7 +46,7 @@ inline std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
-inline const std::string kDeepvox = std::string(DEEPVOX_BINARY_DIR) + "/bin/deepvox";
+inline const std::string kDeepvox = test::binary_dir() + "/bin/deepvox";
 
 struct IndependentError {
   std::vector<double> error;  // per pixel; NaN where the ray meets no visible surface

@@ -8,12 +8,13 @@
 #include "engine/scene/mesh_topology.h"
 #include "render/io/mesh_io.h"
 #include "render/load/mesh_generators.h"
+#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {
 
 const std::string kBunnyPath =
-    DEEPVOX_SOURCE_DIR "/experiments/assets/meshes/stanford-bunny-lowres.obj";
+    test::source_dir() + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
 
 TriangleMesh inverted(TriangleMesh mesh) {
   for (u32vec3& t : mesh.triangles) std::swap(t.y, t.z);

@@ -15,6 +15,7 @@
 #include "render/io/dsm_export.h"
 #include "render/io/image.h"
 #include "tests/engine/dsm/dsm_test_support.h"
+#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {
@@ -22,7 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string temp_path(const std::string& name) {
-  const fs::path dir = fs::path(DEEPVOX_BINARY_DIR) / "test_dsm_exr_tmp";
+  const fs::path dir = fs::path(test::binary_dir()) / "test_dsm_exr_tmp";
   fs::create_directories(dir);
   return (dir / name).string();
 }

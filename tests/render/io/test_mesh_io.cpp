@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "engine/scene/mesh_topology.h"
 #include "render/io/mesh_io.h"
+#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {
@@ -209,7 +210,7 @@ TEST_F(MeshIo, IsMeshFileByExtension) {
 
 TEST_F(MeshIo, SharedBunny) {
   TriangleMesh bunny =
-      load_mesh_file(DEEPVOX_SOURCE_DIR "/experiments/assets/meshes/stanford-bunny-lowres.obj");
+      load_mesh_file(test::source_dir() + "/experiments/assets/meshes/stanford-bunny-lowres.obj");
   EXPECT_EQ(bunny.triangles.size(), 3674u);
   // The issue describes the scan as open at the base; the shipped file is in fact closed.
   EXPECT_TRUE(is_closed(bunny));

@@ -9,12 +9,13 @@
 #include "core/error.h"
 #include "engine/scene/mesh_topology.h"
 #include "render/load/mesh_generators.h"
+#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-const std::string kAssets = DEEPVOX_SOURCE_DIR "/experiments/assets";
+const std::string kAssets = test::source_dir() + "/experiments/assets";
 
 void expect_closed_outward(const TriangleMesh& mesh) {
   EXPECT_TRUE(is_closed(mesh)) << mesh.name << ": " << open_edges(mesh).size() << " open edges";

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerates the before/after thumbnails in docs/images (200x150 PNG) from the stand-ins of
-scripts/look_standins.py and the bunny from assets/, and prints the fraction of pure-white
-pixels of each render, of the whole image and of the pixels that are not background (the
+look_standins.py (beside it) and the bunny from experiments/assets/, and prints the fraction
+of pure-white pixels of each render, of the whole image and of the pixels that are not background (the
 lamp's was the issue's symptom). --size 640x480 measures at the default resolution.
 
   before: a deepvox binary built from the code before the appearance work (commit c79d56e),
@@ -20,7 +20,7 @@ import tempfile
 import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 import look_standins  # noqa: E402
 
@@ -87,7 +87,7 @@ def main():
         look_standins.lamp(os.path.join(tmp, "lamp.gltf"))
         look_standins.transmission(os.path.join(tmp, "transmission.gltf"))
         look_standins.attenuation(os.path.join(tmp, "attenuation.gltf"))
-        bunny = os.path.join(ROOT, "assets", "meshes", "stanford-bunny-lowres.obj")
+        bunny = os.path.join(ROOT, "experiments", "assets", "meshes", "stanford-bunny-lowres.obj")
         scenes = [("lamp", os.path.join(tmp, "lamp.gltf"), ()),
                   ("transmission", os.path.join(tmp, "transmission.gltf"), ()),
                   ("attenuation", os.path.join(tmp, "attenuation.gltf"), ()),
