@@ -10,6 +10,8 @@ std::string source_dir() {
   return env && *env ? env : DEEPVOX_SOURCE_DIR;
 }
 
-std::string binary_dir() { return DEEPVOX_BINARY_DIR; }
+std::string binary_dir() {
+  return DEEPVOX_BINARY_DIR;
+}
 
 }  // namespace dv::test

@@ -7,17 +7,16 @@
 #include <cmath>
 
 #include "apps/viewer/viewer_state.h"
+#include "experiments/source_paths.h"
 #include "render/load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
 #include "tests/apps/viewer/viewer_test_support.h"
 #include "tests/support/scratch_dir.h"
-#include "experiments/source_paths.h"
 
 namespace dv::viewer {
 namespace {
 
-const std::string kScene =
-    test::source_dir() + "/experiments/scenes/translucent-boxes.json";
+const std::string kScene = test::source_dir() + "/experiments/scenes/translucent-boxes.json";
 
 ViewerSetup small_setup(const std::string& method) {
   ViewerSetup s;

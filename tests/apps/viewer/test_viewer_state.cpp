@@ -9,10 +9,10 @@
 #include "apps/viewer/viewer_state.h"
 #include "cuda/buffer.h"
 #include "engine/scene/scene_view.h"
+#include "experiments/source_paths.h"
 #include "render/frame/raster_render.h"
 #include "render/load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
-#include "experiments/source_paths.h"
 
 namespace dv::viewer {
 namespace {

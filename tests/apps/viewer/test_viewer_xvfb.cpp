@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/raster/camera_rays.h"
+#include "experiments/source_paths.h"
 #include "render/load/scene_loader.h"
 #include "tests/apps/viewer/viewer_test_support.h"
-#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {
@@ -26,8 +26,7 @@ using test::read_file;
 using Result = test::ShellResult;
 using test::shell;
 
-const std::string kScene =
-    test::source_dir() + "/experiments/scenes/translucent-boxes.json";
+const std::string kScene = test::source_dir() + "/experiments/scenes/translucent-boxes.json";
 
 class ViewerXvfb : public ::testing::Test {
  protected:

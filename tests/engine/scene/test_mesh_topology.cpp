@@ -6,9 +6,9 @@
 
 #include "core/error.h"
 #include "engine/scene/mesh_topology.h"
+#include "experiments/source_paths.h"
 #include "render/io/mesh_io.h"
 #include "render/load/mesh_generators.h"
-#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {

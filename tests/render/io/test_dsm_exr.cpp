@@ -12,10 +12,10 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "experiments/source_paths.h"
 #include "render/io/dsm_export.h"
 #include "render/io/image.h"
 #include "tests/engine/dsm/dsm_test_support.h"
-#include "experiments/source_paths.h"
 
 namespace dv {
 namespace {

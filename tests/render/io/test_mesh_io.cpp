@@ -10,8 +10,8 @@
 
 #include "core/error.h"
 #include "engine/scene/mesh_topology.h"
-#include "render/io/mesh_io.h"
 #include "experiments/source_paths.h"
+#include "render/io/mesh_io.h"
 
 namespace dv {
 namespace {

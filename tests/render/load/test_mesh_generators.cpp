@@ -8,8 +8,8 @@
 
 #include "core/error.h"
 #include "engine/scene/mesh_topology.h"
-#include "render/load/mesh_generators.h"
 #include "experiments/source_paths.h"
+#include "render/load/mesh_generators.h"
 
 namespace dv {
 namespace {
