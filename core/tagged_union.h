@@ -70,10 +70,12 @@ class TaggedUnion {
     return i;
   }
 
-  DV_HD TaggedUnion() = default;  // the first type, value-initialised
-  template <class T, int I = index_of<T>()>
-  DV_HD TaggedUnion(const T& value) : tag_(uint8_t(I)) {  // NOLINT: implicit on purpose
-    tagged_union_detail::member<I>(members_) = value;
+  TaggedUnion() = default;  // the first type, value-initialised
+  // From a value of one of the types (only those: a SFINAE-friendly condition, so the copy of a
+  // TaggedUnion or of a class derived from it never instantiates the index of a foreign type).
+  template <class T, std::enable_if_t<(tagged_union_detail::index_of<T, Ts...>() >= 0), int> = 0>
+  DV_HD TaggedUnion(const T& value) : tag_(uint8_t(index_of<T>())) {  // NOLINT: implicit
+    tagged_union_detail::member<index_of<T>()>(members_) = value;
   }
 
   DV_HD int tag() const { return tag_; }

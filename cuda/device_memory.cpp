@@ -10,6 +10,7 @@
 #include <cuda_runtime_api.h>
 
 #include "cuda/cuda_check.h"
+#include "cuda/memory_check.h"
 #endif
 
 namespace dv {
@@ -81,6 +82,7 @@ void retain_pool_memory() {
 
 }  // namespace
 
+// A failed allocation for want of memory throws OutOfMemory (cuda/memory_check.h).
 void* device_allocate(size_t bytes, const char* what) {
   void* ptr = nullptr;
   if (bytes == 0) return nullptr;
@@ -88,8 +90,10 @@ void* device_allocate(size_t bytes, const char* what) {
   cudaError_t err = cudaMallocAsync(&ptr, bytes, cudaStreamLegacy);
   if (err != cudaSuccess) {
     cudaGetLastError();
-    throw Error(std::string("cudaMallocAsync of ") + std::to_string(bytes) + " bytes for " + what +
-                " failed: " + cudaGetErrorString(err));
+    const std::string message = std::string("cudaMallocAsync of ") + std::to_string(bytes) +
+                                " bytes for " + what + " failed: " + cudaGetErrorString(err);
+    if (err == cudaErrorMemoryAllocation) throw OutOfMemory("", message, int64_t(bytes));
+    throw Error(message);
   }
   return ptr;
 }

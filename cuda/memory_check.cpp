@@ -45,10 +45,12 @@ void check_reservation(Memory memory, int64_t bytes, const std::string& what) {
   if (bytes <= 0) return;
   const int64_t free = free_memory_bytes(memory);
   if (bytes > free)
-    throw InputError(what, format_bytes(bytes) + " (" + std::to_string(bytes) + " bytes) asked, " +
-                               format_bytes(free) + " free on the " +
-                               (memory == Memory::device ? "device" : "host") +
-                               "; lower the map resolution or the storage's limits");
+    throw OutOfMemory(what,
+                      format_bytes(bytes) + " (" + std::to_string(bytes) + " bytes) asked, " +
+                          format_bytes(free) + " free on the " +
+                          (memory == Memory::device ? "device" : "host") +
+                          "; lower the map resolution or the storage's limits",
+                      bytes);
 }
 
 }  // namespace dv

@@ -1,8 +1,9 @@
 // `deepvox suite NAME_OR_FILE [--backend cpu|cuda] [--out DIR] [--repeat K] [--shard I/N]
-//  [--only PATTERN] [--smoke] [--costs DIR|estimate] [--gpus N|all] [--slurm [--partition P] [--time T]
-//  [--submit] [--dry-run]]` and `deepvox suite --list`: runs an experiment suite through the
-// harness (experiments/harness/runner.h), as worker processes on this node (workers.h) or as
-// SLURM jobs (slurm.h), and prints where the report is.
+//  [--only PATTERN] [--smoke] [--costs DIR|estimate] [--resume [DIR] [--force]] [--gpus N|all]
+//  [--slurm [--partition P] [--time T] [--submit] [--dry-run]]` and `deepvox suite --list`: runs
+// an experiment suite through the harness (experiments/harness/runner.h), continues a killed run
+// (--resume), runs it as worker processes on this node (workers.h) or as SLURM jobs (slurm.h),
+// and prints where the report is.
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
@@ -48,15 +49,31 @@ Runner add_suite(CLI::App& app) {
       ->group("");
   cmd->add_option("--only", opt->only,
                   "only experiments whose name, kind or strategy contains this");
+  CLI::Option* resume =
+      cmd->add_option("--resume", opt->resume_dir,
+                      "continue a killed or stopped run in DIR, or without DIR the newest "
+                      "unfinished run of this suite (and --shard) under --out: runs only the "
+                      "experiments without complete rows")
+          ->expected(0, 1);
+  cmd->add_flag("--force", opt->force,
+                "with --resume: continue although the suite file or the deepvox commit differ "
+                "from the folder's (meta.json and the report say the run is mixed)");
   cmd->add_flag("--smoke", opt->smoke,
                 "run each experiment's `smoke` form: tiny scenes and sweeps, a CPU correctness "
                 "check in seconds, not a measurement");
-  return [opt, list, slurm, use_slurm, gpus] {
+  return [opt, list, slurm, use_slurm, gpus, resume] {
     if (*list) {
       std::fputs(list_suites().c_str(), stdout);
       return 0;
     }
-    if (opt->suite.empty()) throw InputError("suite", "give a suite name or file (or --list)");
+    opt->resume = resume->count() > 0;
+    if (opt->force && !opt->resume) throw InputError("--force", "only with --resume");
+    if (opt->resume && (*use_slurm || !gpus->empty()))
+      throw InputError("--resume",
+                       "resumes one folder; resume shards one by one (--shard I/N "
+                       "--resume DIR), SLURM tasks resume by themselves");
+    if (opt->suite.empty() && !(opt->resume && !opt->resume_dir.empty()))
+      throw InputError("suite", "give a suite name or file (or --list)");
     if (*use_slurm) {
       if (*gpus == "all") throw InputError("--gpus all", "with --slurm give the number of tasks");
       slurm->tasks = gpus->empty() ? 1 : worker_count(*gpus, "cpu");
@@ -68,6 +85,8 @@ Runner add_suite(CLI::App& app) {
       throw InputError("--gpus", "workers choose their shards; leave out --shard");
     const SuiteOutcome r =
         gpus->empty() ? run_suite(*opt) : run_workers(*opt, worker_count(*gpus, opt->backend));
+    if (opt->resume)
+      std::printf("deepvox suite: resumed %s: %d more ran\n", r.folder.c_str(), r.ran_now);
     std::printf("deepvox suite: %s%d of %d experiments, %d failed, %d skipped; %s: %s%s\n",
                 r.interrupted ? "interrupted after " : "ran ", r.done, r.total, r.failed, r.skipped,
                 opt->report ? "report" : "results", r.folder.c_str(),

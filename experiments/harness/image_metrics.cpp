@@ -6,12 +6,28 @@
 #include <cstdlib>
 #include <limits>
 
+#include <stb_image_write.h>
+
 #include "core/error.h"
+#include "experiments/harness/durable_file.h"
+#include "render/io/display_encoding.h"
 #include "render/io/image.h"
+#include "render/io/tone_mapping.h"
 
 namespace dv {
 
 namespace {
+
+void save_png_bytes(const std::string& path, int width, int height,
+                    const std::vector<unsigned char>& rgb) {
+  std::string png;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, width, height, 3, rgb.data(), width * 3))
+    throw Error(path + ": cannot encode PNG");
+  write_file_atomically(path, png);
+}
 
 void check_sizes(const Image& a, const Image& b) {
   if (a.width != b.width || a.height != b.height)
@@ -56,7 +72,11 @@ void write_difference_png(const std::string& path, const Image& image, const Ima
     const int d = std::min(255, 4 * largest_channel_difference(image, reference, p));
     bytes[p * 3] = bytes[p * 3 + 1] = bytes[p * 3 + 2] = static_cast<unsigned char>(d);
   }
-  write_png_bytes(path, image.width, image.height, bytes);
+  save_png_bytes(path, image.width, image.height, bytes);
+}
+
+void save_png(const std::string& path, const Image& image) {
+  save_png_bytes(path, image.width, image.height, srgb_bytes(image, DisplayTransform{}));
 }
 
 }  // namespace dv

@@ -3,16 +3,15 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "experiments/harness/durable_file.h"
 #include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
-#include "experiments/harness/run_folder.h"
+#include "experiments/harness/run_journal.h"
 #include "experiments/harness/run_metadata.h"
 
 namespace dv {
@@ -20,14 +19,6 @@ namespace dv {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "cannot read");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 void require_same(const Json& a, const Json& b, const std::string& what, const std::string& dir) {
   if (a != b)
@@ -64,18 +55,16 @@ Json scale_out(const Json& shards) {
 std::string merge_shards(const std::vector<std::string>& folders, const std::string& out,
                          bool allow_missing) {
   if (folders.empty()) throw InputError("merge", "no shard folders given");
-  std::map<int, std::string> by_index;
+  std::map<int, RunState> by_index;
   Json first;
   Json unfinished = Json::array();
   for (const std::string& folder : folders) {
-    const fs::path meta_path = fs::path(folder) / "meta.json";
-    if (!fs::is_regular_file(meta_path) && allow_missing) {
+    if (!fs::is_regular_file(fs::path(folder) / "meta.json") && allow_missing) {
       unfinished.push_back(folder);
       continue;
     }
-    if (!fs::is_regular_file(meta_path))
-      throw InputError(folder, "not a suite result folder (no meta.json)");
-    const Json meta = parse_json_file(meta_path.string());
+    RunState state = read_run_state(folder);
+    const Json& meta = state.meta;
     if (first.is_null()) first = meta;
     require_same(meta["suite"], first["suite"], "suite", folder);
     require_same(meta["suite_hash"], first["suite_hash"], "suite file (hash)", folder);
@@ -89,10 +78,20 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
     require_same(meta.value("smoke", false), first.value("smoke", false), "--smoke", folder);
     require_same(meta["repeat"], first["repeat"], "--repeat", folder);
     const int index = meta["shard"]["index"].get<int>();
+    const std::string shard = "shard " + std::to_string(index);
     if (by_index.count(index))
-      throw InputError(
-          folder, "shard " + std::to_string(index) + " given twice (also " + by_index[index] + ")");
-    by_index[index] = folder;
+      throw InputError(folder, shard + " given twice (also " + by_index[index].dir.string() + ")");
+    if (state.locked)
+      throw InputError(folder, shard + " is still being written by a deepvox process");
+    if (!state.missing.empty() && !allow_missing)
+      throw InputError(folder, shard + " is unfinished: " + std::to_string(state.done) + " of " +
+                                   std::to_string(state.done + int(state.missing.size())) +
+                                   " experiments complete; resume it (deepvox suite " +
+                                   meta.value("suite_file", "SUITE") + " --shard " +
+                                   std::to_string(index) + "/" +
+                                   std::to_string(meta["shard"]["count"].get<int>()) +
+                                   " --resume " + folder + ") or merge with --allow-missing");
+    by_index[index] = std::move(state);
   }
   if (first.is_null()) throw InputError("merge", "no finished shard among the folders given");
   const int count = first["shard"]["count"].get<int>();
@@ -109,34 +108,38 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
   const std::string suite = first["suite"].get<std::string>();
   const fs::path root =
       out.empty() ? fs::path(folders.front()).parent_path().parent_path() : fs::path(out);
-  const fs::path dir =
-      make_run_folder(root, suite, first["run"]["git_sha"].get<std::string>(), "merged");
   std::vector<Row> rows;
-  Json params = Json::array(), shards = Json::array();
+  Json params = Json::array(), shards = Json::array(), planned = Json::array(),
+       missing_items = Json::array(), partial = Json::array();
   std::string commands = command_line() + "\n";
   int done = 0, failed = 0, skipped = 0, items = 0;
-  bool interrupted = false;
-  for (const auto& [index, folder] : by_index) {
-    const fs::path f(folder);
-    const Json meta = parse_json_file((f / "meta.json").string());
-    const std::vector<Row> shard_rows = read_rows_csv((f / "rows.csv").string());
-    rows.insert(rows.end(), shard_rows.begin(), shard_rows.end());
-    for (const Json& p : parse_json_file((f / "params.json").string())) params.push_back(p);
-    commands += "# shard " + std::to_string(index) + ": " + read_text(f / "command.txt");
-    done += meta["done"].get<int>();
-    failed += meta["failed"].get<int>();
-    skipped += meta.value("skipped", 0);
+  bool interrupted = false, mixed = false;
+  for (const auto& [index, state] : by_index) {
+    const fs::path& f = state.dir;
+    const Json& meta = state.meta;
+    rows.insert(rows.end(), state.rows.begin(), state.rows.end());
+    for (const Json& p : state.params) params.push_back(p);
+    for (const Json& i : meta.value("planned_items", Json::array())) planned.push_back(i);
+    for (int i : state.missing) missing_items.push_back(i);
+    if (!state.missing.empty()) partial.push_back(index);
+    commands += "# shard " + std::to_string(index) + ": " + read_file_text(f / "command.txt");
+    done += state.done;
+    failed += state.failed;
+    skipped += state.skipped;
     items += meta["items"].get<int>();
-    interrupted |= meta["interrupted"].get<bool>();
-    shards.push_back({{"index", index}, {"folder", folder}, {"run", meta["run"]}});
-    if (fs::is_directory(f / "images"))
-      fs::copy(f / "images", dir / "images",
-               fs::copy_options::recursive | fs::copy_options::skip_existing);
+    interrupted |= meta.value("interrupted", false);
+    mixed |= meta.value("mixed", false);
+    shards.push_back({{"index", index},
+                      {"folder", f.string()},
+                      {"attempts", meta.value("attempts", Json::array()).size()},
+                      {"run", meta["run"]}});
   }
   sort_rows_by_item(rows);
   std::stable_sort(params.begin(), params.end(), [](const Json& a, const Json& b) {
     return a["item"].get<int>() < b["item"].get<int>();
   });
+  std::sort(planned.begin(), planned.end());
+  std::sort(missing_items.begin(), missing_items.end());
   Json meta = first;
   meta["shard"] = {{"index", 1}, {"count", 1}};
   meta["merged_from"] = shards;
@@ -145,16 +148,31 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
     meta["missing_shards"] = missing_list;
     meta["unfinished_folders"] = unfinished;
   }
+  if (!partial.empty()) meta["partial_shards"] = partial;
+  meta["planned_items"] = planned;
+  meta["missing_items"] = missing_items;
   meta["done"] = done;
   meta["failed"] = failed;
   meta["skipped"] = skipped;
   meta["items"] = items;
   meta["interrupted"] = interrupted;
-  write_rows_csv((dir / "rows.csv").string(), rows);
-  std::ofstream(dir / "params.json") << params.dump(1) << "\n";
-  std::ofstream(dir / "meta.json") << meta.dump(1) << "\n";
-  std::ofstream(dir / "command.txt") << commands;
-  fs::copy_file(fs::path(by_index.begin()->second) / "suite.json", dir / "suite.json");
+  meta["mixed"] = mixed;
+  meta["state"] = "finished";
+  meta.erase("attempts");
+  meta.erase("stopped_by");
+  const fs::path dir = make_filled_run_folder(
+      root, suite, first["run"]["git_sha"].get<std::string>(), "merged", [&](const fs::path& tmp) {
+        write_rows_csv((tmp / "rows.csv").string(), rows);
+        write_file_atomically(tmp / "params.json", params.dump(1) + "\n");
+        write_file_atomically(tmp / "meta.json", meta.dump(1) + "\n");
+        write_file_atomically(tmp / "command.txt", commands);
+        write_file_atomically(tmp / "suite.json",
+                              read_file_text(by_index.begin()->second.dir / "suite.json"));
+        for (const auto& [index, state] : by_index)
+          if (fs::is_directory(state.dir / "images"))
+            fs::copy(state.dir / "images", tmp / "images",
+                     fs::copy_options::recursive | fs::copy_options::skip_existing);
+      });
   build_report(dir.string());
   return dir.string();
 }

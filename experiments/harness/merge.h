@@ -11,9 +11,11 @@
 namespace dv {
 
 // Returns the new folder, made under OUT/<suite>/ (OUT empty: beside the first shard's folder).
-// InputError naming the folder and the problem otherwise. `allow_missing`: missing shards (and
-// folders without meta.json, i.e. shards that never finished) are listed in meta.json and the
-// report instead of refused, so a failed SLURM task still leaves a report that names it.
+// InputError naming the folder and the problem otherwise. A shard that was killed and resumed
+// merges like any other; one still being written is refused. `allow_missing`: missing shards,
+// folders without meta.json and unfinished shards (killed, not resumed: their complete rows are
+// merged, their missing items listed as "missing_items") go into meta.json and the report
+// instead of being refused, so a failed SLURM task still leaves a report that names it.
 std::string merge_shards(const std::vector<std::string>& folders, const std::string& out,
                          bool allow_missing = false);
 

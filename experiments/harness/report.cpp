@@ -13,9 +13,11 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "experiments/harness/driver.h"
+#include "experiments/harness/durable_file.h"
 #include "experiments/harness/findings.h"
 #include "experiments/harness/pareto.h"
 #include "experiments/harness/rows.h"
+#include "experiments/harness/run_journal.h"
 #include "experiments/harness/suite_file.h"
 
 namespace dv {
@@ -346,24 +348,89 @@ std::string scale_out_line(const Json& meta) {
   return line + "\n";
 }
 
+// "3, 4, 7" for item indices.
+std::string item_list(const std::vector<int>& items) {
+  std::string out;
+  for (int i : items) out += (out.empty() ? "" : ", ") + std::to_string(i);
+  return out;
+}
+
+// The status line: complete, interrupted (Ctrl-C) or partial (killed, stopped, being written),
+// with how to resume; resumed and mixed runs (--resume, --resume --force) say so.
+std::string status_lines(const RunState& state, const fs::path& dir) {
+  const Json& meta = state.meta;
+  const std::string resume = "resume: `deepvox suite " + meta.value("suite_file", "SUITE") +
+                             " --resume " + dir.string() + "`";
+  const std::string run_state = meta.value("state", "finished");
+  const int items = meta.value("items", 0);
+  std::ostringstream md;
+  md << "- status: ";
+  if (state.journaled && !state.finished && run_state != "interrupted") {
+    md << "PARTIAL: " << state.done << " of " << items << " experiments complete, "
+       << state.missing.size() << " missing ("
+       << (state.locked             ? "a deepvox process is still writing the folder"
+           : run_state == "stopped" ? "the run stopped: " + meta.value("stopped_by", "")
+                                    : "the run was killed before it ended")
+       << "); " << resume;
+  } else {
+    md << (meta.value("interrupted", false) ? "interrupted after " : "ran ") << state.done << " of "
+       << items << " experiments" << (meta.contains("merged_from") ? " (merged shards)" : "");
+    if (meta["shard"]["count"].get<int>() > 1)
+      md << ", shard " << cell(meta["shard"]["index"]) << "/" << cell(meta["shard"]["count"]);
+    md << ", " << state.failed << " failed, " << state.skipped << " skipped (not for this backend)";
+    if (meta.value("interrupted", false) && state.journaled) md << "; " << resume;
+    if (!state.missing.empty())
+      md << "; PARTIAL: " << state.missing.size() << " planned experiments missing (below)";
+  }
+  md << "\n";
+  const Json attempts = meta.value("attempts", Json::array());
+  if (attempts.size() > 1)
+    md << "- resumed: " << attempts.size() - 1 << " time" << (attempts.size() > 2 ? "s" : "")
+       << " (meta.json lists every attempt)\n";
+  for (size_t a = 1; a < attempts.size(); ++a) {
+    if (!attempts[a].contains("forced")) continue;
+    std::vector<int> ran;
+    for (const auto& [item, attempt] : state.attempt_of)
+      if (attempt == int(a + 1)) ran.push_back(item);
+    std::string what;
+    for (const Json& w : attempts[a]["forced"]) what += (what.empty() ? "" : " and ") + cell(w);
+    md << "- MIXED (--resume --force): items " << (ran.empty() ? "none" : item_list(ran))
+       << " ran with another " << what << " (git " << cell(attempts[a]["git_sha"])
+       << ", suite hash " << cell(attempts[a]["suite_hash"]) << ") than the rest (git "
+       << cell(attempts[0]["git_sha"]) << ", suite hash " << cell(attempts[0]["suite_hash"])
+       << ")\n";
+  }
+  return md.str();
+}
+
+// The planned items without complete rows, each named.
+std::string missing_list(const RunState& state, const Suite& suite) {
+  if (state.missing.empty()) return "";
+  std::map<int, std::string> names;
+  for (const RunItem& item : expand_suite(suite)) names[item.index] = item.describe();
+  std::ostringstream md;
+  md << "Missing (" << state.missing.size() << " planned experiment"
+     << (state.missing.size() == 1 ? "" : "s") << " without complete rows):\n\n";
+  for (int i : state.missing)
+    md << "- item " << i << ": " << (names.count(i) ? names[i] : "not in suite.json") << "\n";
+  md << "\n";
+  return md.str();
+}
+
 }  // namespace
 
 void build_report(const std::string& folder) {
   const fs::path dir(folder);
-  const fs::path meta_path = dir / "meta.json";
-  if (!fs::is_regular_file(meta_path))
-    throw InputError(folder, "not a suite result folder (no meta.json)");
-  const Json meta = parse_json_file(meta_path.string());
-  std::ifstream suite_in(dir / "suite.json", std::ios::binary);
-  std::stringstream suite_text;
-  suite_text << suite_in.rdbuf();
-  const Suite parsed = parse_suite(suite_text.str(), (dir / "suite.json").string());
+  const RunState state = read_run_state(dir);
+  const Json& meta = state.meta;
+  const Suite parsed =
+      parse_suite(read_file_text(dir / "suite.json"), (dir / "suite.json").string());
   Suite suite = meta.value("smoke", false) ? smoke_suite(parsed) : parsed;
   // Paper tables named beside the suite file as run (not in the result folder): look there too.
   for (ExperimentSpec& e : suite.experiments)
     for (std::string& paper : e.paper_files)
       if (!fs::exists(paper)) paper = resolve_data_file(paper, meta.value("suite_file", ""));
-  const std::vector<Row> rows = read_rows_csv((dir / "rows.csv").string());
+  const std::vector<Row>& rows = state.rows;
   std::vector<std::map<int, std::vector<const Row*>>> by_experiment(suite.experiments.size());
   for (const Row& r : rows)
     for (size_t e = 0; e < suite.experiments.size(); ++e)
@@ -390,18 +457,12 @@ void build_report(const std::string& folder) {
           "measurement)\n";
   md << "- timings: one warm-up, then " << cell(meta["repeat"])
      << " repetitions, median (min, max in rows.csv)\n";
-  const int done = meta["done"].get<int>(), items = meta["items"].get<int>();
-  md << "- status: " << (meta["interrupted"].get<bool>() ? "interrupted after " : "ran ") << done
-     << " of " << items << " experiments"
-     << (meta.contains("merged_from") ? " (merged shards)" : "");
-  if (meta["shard"]["count"].get<int>() > 1)
-    md << ", shard " << cell(meta["shard"]["index"]) << "/" << cell(meta["shard"]["count"]);
-  md << ", " << cell(meta["failed"]) << " failed, " << meta.value("skipped", 0)
-     << " skipped (not for this backend)\n";
+  md << status_lines(state, dir);
   if (meta.contains("scale_out")) md << scale_out_line(meta);
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)
      << "\n- files: rows.csv (one row per measurement), params.json (echoed parameters), "
         "meta.json, command.txt\n\n";
+  md << missing_list(state, suite);
   std::ifstream command_in(dir / "command.txt");
   std::stringstream command;
   command << command_in.rdbuf();
@@ -409,9 +470,11 @@ void build_report(const std::string& folder) {
      << command.str() << "```\n\n";
   for (size_t e = 0; e < suite.experiments.size(); ++e)
     write_experiment(md, dir, suite.experiments[e], by_experiment[e], our_machine);
-  std::ofstream out(dir / "report.md");
-  if (!out) throw InputError((dir / "report.md").string(), "cannot write report");
-  out << md.str();
+  try {
+    write_file_atomically(dir / "report.md", md.str());
+  } catch (const ResultWriteError& e) {
+    throw InputError((dir / "report.md").string(), std::string("cannot write report: ") + e.what());
+  }
 }
 
 }  // namespace dv

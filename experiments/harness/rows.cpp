@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include "core/error.h"
+#include "experiments/harness/durable_file.h"
 
 namespace dv {
 
@@ -33,7 +35,7 @@ std::string number_text(double v) {
 }
 
 // Splits one record; `in` supplies continuation lines of quoted fields with line breaks.
-std::vector<std::string> split_record(std::string line, std::ifstream& in, int& line_number) {
+std::vector<std::string> split_record(std::string line, std::istream& in, int& line_number) {
   std::vector<std::string> fields(1);
   bool in_quotes = false;
   for (size_t i = 0;; ++i) {
@@ -67,26 +69,29 @@ std::vector<std::string> split_record(std::string line, std::ifstream& in, int& 
 
 }  // namespace
 
-void write_rows_csv(const std::string& path, const std::vector<Row>& rows) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, "cannot write rows file");
-  out << kHeader << "\n";
+std::string rows_csv_header() {
+  return std::string(kHeader) + "\n";
+}
+
+std::string rows_csv_text(const std::vector<Row>& rows) {
+  std::ostringstream out;
   for (const Row& r : rows)
     out << quoted(r.suite) << "," << r.item << "," << quoted(r.experiment) << "," << quoted(r.kind)
         << "," << quoted(r.scene) << "," << quoted(r.strategy) << "," << quoted(r.params) << ","
         << quoted(r.metric) << "," << quoted(r.stat) << "," << number_text(r.value) << ","
         << quoted(r.unit) << "," << quoted(r.note) << "\n";
-  if (!out) throw InputError(path, "write failed");
+  return out.str();
 }
 
-std::vector<Row> read_rows_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot read rows file");
+void write_rows_csv(const std::string& path, const std::vector<Row>& rows) {
+  write_file_atomically(path, rows_csv_header() + rows_csv_text(rows));
+}
+
+std::vector<Row> parse_rows_csv(const std::string& text, const std::string& path, int first_line) {
+  std::istringstream in(text);
   std::string line;
-  if (!std::getline(in, line) || line.substr(0, line.find_last_not_of("\r") + 1) != kHeader)
-    throw InputError(path, "line 1: expected the header " + std::string(kHeader));
   std::vector<Row> rows;
-  for (int n = 2; std::getline(in, line); ++n) {
+  for (int n = first_line; std::getline(in, line); ++n) {
     if (line.empty()) continue;
     const int first = n;
     const std::vector<std::string> f = split_record(line, in, n);
@@ -113,6 +118,21 @@ std::vector<Row> read_rows_csv(const std::string& path) {
     rows.push_back(std::move(r));
   }
   return rows;
+}
+
+size_t rows_csv_body_start(const std::string& text, const std::string& path) {
+  const size_t end = std::min(text.find('\n'), text.size());
+  std::string first = text.substr(0, end);
+  if (!first.empty() && first.back() == '\r') first.pop_back();
+  if (first != kHeader)
+    throw InputError(path, "line 1: expected the header " + std::string(kHeader));
+  return std::min(end + 1, text.size());
+}
+
+std::vector<Row> read_rows_csv(const std::string& path) {
+  if (!std::ifstream(path)) throw InputError(path, "cannot read rows file");
+  const std::string text = read_file_text(path);
+  return parse_rows_csv(text.substr(rows_csv_body_start(text, path)), path, 2);
 }
 
 void sort_rows_by_item(std::vector<Row>& rows) {

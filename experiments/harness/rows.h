@@ -18,9 +18,18 @@ struct Row {
   std::string unit, note;
 };
 
+// The whole file, written atomically (durable_file.h).
 void write_rows_csv(const std::string& path, const std::vector<Row>& rows);
 // InputError naming the file and line on a malformed file.
 std::vector<Row> read_rows_csv(const std::string& path);
+
+// The header line (with its newline) and the records of `rows`, for appending row groups.
+std::string rows_csv_header();
+std::string rows_csv_text(const std::vector<Row>& rows);
+// Where the records begin in a file's text (after the header line); InputError without it.
+size_t rows_csv_body_start(const std::string& text, const std::string& path);
+// Records of `text` (no header); errors name `path` and lines counted from `first_line`.
+std::vector<Row> parse_rows_csv(const std::string& text, const std::string& path, int first_line);
 
 // A report column "metric" or "metric:stat" (stat empty: "value", else "median").
 struct Column {

@@ -1,20 +1,22 @@
 // The suite runner (runner.h).
 #include "experiments/harness/runner.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <memory>
-#include <sstream>
+#include <new>
 
 #include "core/error.h"
-#include "cuda/device_memory.h"
 #include "cuda/execute.h"
+#include "cuda/memory_check.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/interrupt.h"
 #include "experiments/harness/progress.h"
 #include "experiments/harness/report.h"
-#include "experiments/harness/run_folder.h"
+#include "experiments/harness/run_journal.h"
 #include "experiments/harness/run_metadata.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/shard_plan.h"
@@ -25,111 +27,287 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError(path.string(), "cannot write");
-  out << text;
+// One entry of meta.json's "attempts": who ran (a part of) the folder, with what.
+Json attempt_entry(Backend backend, const std::string& suite_hash) {
+  return {{"utc_time", run_metadata(backend)["utc_time"]},
+          {"host", host_name()},
+          {"pid", int(getpid())},
+          {"git_sha", build_git_sha()},
+          {"suite_hash", suite_hash},
+          {"command_line", command_line()}};
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+// What a call runs: the items still to run, into which folder.
+struct Plan {
+  Suite suite;
+  Backend backend = Backend::cpu;
+  int repeat = 1;
+  std::vector<RunItem> items;
+  Json meta;
+  RunJournal journal;
+  RunState before;  // the folder's complete part before this call (empty for a new run)
+  int attempt = 1;
+};
+
+Plan new_run(const SuiteOptions& o) {
+  Plan p;
+  const std::string path = resolve_suite_path(o.suite);
+  const Suite loaded = load_suite(path);
+  p.suite = o.smoke ? smoke_suite(loaded) : loaded;
+  p.backend = o.backend.empty() ? default_backend() : parse_backend(o.backend);
+  require_backend(p.backend);
+  const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+  const std::vector<RunItem> all = expand_suite(p.suite);
+  const std::vector<RunItem> chosen = filter_items(all, o.only);
+  const ItemCosts costs = item_costs(chosen, p.suite, o.costs, o.out);
+  const ShardPlan plan = plan_shards(chosen, costs, shard.count);
+  p.items = shard_items(chosen, plan, shard);
+  if (o.repeat < 0) throw InputError("--repeat", "expected a positive count");
+  p.repeat = o.repeat > 0 ? o.repeat : p.suite.repeat;
+  Json planned = Json::array();
+  for (const RunItem& item : p.items) planned.push_back(item.index);
+  p.meta = {{"suite", p.suite.name},
+            {"suite_file", path},
+            {"suite_hash", p.suite.hash},
+            {"repeat", p.repeat},
+            {"only", o.only},
+            {"smoke", o.smoke},
+            {"shard",
+             {{"index", shard.index},
+              {"count", shard.count},
+              {"cost_source", costs.source},
+              {"assignment_hash", plan.hash},
+              {"cost", plan.load[size_t(shard.index - 1)]}}},
+            {"items_in_suite", all.size()},
+            {"items", p.items.size()},
+            {"planned_items", planned},
+            {"state", "running"},
+            {"attempts", Json::array({attempt_entry(p.backend, p.suite.hash)})},
+            {"run", run_metadata(p.backend)}};
+  const std::string sha = build_git_sha();
+  const std::string tag =
+      shard.whole() ? ""
+                    : "shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
+  p.journal = RunJournal::create(o.out, p.suite.name, sha, tag, p.meta, read_file_text(path),
+                                 command_line());
+  return p;
 }
 
-std::string describe(const RunItem& item) {
-  return item.experiment_name + ": " + item.strategy +
-         (item.params.empty() ? "" : " " + item.params_text()) + " on " + item.scene;
+// The suite file to resume with: the one given, else the one the folder ran.
+std::string resume_suite_path(const SuiteOptions& o) {
+  if (!o.suite.empty()) return resolve_suite_path(o.suite);
+  if (o.resume_dir.empty())
+    throw InputError("--resume", "give the suite (name or file), or the folder to resume");
+  const Json meta = read_run_state(o.resume_dir).meta;
+  const std::string file = meta.value("suite_file", "");
+  if (!fs::is_regular_file(file))
+    throw InputError(o.resume_dir, "its suite file " + file + " is gone; give the suite file");
+  return file;
+}
+
+// An option given again on --resume must say what the folder ran with.
+void require_same_option(bool given, const Json& now, const Json& folder, const std::string& option,
+                         const fs::path& dir) {
+  if (given && now != folder)
+    throw InputError(option + " " + (now.is_string() ? now.get<std::string>() : now.dump()),
+                     dir.string() + " ran with " + option + " " +
+                         (folder.is_string() ? folder.get<std::string>() : folder.dump()) +
+                         "; leave the option out to resume it");
+}
+
+Plan resumed_run(const SuiteOptions& o) {
+  const std::string path = resume_suite_path(o);
+  const Suite loaded = load_suite(path);
+  const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+  fs::path dir = o.resume_dir;
+  if (dir.empty()) {
+    dir = newest_unfinished_run(o.out, loaded.name, shard.index, shard.count);
+    if (dir.empty())
+      throw InputError((fs::path(o.out) / loaded.name).string(),
+                       "no unfinished run of suite '" + loaded.name + "'" +
+                           (shard.whole() ? std::string() : " shard " + o.shard) +
+                           " to resume (start one without --resume)");
+  }
+  // Checked before the folder is touched: a refused resume leaves it as it was.
+  const Json meta = read_run_state(dir).meta;
+  if (meta.value("suite", "") != loaded.name)
+    throw InputError(dir.string(), "a run of suite '" + meta.value("suite", "") + "', not of '" +
+                                       loaded.name + "' (" + path + ")");
+  std::vector<std::string> differ;
+  std::string problems;
+  if (meta.value("suite_hash", "") != loaded.hash) {
+    differ.push_back("suite file");
+    problems += "the suite file differs (the folder ran " + meta.value("suite_file", "") +
+                " with hash " + meta.value("suite_hash", "") + ", " + path + " has hash " +
+                loaded.hash + ")";
+  }
+  const std::string folder_sha = meta["run"].value("git_sha", "");
+  if (folder_sha != build_git_sha()) {
+    differ.push_back("commit");
+    problems += std::string(problems.empty() ? "" : "; ") + "the commit differs (the folder ran " +
+                folder_sha + ", this deepvox is " + build_git_sha() + ")";
+  }
+  if (!differ.empty() && !o.force)
+    throw InputError(dir.string(), "cannot resume: " + problems +
+                                       "; resume with the suite file and binary it ran, or add "
+                                       "--force to mix them in one folder (its report says so)");
+  const std::string backend = meta["run"].value("backend", "");
+  require_same_option(!o.backend.empty(), o.backend, backend, "--backend", dir);
+  require_same_option(o.repeat > 0, o.repeat, meta["repeat"], "--repeat", dir);
+  require_same_option(!o.only.empty(), o.only, meta["only"], "--only", dir);
+  require_same_option(o.smoke, o.smoke, meta.value("smoke", false), "--smoke", dir);
+  require_same_option(!o.shard.empty(), o.shard,
+                      std::to_string(meta["shard"].value("index", 1)) + "/" +
+                          std::to_string(meta["shard"].value("count", 1)),
+                      "--shard", dir);
+  Plan p;
+  p.journal = RunJournal::reopen(dir, p.before);
+  p.suite = meta.value("smoke", false) ? smoke_suite(loaded) : loaded;
+  p.backend = parse_backend(backend);
+  require_backend(p.backend);
+  p.repeat = meta["repeat"].get<int>();
+  std::map<int, RunItem> by_index;
+  for (RunItem& item : expand_suite(p.suite)) by_index[item.index] = std::move(item);
+  for (int index : p.before.missing) {
+    if (!by_index.count(index))
+      throw InputError(dir.string(), "item " + std::to_string(index) +
+                                         " of the folder's plan is not in " + path +
+                                         "; it cannot be resumed with this suite file");
+    p.items.push_back(by_index[index]);
+  }
+  p.meta = p.before.meta;
+  if (p.before.finished) return p;  // nothing to run, nothing to change
+  Json attempt = attempt_entry(p.backend, loaded.hash);
+  if (!differ.empty()) {
+    attempt["forced"] = differ;
+    p.meta["mixed"] = true;
+  }
+  p.meta["attempts"].push_back(attempt);
+  p.attempt = int(p.meta["attempts"].size());
+  p.meta["state"] = "running";
+  p.journal.write_meta(p.meta);
+  p.journal.add_command(command_line());
+  return p;
+}
+
+using Drivers = std::map<std::string, std::unique_ptr<Driver>>;
+
+// Runs one item into `sink`: "ok", "skipped" or "failed" (a row says why; out of memory also
+// the bytes asked for). A ResultWriteError passes: the folder takes no more results.
+std::string run_item(const RunItem& item, RunContext& context, Drivers& drivers, RowSink& sink,
+                     Json& echoed) {
+  const auto fail = [&](const std::string& why) {
+    sink.add("failed", "value", 1.0, "", why);
+    echoed["error"] = why;
+    return std::string("failed");
+  };
+  try {
+    auto& driver = drivers[item.kind];
+    if (!driver) driver = driver_registry().create(item.kind);
+    echoed["echoed"] = driver->run(item, context, sink);
+    return "ok";
+  } catch (const ResultWriteError&) {
+    throw;
+  } catch (const SkippedRun& e) {
+    sink.add("skipped", "value", 1.0, "", e.what());
+    echoed["skipped"] = e.what();
+    return "skipped";
+  } catch (const OutOfMemory& e) {
+    sink.add("out_of_memory", "bytes_asked", double(e.bytes()), "bytes");
+    echoed["out_of_memory_bytes"] = e.bytes();
+    return fail(std::string("out of memory: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    return fail("out of host memory (std::bad_alloc)");
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+}
+
+// The error a run stops with when its folder takes no more results.
+Error stopped(const ResultWriteError& e, Plan& p, const SuiteOptions& o, int done, int total) {
+  Json meta = p.meta;
+  meta["state"] = "stopped";
+  meta["stopped_by"] = e.what();
+  try {
+    p.journal.write_meta(meta);
+  } catch (const ResultWriteError&) {
+    // The disk is still full: meta.json stays as it was, which reads as a killed run.
+  }
+  const std::string dir = p.journal.dir().string();
+  return Error(std::string(e.what()) + "\nthe run stopped; " + std::to_string(done) + " of " +
+               std::to_string(total) + " experiments are complete and kept in " + dir +
+               "\nfree space or make the folder writable, then resume: deepvox suite " +
+               (o.suite.empty() ? "" : o.suite + " ") + "--resume " + dir);
 }
 
 }  // namespace
 
 SuiteOutcome run_suite(const SuiteOptions& o) {
-  const std::string path = resolve_suite_path(o.suite);
-  const Suite loaded = load_suite(path);
-  const Suite suite = o.smoke ? smoke_suite(loaded) : loaded;
-  const Backend backend = o.backend.empty() ? default_backend() : parse_backend(o.backend);
-  require_backend(backend);
-  const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
-  const std::vector<RunItem> all = expand_suite(suite);
-  const std::vector<RunItem> chosen = filter_items(all, o.only);
-  const ItemCosts costs = item_costs(chosen, suite, o.costs, o.out);
-  const ShardPlan plan = plan_shards(chosen, costs, shard.count);
-  const std::vector<RunItem> items = shard_items(chosen, plan, shard);
-  if (o.repeat < 0) throw InputError("--repeat", "expected a positive count");
-  const int repeat = o.repeat > 0 ? o.repeat : suite.repeat;
-
-  const std::string sha = build_git_sha();
-  const fs::path dir = make_run_folder(
-      o.out, suite.name, sha,
-      shard.whole() ? ""
-                    : "shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count));
-  write_text(dir / "command.txt", command_line() + "\n");
-  write_text(dir / "suite.json", read_text(path));
-
-  nlohmann::json meta = {{"suite", suite.name},
-                         {"suite_file", path},
-                         {"suite_hash", suite.hash},
-                         {"repeat", repeat},
-                         {"only", o.only},
-                         {"smoke", o.smoke},
-                         {"shard",
-                          {{"index", shard.index},
-                           {"count", shard.count},
-                           {"cost_source", costs.source},
-                           {"assignment_hash", plan.hash},
-                           {"cost", plan.load[size_t(shard.index - 1)]}}},
-                         {"items_in_suite", all.size()},
-                         {"items", items.size()},
-                         {"run", run_metadata(backend)}};
-  SceneCache scenes(backend);
-  RunContext context{backend, repeat, dir, &scenes};
-  std::map<std::string, std::unique_ptr<Driver>> drivers;
-  std::vector<Row> rows;
-  nlohmann::json params = nlohmann::json::array();
+  // Before the folder exists: a Ctrl-C from then on stops after the current item and still
+  // leaves a report.
+  const InterruptScope ctrl_c;
+  Plan p = o.resume ? resumed_run(o) : new_run(o);
+  const fs::path dir = p.journal.dir();
   SuiteOutcome outcome;
   outcome.folder = dir.string();
-  outcome.total = int(items.size());
-  Progress progress(outcome.total, o.progress && Progress::stderr_is_terminal(), o.status_file);
-  const InterruptScope ctrl_c;  // until the report is written: a Ctrl-C then still leaves it
-  for (const RunItem& item : items) {
-    if (interrupt_requested()) break;
-    progress.start(outcome.done, describe(item));
-    RowSink sink(suite.name, item, rows);
-    nlohmann::json echoed = {{"item", item.index},       {"experiment", item.experiment_name},
-                             {"scene", item.scene},      {"strategy", item.strategy},
-                             {"requested", item.params}, {"settings", item.settings}};
-    try {
-      auto& driver = drivers[item.kind];
-      if (!driver) driver = driver_registry().create(item.kind);
-      echoed["echoed"] = driver->run(item, context, sink);
-    } catch (const SkippedRun& e) {
-      sink.add("skipped", "value", 1.0, "", e.what());
-      echoed["skipped"] = e.what();
-      ++outcome.skipped;
-    } catch (const std::exception& e) {
-      sink.add("failed", "value", 1.0, "", e.what());
-      echoed["error"] = e.what();
-      ++outcome.failed;
-      progress.finish();
-      std::fprintf(stderr, "deepvox suite: %s failed: %s\n", describe(item).c_str(), e.what());
-    }
-    params.push_back(std::move(echoed));
-    ++outcome.done;
-    write_rows_csv((dir / "rows.csv").string(), rows);  // a crash later loses nothing finished
+  outcome.total = int(p.meta["planned_items"].size());
+  outcome.done = p.before.done;
+  outcome.failed = p.before.failed;
+  outcome.skipped = p.before.skipped;
+  if (p.before.finished) {
+    p.journal.close();
+    if (o.report) build_report(dir.string());
+    outcome.exit_code = outcome.failed ? 3 : 0;
+    return outcome;
   }
-  progress.finish();
-  progress.write_status(outcome.done, "finished");
-  outcome.interrupted = interrupt_requested() && outcome.done < outcome.total;
-  meta["done"] = outcome.done;
-  meta["failed"] = outcome.failed;
-  meta["skipped"] = outcome.skipped;
-  meta["interrupted"] = outcome.interrupted;
-  meta["elapsed_s"] = progress.elapsed_seconds();
-  write_rows_csv((dir / "rows.csv").string(), rows);
-  write_text(dir / "params.json", params.dump(1) + "\n");
-  write_text(dir / "meta.json", meta.dump(1) + "\n");
+  SceneCache scenes(p.backend);
+  RunContext context{p.backend, p.repeat, dir, &scenes};
+  Drivers drivers;
+  Json params = p.before.params;
+  Progress progress(outcome.total, o.progress && Progress::stderr_is_terminal(), o.status_file);
+  try {
+    for (const RunItem& item : p.items) {
+      if (interrupt_requested()) break;
+      progress.start(outcome.done, item.describe());
+      std::vector<Row> rows;
+      RowSink sink(p.suite.name, item, rows);
+      Json echoed = {{"item", item.index},       {"experiment", item.experiment_name},
+                     {"scene", item.scene},      {"strategy", item.strategy},
+                     {"requested", item.params}, {"settings", item.settings}};
+      const std::string result = run_item(item, context, drivers, sink, echoed);
+      if (result == "failed") {
+        progress.finish();
+        std::fprintf(stderr, "deepvox suite: %s failed: %s\n", item.describe().c_str(),
+                     echoed["error"].get<std::string>().c_str());
+      }
+      p.journal.record(item.index, p.attempt, rows, result, echoed);  // synced: survives a kill
+      params.push_back(std::move(echoed));
+      ++outcome.done;
+      ++outcome.ran_now;
+      outcome.failed += result == "failed";
+      outcome.skipped += result == "skipped";
+    }
+    progress.finish();
+    progress.write_status(outcome.done, "finished");
+    const bool complete = outcome.done >= outcome.total;
+    outcome.interrupted = interrupt_requested() && !complete;
+    std::stable_sort(params.begin(), params.end(), [](const Json& a, const Json& b) {
+      return a["item"].get<int>() < b["item"].get<int>();
+    });
+    p.meta["done"] = outcome.done;
+    p.meta["failed"] = outcome.failed;
+    p.meta["skipped"] = outcome.skipped;
+    p.meta["interrupted"] = outcome.interrupted;
+    p.meta["elapsed_s"] = p.meta.value("elapsed_s", 0.0) + progress.elapsed_seconds();
+    p.meta["state"] = complete ? "finished" : "interrupted";
+    p.meta.erase("stopped_by");
+    write_file_atomically(dir / "params.json", params.dump(1) + "\n");
+    p.journal.write_meta(p.meta);
+  } catch (const ResultWriteError& e) {
+    progress.finish();
+    throw stopped(e, p, o, outcome.done, outcome.total);
+  }
+  p.journal.close();  // releases the folder's lock: the report reads it as not being written
   if (o.report) build_report(dir.string());
   outcome.exit_code = outcome.interrupted ? 130 : outcome.failed ? 3 : 0;
   return outcome;

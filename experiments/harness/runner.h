@@ -1,7 +1,10 @@
 // Runs a suite: expands it, takes this shard's slice (and --only's), runs every item through
-// its driver, records failures and skipped items and goes on, and writes the result folder
-// (command.txt, suite.json, meta.json, rows.csv after every item, params.json, images/, report.md).
-// Ctrl-C stops after the current item with a report of what was done (exit 130).
+// its driver, records failures (an out-of-memory one with the bytes asked for) and skipped items
+// and goes on, and writes the result folder (command.txt, suite.json, meta.json first, then per
+// item its rows and a completion marker, synced: run_journal.h; params.json, images/,
+// report.md). Ctrl-C stops after the current item with a report of what was done (exit 130); a
+// killed run leaves a folder that `report` reads as partial and `--resume` completes; a full
+// disk or unwritable folder stops the run with an error and the folder resumable.
 #pragma once
 
 #include <string>
@@ -20,16 +23,26 @@ struct SuiteOptions {
   bool progress = true;     // on a terminal only
   bool report = true;       // build report.md (and plots) at the end
   std::string status_file;  // where the progress is written for a parent (workers.h); "": none
+  // --resume [DIR]: continue the run in DIR (empty: the newest unfinished one of this suite and
+  // shard under `out`), running only the items without complete rows.
+  bool resume = false;
+  std::string resume_dir;
+  bool force = false;  // resume even when the suite file or the commit differ (noted in meta)
 };
 
 struct SuiteOutcome {
   int exit_code = 0;  // 0 all ran, 3 some failed, 130 interrupted
   std::string folder;
   int done = 0, total = 0, failed = 0, skipped = 0;
+  int ran_now = 0;  // items run by this call (a resumed run: the rest were there)
   bool interrupted = false;
 };
 
-// InputError for a bad suite file or option (exit 2), before any folder is made.
+// InputError for a bad suite file or option (exit 2), before any folder is made, and for a
+// folder that cannot be resumed (no meta.json, another suite, another suite file or commit
+// without `force`, options that differ from the folder's, a run still writing it).
+// ResultWriteError (durable_file.h) when the disk is full or the folder unwritable: the run
+// stops, what was written stays and resumes.
 SuiteOutcome run_suite(const SuiteOptions& options);
 
 // One line per built-in suite: "name  description".

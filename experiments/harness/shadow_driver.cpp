@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "experiments/harness/driver.h"
+#include "experiments/harness/durable_file.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/scene_cache.h"
@@ -187,14 +188,16 @@ class ShadowDriver : public Driver {
     rows.add("image_over_8", "value", e.fraction_over_8, "fraction");
     if (!s.images) return;
     namespace fs = std::filesystem;
-    fs::create_directories(ctx.run_dir / "images");
+    std::error_code ec;
+    fs::create_directories(ctx.run_dir / "images", ec);
+    if (ec) throw ResultWriteError((ctx.run_dir / "images").string(), ec.message());
     if (ref.png.empty()) {
       ref.png = "images/reference_" + fs::path(item.scene_path).stem().string() + "_" +
                 std::to_string(s.width) + "x" + std::to_string(s.height) + ".png";
-      write_png((ctx.run_dir / ref.png).string(), ref.image);
+      save_png((ctx.run_dir / ref.png).string(), ref.image);
     }
     const std::string stem = "images/" + std::to_string(item.index) + "_" + item.strategy;
-    write_png((ctx.run_dir / (stem + ".png")).string(), image);
+    save_png((ctx.run_dir / (stem + ".png")).string(), image);
     write_difference_png((ctx.run_dir / (stem + "_diff.png")).string(), image, ref.image);
     rows.add("image", "reference", 0.0, "", ref.png);
     rows.add("image", "render", 0.0, "", stem + ".png");

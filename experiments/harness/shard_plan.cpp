@@ -36,13 +36,14 @@ double setting(const std::map<std::string, std::string>& map, const std::string&
   return it == map.end() ? fallback : std::atof(it->second.c_str());
 }
 
-// A whole or merged run of `suite`'s file: meta.json with its hash and one shard.
+// A whole or merged run of `suite`'s file that ended: meta.json with its hash, one shard and
+// (folders that resume) the state "finished".
 bool is_whole_run_of(const fs::path& dir, const Suite& suite) {
   const fs::path meta_path = dir / "meta.json";
   if (!fs::is_regular_file(meta_path) || !fs::is_regular_file(dir / "rows.csv")) return false;
   const Json meta = parse_json_file(meta_path.string());
   return meta.value("suite_hash", "") == suite.hash && meta.contains("shard") &&
-         meta["shard"].value("count", 0) == 1;
+         meta["shard"].value("count", 0) == 1 && meta.value("state", "finished") == "finished";
 }
 
 // Per item: the sum of its median timings (ms).

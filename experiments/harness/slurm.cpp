@@ -56,14 +56,28 @@ SlurmScripts slurm_scripts(const SuiteOptions& o, const SlurmOptions& s, const s
   std::string shard_command = quoted(exe);
   for (const std::string& a : shard_arguments(o, suite_path, 0, s.tasks, shards, costs))
     shard_command += " " + (a == "0/" + n ? "\"$task/" + n + "\"" : quoted(a));
+  // A task that starts again (requeued after preemption or a node failure, or by itself below)
+  // resumes the newest folder of its shard; a task whose deepvox alone was killed requeues
+  // itself, at most three times.
+  const std::string shard_folders = quoted(shards + "/" + suite.name) + "/*-shard\"$task\"of" + n;
   SlurmScripts out{dir.string(), "", ""};
   out.array = header("deepvox-" + suite.name, s, (dir / "slurm" / "shard-%a.log").string()) +
               "#SBATCH --array=1-" + n + "\n" +
               (o.backend == "cpu" ? "#SBATCH --cpus-per-task=1\n" : "#SBATCH --gres=gpu:1\n") +
-              "# Shard i of " + n + " of suite " + suite.name +
-              ". By hand: SLURM_ARRAY_TASK_ID=i bash " + (dir / "slurm" / "array.sbatch").string() +
-              "\nset -eu\ntask=\"${SLURM_ARRAY_TASK_ID:?set SLURM_ARRAY_TASK_ID to 1.." + n +
-              "}\"\ncd " + quoted(fs::current_path().string()) + "\nexec " + shard_command + "\n";
+              "#SBATCH --requeue\n#SBATCH --open-mode=append\n# Shard i of " + n + " of suite " +
+              suite.name + ". By hand: SLURM_ARRAY_TASK_ID=i bash " +
+              (dir / "slurm" / "array.sbatch").string() +
+              "\n# Requeue-safe: a restarted task resumes its shard's folder (deepvox suite "
+              "--resume), and a task whose deepvox was killed requeues itself (at most 3 "
+              "restarts).\nset -u\ntask=\"${SLURM_ARRAY_TASK_ID:?set SLURM_ARRAY_TASK_ID to 1.." +
+              n + "}\"\ncd " + quoted(fs::current_path().string()) + "\nfolder=$(ls -d " +
+              shard_folders + " " + shard_folders + "-* 2> /dev/null | tail -n 1)\n" +
+              shard_command +
+              " ${folder:+--resume \"$folder\"} && exit 0\nrc=$?\n"
+              "if [ \"$rc\" -gt 128 ] && [ \"$rc\" -ne 130 ] && [ -n \"${SLURM_JOB_ID:-}\" ] &&\n"
+              "   [ \"${SLURM_RESTART_COUNT:-0}\" -lt 3 ]; then\n"
+              "  echo \"deepvox: shard $task ended by signal $((rc - 128)); requeueing it to "
+              "resume\" >&2\n  scontrol requeue \"$SLURM_JOB_ID\"\nfi\nexit \"$rc\"\n";
   out.merge =
       header("deepvox-" + suite.name + "-merge", s, (dir / "slurm" / "merge.log").string()) +
       "# After every shard ended (afterany): merge what finished; the report names missing "

@@ -2,7 +2,9 @@
 // array (task i runs `deepvox suite ... --shard i/N` on one GPU, or one CPU task with
 // --backend cpu) and a merge job that runs `deepvox merge` (which writes the report) once every
 // task ended (submitted with --dependency=afterany, so a failed shard still leaves a report that
-// names it). --submit hands both to sbatch; the scripts also run by hand (docs/scale-out.md).
+// names it). Array tasks are requeue-safe (--requeue): a task that starts again resumes its
+// shard's folder (`--resume`), and one whose deepvox was killed requeues itself (at most 3
+// times). --submit hands both to sbatch; the scripts also run by hand (docs/scale-out.md).
 #pragma once
 
 #include <string>

@@ -255,6 +255,11 @@ std::string RunItem::params_text() const {
   return out;
 }
 
+std::string RunItem::describe() const {
+  return experiment_name + ": " + strategy + (params.empty() ? "" : " " + params_text()) + " on " +
+         scene;
+}
+
 std::vector<std::string> RunItem::param_items() const {
   std::vector<std::string> out;
   for (const auto& [k, v] : params) out.push_back(k + "=" + v);

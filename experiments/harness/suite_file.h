@@ -79,6 +79,8 @@ struct RunItem {
 
   // "key=value key=value" in key order (the `params` column of rows.csv).
   std::string params_text() const;
+  // "experiment: strategy key=value ... on scene", for progress lines and reports.
+  std::string describe() const;
   std::vector<std::string> param_items() const;  // "key=value" each
 };
 

@@ -1,18 +1,37 @@
 // Fixture of the harness tests that run suites: a fresh scratch folder per test (named after
 // the test), files written into it, and suite options for a quiet CPU run whose results go
-// into the folder's out/ (each test sets the rest: shard, smoke, only, repeat).
+// into the folder's out/ (each test sets the rest: shard, smoke, only, repeat); and the rows of
+// a run without its timings, to compare two runs.
 #pragma once
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
 #include "tests/support/scratch_dir.h"
 
 namespace dv::test {
+
+// Rows without timings (unit ms), which differ from run to run, as comparable lines.
+inline std::vector<std::string> untimed(const std::vector<Row>& rows) {
+  std::vector<std::string> out;
+  for (const Row& r : rows)
+    if (r.unit != "ms") {
+      std::ostringstream line;
+      line.precision(17);
+      line << r.item << "|" << r.experiment << "|" << r.scene << "|" << r.strategy << "|"
+           << r.params << "|" << r.metric << "|" << r.stat << "|" << r.value << "|" << r.unit << "|"
+           << r.note;
+      out.push_back(line.str());
+    }
+  return out;
+}
 
 class HarnessTest : public ::testing::Test {
  protected:

@@ -53,21 +53,6 @@ class Runner : public test::HarnessTest {
   }
 };
 
-// Rows without timings (unit ms), which differ from run to run.
-std::vector<std::string> untimed(const std::vector<Row>& rows) {
-  std::vector<std::string> out;
-  for (const Row& r : rows)
-    if (r.unit != "ms") {
-      std::ostringstream line;
-      line.precision(17);
-      line << r.item << "|" << r.experiment << "|" << r.scene << "|" << r.strategy << "|"
-           << r.params << "|" << r.metric << "|" << r.stat << "|" << r.value << "|" << r.unit << "|"
-           << r.note;
-      out.push_back(line.str());
-    }
-  return out;
-}
-
 double value_of(const std::vector<Row>& rows, int item, const std::string& metric,
                 const std::string& stat) {
   for (const Row& r : rows)
@@ -135,8 +120,8 @@ TEST_F(Runner, ShardsMergedGiveTheRowsOfOneUnshardedRun) {
   EXPECT_THROW(merge_shards({first.folder}, ""), InputError);  // shard 2 missing
   EXPECT_THROW(merge_shards({first.folder, first.folder}, ""), InputError);
   const std::string merged = merge_shards({second.folder, first.folder}, "");
-  const std::vector<std::string> a = untimed(read_rows_csv(whole.folder + "/rows.csv"));
-  const std::vector<std::string> b = untimed(read_rows_csv(merged + "/rows.csv"));
+  const std::vector<std::string> a = test::untimed(read_rows_csv(whole.folder + "/rows.csv"));
+  const std::vector<std::string> b = test::untimed(read_rows_csv(merged + "/rows.csv"));
   EXPECT_GT(a.size(), 100u);
   EXPECT_EQ(a, b);
   EXPECT_TRUE(fs::exists(fs::path(merged) / "report.md"));

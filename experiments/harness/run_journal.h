@@ -1,0 +1,80 @@
+// A suite run's result folder as a journal that survives being killed at any instant (SIGKILL,
+// SLURM preemption, a full disk): meta.json (with the planned items), suite.json and
+// command.txt exist before any experiment runs; each experiment appends its row group to
+// rows.csv, syncs it, then appends one completion marker line to progress.jsonl (item, row
+// count, end offset in rows.csv, outcome, echoed parameters) and syncs that. A row group
+// without its marker is ignored by every reader and cut off on resume, so a group is whole or
+// absent. docs/suite-format.md, "Killed runs and --resume", describes the files.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/json_reader.h"
+#include "experiments/harness/durable_file.h"
+#include "experiments/harness/rows.h"
+
+namespace dv {
+
+// What a result folder holds now, complete parts only.
+struct RunState {
+  std::filesystem::path dir;
+  Json meta;
+  bool journaled = false;       // has progress.jsonl (written by a deepvox that resumes)
+  bool finished = false;        // every planned item complete and the run ended (meta "state")
+  bool locked = false;          // a process is writing the folder now
+  std::vector<Row> rows;        // complete row groups, in item order
+  Json params = Json::array();  // echoed parameters per complete item, in item order
+  std::vector<int> planned;     // items the run is to run (journaled folders)
+  std::vector<int> missing;     // planned items without a complete row group
+  std::vector<std::pair<int, int>> attempt_of;  // (item, attempt that ran it)
+  int done = 0, failed = 0, skipped = 0;
+  int64_t rows_end = 0;      // bytes of rows.csv that hold complete groups
+  int64_t progress_end = 0;  // bytes of progress.jsonl that hold whole marker lines
+};
+
+// InputError naming the folder when it has no meta.json or a malformed file. Folders of
+// earlier versions (no progress.jsonl) and merged folders read as finished, their counts from
+// meta.json.
+RunState read_run_state(const std::filesystem::path& dir);
+
+// The newest folder under OUT/<suite>/ whose run did not finish, for shard I/N (1/1: an
+// unsharded run); empty when there is none.
+std::filesystem::path newest_unfinished_run(const std::filesystem::path& out,
+                                            const std::string& suite, int shard_index,
+                                            int shard_count);
+
+// The writing side, held for the whole run (it keeps the folder locked).
+class RunJournal {
+ public:
+  // A new folder OUT/<suite>/<date>_<sha>[-TAG] holding command.txt, suite.json, meta.json,
+  // rows.csv (the header) and an empty progress.jsonl, made under a hidden name and renamed
+  // into place (durable_file.h).
+  static RunJournal create(const std::filesystem::path& out, const std::string& suite,
+                           const std::string& git_sha, const std::string& tag, const Json& meta,
+                           const std::string& suite_text, const std::string& command);
+  // An existing folder to resume: locks it (InputError when another process writes it), reads
+  // its state and cuts rows.csv and progress.jsonl back to the complete part.
+  static RunJournal reopen(const std::filesystem::path& dir, RunState& state);
+
+  const std::filesystem::path& dir() const { return dir_; }
+  // Appends one item's rows, then its completion marker, each synced; ResultWriteError when
+  // the disk is full or the folder unwritable (the folder stays resumable).
+  void record(int item, int attempt, const std::vector<Row>& rows, const std::string& outcome,
+              const Json& params);
+  // meta.json, written atomically.
+  void write_meta(const Json& meta) const;
+  // Appends a line to command.txt (atomically rewritten).
+  void add_command(const std::string& command) const;
+  // Closes the files, which releases the folder's lock.
+  void close();
+
+ private:
+  std::filesystem::path dir_;
+  AppendFile rows_, progress_;
+  int64_t rows_end_ = 0;
+};
+
+}  // namespace dv

@@ -1,0 +1,482 @@
+// Suites that survive being killed (issue 42): the real `deepvox suite` killed with SIGKILL at
+// seeded random instants and resumed each time ends with the rows of one uninterrupted run (no
+// duplicate, timings aside), and `deepvox report` reads every partial folder; a torn row group
+// is ignored and cut off; resuming with another suite file or commit is refused unless forced
+// (then the report says the run is mixed); merge takes resumed shards and names unfinished
+// ones; an out-of-memory experiment fails its row with the bytes asked for while the suite goes
+// on; a full disk (a small tmpfs) stops the run with a clear error and a folder that resumes.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/mount.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "core/error.h"
+#include "core/json_reader.h"
+#include "experiments/harness/merge.h"
+#include "experiments/harness/report.h"
+#include "experiments/harness/rows.h"
+#include "experiments/harness/run_journal.h"
+#include "experiments/harness/runner.h"
+#include "experiments/source_paths.h"
+#include "tests/apps/deepvox/cli_run.h"
+#include "tests/experiments/harness_test.h"
+
+extern char** environ;
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const std::string kBinary = test::binary_dir() + "/bin/deepvox";
+
+// A small CPU suite: ten DSM items that write PNGs (the reference once, render and difference
+// per item) and two voxelizer items.
+std::string small_suite() {
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
+  std::string eps;
+  for (int i = 1; i <= 10; ++i) eps += (i > 1 ? ", " : "") + std::to_string(0.02 * i);
+  return R"({"suite": "resumable", "repeat": 1, "experiments": [
+    {"name": "dsm", "kind": "shadow", "scene": ")" +
+         scene + R"(", "strategy": "dsm", "params": {"res": 32}, "sweep": {"eps": [)" + eps +
+         R"(]},
+     "settings": {"width": 40, "height": 30, "probe_points": 20, "seed": 5, "images": 1}},
+    {"name": "voxels", "kind": "voxelize", "scene": ")" +
+         scene + R"(", "strategy": ["exact", "sat"], "settings": {"res": "32"}}]})";
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<std::string> untimed_rows_file(const fs::path& folder) {
+  return test::untimed(read_rows_csv((folder / "rows.csv").string()));
+}
+
+// Each (item, metric, stat) once in rows.csv, and each item once in progress.jsonl.
+void expect_no_duplicates(const fs::path& folder) {
+  std::set<std::string> seen;
+  for (const Row& r : read_rows_csv((folder / "rows.csv").string()))
+    EXPECT_TRUE(seen.insert(std::to_string(r.item) + "|" + r.metric + "|" + r.stat).second)
+        << "duplicate row: item " << r.item << " " << r.metric << ":" << r.stat;
+  std::set<int> items;
+  std::istringstream progress(read(folder / "progress.jsonl"));
+  for (std::string line; std::getline(progress, line);)
+    EXPECT_TRUE(items.insert(Json::parse(line)["item"].get<int>()).second) << line;
+}
+
+// The result folders (with meta.json) under OUT/<suite>/.
+std::vector<fs::path> result_folders(const fs::path& root) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(root, ec))
+    if (fs::is_regular_file(e.path() / "meta.json")) out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// `deepvox ARGS...` started with its output in `log`.
+pid_t spawn(std::vector<std::string> args, const fs::path& log) {
+  args.insert(args.begin(), kBinary);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&files, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, kBinary.c_str(), &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  EXPECT_EQ(rc, 0) << "cannot start " << kBinary;
+  return pid;
+}
+
+// Waits for `pid` at most `delay`; kills it with SIGKILL when it still runs then. Returns true
+// when it was killed, false when it had ended (its exit code in `exit_code`).
+bool kill_after(pid_t pid, std::chrono::milliseconds delay, int& exit_code) {
+  const auto until = Clock::now() + delay;
+  int status = 0;
+  while (Clock::now() < until) {
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  kill(pid, SIGKILL);  // still our unreaped child: the pid cannot have been reused
+  waitpid(pid, &status, 0);
+  exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+}
+
+class Resume : public test::HarnessTest {
+ protected:
+  void SetUp() override {
+    HarnessTest::SetUp();
+    suite_ = write("resumable.json", small_suite());
+  }
+  SuiteOutcome run(const std::string& out, const std::string& shard = "") {
+    SuiteOptions o = cpu_options(suite_);
+    o.out = (dir_ / out).string();
+    o.shard = shard;
+    o.costs = "estimate";
+    o.report = false;
+    return run_suite(o);
+  }
+  SuiteOutcome resume(const std::string& folder, bool force = false) {
+    SuiteOptions o = cpu_options(suite_);
+    o.resume = true;
+    o.resume_dir = folder;
+    o.force = force;
+    return run_suite(o);
+  }
+  std::string suite_;
+};
+
+// What a kill leaves when it lands after the rows of the items from `keep` on were appended but
+// before their markers: progress.jsonl keeps `keep` whole lines and half of the next, rows.csv
+// keeps every row plus half a row, meta.json says running, params.json and report.md are gone.
+void simulate_kill(const fs::path& folder, int keep) {
+  std::istringstream progress(read(folder / "progress.jsonl"));
+  std::string kept, line;
+  for (int i = 0; i < keep && std::getline(progress, line); ++i) kept += line + "\n";
+  if (std::getline(progress, line)) kept += line.substr(0, line.size() / 2);
+  std::ofstream(folder / "progress.jsonl", std::ios::trunc) << kept;
+  std::ofstream(folder / "rows.csv", std::ios::app) << "resumable,99,dsm,shadow,\"half a ro";
+  Json meta = parse_json_file((folder / "meta.json").string());
+  meta["state"] = "running";
+  for (const char* key : {"done", "failed", "skipped", "interrupted", "elapsed_s"}) meta.erase(key);
+  std::ofstream(folder / "meta.json", std::ios::trunc) << meta.dump(1);
+  fs::remove(folder / "params.json");
+  fs::remove(folder / "report.md");
+}
+
+TEST_F(Resume, KilledAtRandomInstantsResumesToTheRowsOfOneRun) {
+  const fs::path log = dir_ / "runs.log";
+  const auto started = Clock::now();
+  int exit_code = -1;
+  const pid_t reference_pid =
+      spawn({"suite", suite_, "--backend", "cpu", "--out", (dir_ / "reference").string()}, log);
+  kill_after(reference_pid, std::chrono::minutes(5), exit_code);
+  ASSERT_EQ(exit_code, 0) << read(log);
+  const double run_ms = std::chrono::duration<double, std::milli>(Clock::now() - started).count();
+  const std::vector<fs::path> reference = result_folders(dir_ / "reference" / "resumable");
+  ASSERT_EQ(reference.size(), 1u);
+  const int total = parse_json_file((reference[0] / "meta.json").string())["items"].get<int>();
+
+  const char* seed_text = std::getenv("DEEPVOX_KILL_SEED");
+  const unsigned seed = seed_text ? unsigned(std::strtoul(seed_text, nullptr, 10)) : 42u;
+  std::mt19937 random(seed);
+  std::cout << "SIGKILL seed " << seed << " (DEEPVOX_KILL_SEED), uninterrupted run " << run_ms
+            << " ms\n";
+  const fs::path out = dir_ / "out", root = out / "resumable";
+  constexpr int kKills = 10;
+  int hits = 0, attempts = 0, partial_reports = 0;
+  bool finished = false;
+  for (; !finished && attempts < kKills + 5; ++attempts) {
+    // Resume the folder when one exists (the first kill may land before it does).
+    const bool resuming = !result_folders(root).empty();
+    std::vector<std::string> args = {"suite", suite_, "--backend", "cpu", "--out", out.string()};
+    if (resuming) args.push_back("--resume");
+    int missing = total;
+    if (resuming) missing = int(read_run_state(result_folders(root).back()).missing.size());
+    // A delay spread over most of what this attempt has left to do (an item's share of the
+    // run for start-up), so that the kill lands while it runs; after kKills kills the run goes
+    // to its end.
+    const double span_ms = 0.7 * run_ms * (missing + 1) / (total + 1);
+    std::uniform_real_distribution<double> uniform(0.0, span_ms);
+    const auto delay = attempts < kKills ? std::chrono::milliseconds(int(uniform(random)))
+                                         : std::chrono::milliseconds(std::chrono::minutes(5));
+    const pid_t pid = spawn(args, log);
+    const bool killed = kill_after(pid, delay, exit_code);
+    std::cout << "attempt " << attempts + 1 << (resuming ? " (--resume)" : "") << ": "
+              << (killed ? "killed after " + std::to_string(delay.count()) + " ms"
+                         : "exit " + std::to_string(exit_code))
+              << "\n";
+    hits += killed;
+    if (!killed) {
+      ASSERT_EQ(exit_code, 0) << read(log);
+      finished = true;
+      break;
+    }
+    const std::vector<fs::path> folders = result_folders(root);
+    if (folders.empty()) continue;  // killed before its folder existed
+    ASSERT_EQ(folders.size(), 1u) << "a resumed run made a second folder";
+    // The partial folder is reportable and says what is missing.
+    const CommandResult report = dv::run("report " + folders[0].string());
+    ASSERT_EQ(report.exit_code, 0) << report.output;
+    const RunState state = read_run_state(folders[0]);
+    if (!state.missing.empty()) {
+      const std::string md = read(folders[0] / "report.md");
+      EXPECT_NE(md.find("PARTIAL: " + std::to_string(state.done) + " of " + std::to_string(total) +
+                        " experiments complete"),
+                std::string::npos)
+          << md;
+      EXPECT_NE(md.find("- item " + std::to_string(state.missing.front()) + ": "),
+                std::string::npos)
+          << md;
+      ++partial_reports;
+    }
+  }
+  ASSERT_TRUE(finished) << "the run did not finish after " << attempts << " attempts";
+  std::cout << hits << " kills landed in " << attempts + 1 << " attempts, " << partial_reports
+            << " partial folders reported\n";
+  EXPECT_GE(hits, 3) << "too few kills landed while the suite ran";
+  const std::vector<fs::path> folders = result_folders(root);
+  ASSERT_EQ(folders.size(), 1u);
+  const RunState state = read_run_state(folders[0]);
+  EXPECT_TRUE(state.finished);
+  EXPECT_EQ(state.done, total);
+  EXPECT_EQ(untimed_rows_file(folders[0]), untimed_rows_file(reference[0]));
+  expect_no_duplicates(folders[0]);
+  EXPECT_EQ(parse_json_file((folders[0] / "params.json").string()).size(), size_t(total));
+  const std::string md = read(folders[0] / "report.md");
+  EXPECT_NE(md.find("ran " + std::to_string(total) + " of " + std::to_string(total)),
+            std::string::npos)
+      << md;
+}
+
+TEST_F(Resume, TornRowGroupIsIgnoredReportedAndRunAgain) {
+  const SuiteOutcome whole = run("out");
+  ASSERT_EQ(whole.exit_code, 0);
+  const std::vector<std::string> expected = untimed_rows_file(whole.folder);
+  simulate_kill(whole.folder, 4);
+  const RunState state = read_run_state(whole.folder);
+  EXPECT_FALSE(state.finished);
+  EXPECT_EQ(state.done, 4);
+  EXPECT_EQ(state.missing, (std::vector<int>{4, 5, 6, 7, 8, 9, 10, 11}));
+  for (const Row& r : state.rows) EXPECT_LT(r.item, 4) << "a row of an unfinished group was read";
+  build_report(whole.folder);
+  const std::string md = read(fs::path(whole.folder) / "report.md");
+  EXPECT_NE(md.find("PARTIAL: 4 of 12 experiments complete, 8 missing (the run was killed"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- item 11: voxels: sat on "), std::string::npos) << md;
+  EXPECT_NE(md.find("--resume " + whole.folder), std::string::npos) << md;
+  // The newest unfinished run is found without naming it; only the missing items run.
+  SuiteOptions o = cpu_options(suite_);
+  o.resume = true;
+  o.report = false;
+  const SuiteOutcome resumed = run_suite(o);
+  EXPECT_EQ(resumed.folder, whole.folder);
+  EXPECT_EQ(resumed.ran_now, 8);
+  EXPECT_EQ(resumed.done, 12);
+  EXPECT_EQ(resumed.exit_code, 0);
+  EXPECT_EQ(untimed_rows_file(whole.folder), expected);
+  expect_no_duplicates(whole.folder);
+  const Json meta = parse_json_file(whole.folder + "/meta.json");
+  EXPECT_EQ(meta["state"], "finished");
+  EXPECT_EQ(meta["attempts"].size(), 2u);
+  // A finished folder has nothing to resume; --resume without a folder then finds none.
+  EXPECT_EQ(resume(whole.folder).ran_now, 0);
+  try {
+    run_suite(o);
+    ADD_FAILURE() << "resumed a finished run";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no unfinished run of suite 'resumable'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST_F(Resume, AnotherSuiteFileOrCommitIsRefusedUnlessForced) {
+  const SuiteOutcome first = run("out");
+  simulate_kill(first.folder, 3);
+  std::ofstream(suite_, std::ios::app) << "\n";  // same experiments, another file hash
+  try {
+    resume(first.folder);
+    ADD_FAILURE() << "resumed with another suite file";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(first.folder + ": cannot resume: the suite file differs"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("--force"), std::string::npos) << m;
+  }
+  EXPECT_FALSE(read_run_state(first.folder).finished) << "a refused resume changed the folder";
+  Json meta = parse_json_file(first.folder + "/meta.json");
+  meta["run"]["git_sha"] = "0123456789ab";
+  std::ofstream(first.folder + "/meta.json", std::ios::trunc) << meta.dump(1);
+  try {
+    resume(first.folder);
+    ADD_FAILURE() << "resumed with another commit";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the commit differs (the folder ran 0123456789ab"),
+              std::string::npos)
+        << e.what();
+  }
+  // The CLI: exit 2, the folder named.
+  const CommandResult cli = dv::run("suite " + suite_ + " --resume " + first.folder);
+  EXPECT_EQ(cli.exit_code, 2) << cli.output;
+  EXPECT_NE(cli.output.find(first.folder), std::string::npos) << cli.output;
+  const SuiteOutcome forced = resume(first.folder, true);
+  EXPECT_EQ(forced.exit_code, 0);
+  EXPECT_EQ(forced.ran_now, 9);
+  meta = parse_json_file(first.folder + "/meta.json");
+  EXPECT_EQ(meta["mixed"], true);
+  EXPECT_EQ(meta["attempts"][1]["forced"], Json::array({"suite file", "commit"}));
+  const std::string md = read(fs::path(first.folder) / "report.md");
+  EXPECT_NE(md.find("- MIXED (--resume --force): items 3, 4, 5, 6, 7, 8, 9, 10, 11 ran with "
+                    "another suite file and commit"),
+            std::string::npos)
+      << md;
+  // Options that differ from the folder's are refused too.
+  simulate_kill(first.folder, 11);
+  SuiteOptions o = cpu_options(suite_);
+  o.resume = true;
+  o.resume_dir = first.folder;
+  o.repeat = 2;
+  o.force = true;
+  try {
+    run_suite(o);
+    ADD_FAILURE() << "resumed with another --repeat";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ran with --repeat 1"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(Resume, MergeTakesResumedShardsAndNamesUnfinishedOnes) {
+  const SuiteOutcome whole = run("whole");
+  const SuiteOutcome first = run("out", "1/2");
+  const SuiteOutcome second = run("out", "2/2");
+  simulate_kill(second.folder, 2);
+  try {
+    merge_shards({first.folder, second.folder}, "");
+    ADD_FAILURE() << "an unfinished shard merged";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("shard 2 is unfinished: 2 of " +
+                                         std::to_string(second.total) + " experiments complete"),
+              std::string::npos)
+        << e.what();
+  }
+  const RunState killed = read_run_state(second.folder);
+  const std::string partial = merge_shards({first.folder, second.folder}, "", true);
+  const Json meta = parse_json_file(partial + "/meta.json");
+  EXPECT_EQ(meta["partial_shards"], Json::array({2}));
+  EXPECT_EQ(meta["missing_items"].size(), killed.missing.size());
+  EXPECT_EQ(meta["done"], whole.done - int(killed.missing.size()));
+  const std::string md = read(fs::path(partial) / "report.md");
+  EXPECT_NE(md.find("- item " + std::to_string(killed.missing.front()) + ": "), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("PARTIAL: " + std::to_string(killed.missing.size()) + " planned"),
+            std::string::npos)
+      << md;
+  SuiteOptions o = cpu_options(suite_);
+  o.out = (dir_ / "out").string();
+  o.shard = "2/2";
+  o.resume = true;
+  o.report = false;
+  EXPECT_EQ(run_suite(o).folder, second.folder);
+  const std::string merged = merge_shards({second.folder, first.folder}, "");
+  EXPECT_EQ(untimed_rows_file(merged), untimed_rows_file(whole.folder));
+}
+
+// A strategy asking for more memory than DEEPVOX_MEMORY_LIMIT allows: the reservation check
+// that guards every DSM storage buffer on the host and the device (cuda/memory_check.h) throws
+// the OutOfMemory that a failed device allocation throws too.
+TEST_F(Resume, OutOfMemoryFailsOneRowWithTheBytesAndTheSuiteGoesOn) {
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
+  const std::string suite = write("oom.json", R"({"suite": "oom", "repeat": 1, "experiments": [
+    {"name": "e", "kind": "shadow", "scene": ")" + scene +
+                                                  R"(", "strategy": "dsm",
+     "params": {"storage": "texture3d", "storage.sizing": "thesis"}, "sweep": {"res": [16, 256, 32]},
+     "settings": {"width": 40, "height": 30, "probe_points": 20, "images": 0}}]})");
+  setenv("DEEPVOX_MEMORY_LIMIT", "20000000", 1);
+  const CommandResult r =
+      dv::run("suite " + suite + " --backend cpu --out " + (dir_ / "out").string());
+  unsetenv("DEEPVOX_MEMORY_LIMIT");
+  ASSERT_EQ(r.exit_code, 3) << r.output;  // some failed
+  EXPECT_NE(r.output.find("out of memory: dsm texture3d atlas"), std::string::npos) << r.output;
+  const std::vector<fs::path> folders = result_folders(dir_ / "out" / "oom");
+  ASSERT_EQ(folders.size(), 1u);
+  const std::vector<Row> rows = read_rows_csv((folders[0] / "rows.csv").string());
+  std::map<int, std::map<std::string, const Row*>> by_item;
+  for (const Row& row : rows) by_item[row.item][row.metric + ":" + row.stat] = &row;
+  ASSERT_TRUE(by_item[1].count("failed:value"));
+  ASSERT_TRUE(by_item[1].count("out_of_memory:bytes_asked"));
+  const double asked = by_item[1]["out_of_memory:bytes_asked"]->value;
+  EXPECT_GT(asked, 20e6);
+  EXPECT_EQ(by_item[1]["out_of_memory:bytes_asked"]->unit, "bytes");
+  EXPECT_NE(by_item[1]["failed:value"]->note.find(std::to_string(int64_t(asked)) + " bytes) asked"),
+            std::string::npos)
+      << by_item[1]["failed:value"]->note;
+  for (int item : {0, 2}) {
+    EXPECT_FALSE(by_item[item].count("failed:value")) << "item " << item;
+    EXPECT_TRUE(by_item[item].count("bytes:value")) << "item " << item << " did not run";
+  }
+  const std::string md = read(folders[0] / "report.md");
+  EXPECT_NE(md.find("failed: out of memory: dsm texture3d atlas"), std::string::npos) << md;
+}
+
+// A tmpfs mounted for the test and unmounted at its end.
+struct Tmpfs {
+  fs::path at;
+  bool mounted = false;
+  std::string why_not;
+  Tmpfs(const fs::path& where, const std::string& size) : at(where) {
+    fs::create_directories(at);
+    mounted = mount("tmpfs", at.c_str(), "tmpfs", 0, ("size=" + size).c_str()) == 0;
+    if (!mounted) why_not = std::strerror(errno);
+  }
+  bool resize(const std::string& size) const {
+    return mount("tmpfs", at.c_str(), "tmpfs", MS_REMOUNT, ("size=" + size).c_str()) == 0;
+  }
+  ~Tmpfs() {
+    if (mounted) umount2(at.c_str(), MNT_DETACH);
+  }
+};
+
+TEST_F(Resume, FullDiskStopsTheRunAndTheFolderResumesAfterSpaceIsFreed) {
+  const SuiteOutcome reference = run("reference");
+  // Room for the folder's first files and a few items, not for all twelve.
+  const Tmpfs disk(dir_ / "disk", "80k");
+  if (!disk.mounted)
+    GTEST_SKIP() << "cannot mount a tmpfs here (" << disk.why_not
+                 << "; needs root with CAP_SYS_ADMIN): the full-disk case is not tested";
+  const CommandResult full =
+      dv::run("suite " + suite_ + " --backend cpu --costs estimate --out " + disk.at.string());
+  EXPECT_EQ(full.exit_code, 1) << full.output;
+  EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;
+  EXPECT_NE(full.output.find("the run stopped; "), std::string::npos) << full.output;
+  const std::vector<fs::path> folders = result_folders(disk.at / "resumable");
+  ASSERT_EQ(folders.size(), 1u) << full.output;
+  EXPECT_NE(full.output.find("--resume " + folders[0].string()), std::string::npos) << full.output;
+  const RunState stopped = read_run_state(folders[0]);
+  EXPECT_FALSE(stopped.missing.empty()) << "the disk did not fill: make the tmpfs smaller";
+  EXPECT_GT(stopped.done, 0) << "nothing fit: make the tmpfs larger";
+  ASSERT_TRUE(disk.resize("64m")) << std::strerror(errno);
+  const CommandResult report = dv::run("report " + folders[0].string());
+  EXPECT_EQ(report.exit_code, 0) << report.output;
+  EXPECT_NE(read(folders[0] / "report.md").find("PARTIAL: " + std::to_string(stopped.done)),
+            std::string::npos);
+  const CommandResult resumed = dv::run("suite " + suite_ + " --resume --out " + disk.at.string());
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(untimed_rows_file(folders[0]), untimed_rows_file(reference.folder));
+  expect_no_duplicates(folders[0]);
+  for (const auto& e : fs::recursive_directory_iterator(folders[0]))
+    EXPECT_NE(e.path().extension(), ".tmp") << "temporary file left: " << e.path();
+}
+
+}  // namespace
+}  // namespace dv
