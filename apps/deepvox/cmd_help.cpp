@@ -5,11 +5,19 @@
 #include <memory>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "apps/deepvox/commands.h"
 
 namespace dv::cli {
 
 namespace {
+
+// The help of `app` as `deepvox NAME --help` prints it, whatever subcommand was parsed (App::help
+// would print the parsed one's).
+std::string help_of(const CLI::App& app, const std::string& name) {
+  return app.get_formatter()->make_help(&app, name, CLI::AppFormatMode::Normal);
+}
 
 void print_markdown(CLI::App& app) {
   std::printf(
@@ -19,11 +27,11 @@ void print_markdown(CLI::App& app) {
       "[strategies.md](strategies.md); suite files and result folders: "
       "[suite-format.md](suite-format.md); what `render` draws and how it stages scenes: "
       "[rendering.md](rendering.md).\n\n```text\n%s```\n",
-      app.help().c_str());
+      help_of(app, "deepvox").c_str());
   for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
     if (sub->get_name() == "help") continue;
     std::printf("\n## deepvox %s\n\n```text\n%s```\n", sub->get_name().c_str(),
-                sub->help().c_str());
+                help_of(*sub, "deepvox " + sub->get_name()).c_str());
   }
 }
 
@@ -38,9 +46,10 @@ Runner add_help(CLI::App& app) {
       print_markdown(app);
       return 0;
     }
-    std::printf("%s", app.help().c_str());
+    std::printf("%s", help_of(app, "deepvox").c_str());
     for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
-      if (sub->get_name() != "help") std::printf("\n%s", sub->help().c_str());
+      if (sub->get_name() != "help")
+        std::printf("\n%s", help_of(*sub, "deepvox " + sub->get_name()).c_str());
     return 0;
   };
 }

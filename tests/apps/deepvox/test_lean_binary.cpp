@@ -48,9 +48,9 @@ TEST(LeanBinary, DependsOnlyOnGlibcAndLibstdcxx) {
 }
 
 TEST(LeanBinary, DsmExrNeedsTheFullBuildButTheHeatmapWorks) {
-  const std::filesystem::path dir = std::filesystem::path(test::binary_dir()) / "test_lean_tmp";
+  const std::filesystem::path dir = std::filesystem::path(dv::test::binary_dir()) / "test_lean_tmp";
   std::filesystem::create_directories(dir);
-  const std::string dsm = std::string(DEEPVOX_LEAN_BINARY) + " dsm " + test::source_dir() +
+  const std::string dsm = std::string(DEEPVOX_LEAN_BINARY) + " dsm " + dv::test::source_dir() +
                           "/experiments/scenes/translucent-boxes.json --dsm-res 8 --backend cpu";
   const std::string exr = (dir / "maps.exr").string();
   const auto [exr_status, exr_out] = shell(dsm + " --out " + exr);
