@@ -1,28 +1,72 @@
 #!/usr/bin/env python3
-"""Plots of a suite result folder (deepvox report runs it): for each experiment of suite.json
-with "plots", each plot {"x": "metric[:stat]", "y": "metric[:stat]", "type": "scatter"|"bar",
-"logx": bool, "logy": bool, "pareto": bool, "title": str} drawn from rows.csv into
-plots/<experiment>_<n>.png. "pareto" adds the front of the scatter's points that no other point
-beats in both x and y (smaller is better). A bar plot takes only "y" (one bar per item). An
-experiment with "pareto": {"error": [...], "cost": [...]} also gets, per scene and (error, cost)
-pair, every point in grey and the front labelled, log x (log y when every error is positive), in plots/<experiment>_pareto_<n>.png
-(the report prints the same fronts as tables). Exit 3 when matplotlib is missing."""
+"""Plots of a suite result folder (deepvox report runs it), drawn from rows.csv into plots/ with
+a caption each in plots/plots.json (the report prints them in that order). Per experiment:
+
+- its "plots" of suite.json, plots/<experiment>_<nn>.png: {"type": "scatter"|"bar"|"line",
+  "x": ..., "y": ..., "logx": bool, "logy": bool, "pareto": bool, "title": str}. Columns are
+  "metric[:stat]". A scatter joins the items that differ only in the first swept parameter (one
+  line and colour per configuration, the parameter's value beside each point); "pareto" adds the
+  front of the points no other beats in both x and y (smaller is better). A bar plot takes "y"
+  ("logx" puts its value axis on a log scale): with a sweep, one panel per strategy entry
+  (strategy and its fixed parameters) and grouped bars (groups: the first varying sweep key or the
+  scene, colours: the others). A line plot takes "x": "scene" (the number in the scene's file
+  name, e.g. a cup count) or a column, and "y" (a column or an array: one panel each), one line
+  per configuration.
+- with "pareto": {"error": [...], "cost": [...]}: plots/<experiment>_pareto_<nn>.png per scene
+  and (error, cost) pair (every item coloured by method family, the front joined and labelled)
+  and, when a cost is frame_ms, plots/<experiment>_headline.png: error against frame time, one
+  panel per scene, the exact oracle's time as a dashed line (the headline chart of the report).
+
+Whiskers run from the min to the max of the repetitions where rows.csv has them (frame_ms, the
+median generation plus the median render, from the sum of their minima to the sum of their
+maxima). Exit 3 when matplotlib is missing."""
 import csv
 import json
 import math
 import os
+import re
 import sys
 
 try:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
 except ImportError:
     sys.exit(3)
 
+# Method families (first match wins): name, colour, test on (strategy, params). The table is
+# printed in docs/suites.md; a member (marker) is the storage for dsm, else the strategy.
+NODE_LIST_STORAGES = ("compact", "texture3d", "chunked", "blocked")
+FIXED_SIZE_STORAGES = ("beer", "avsm", "moments", "fourier", "occupancy")
+FAMILIES = [
+    ("exact oracle", "black", lambda s, p: s in ("reference", "exact")),
+    ("no shadows", "#999999", lambda s, p: s == "none"),
+    ("shadow maps", "#1f77b4", lambda s, p: s == "shadowmap"),
+    ("DSM, node lists (compact, texture3d, chunked, blocked)", "#ff7f0e",
+     lambda s, p: s == "dsm" and p.get("storage", "compact") in NODE_LIST_STORAGES),
+    ("DSM, fixed-size records (beer, avsm, moments, fourier, occupancy)", "#d62728",
+     lambda s, p: s == "dsm" and p.get("storage") in FIXED_SIZE_STORAGES),
+    ("slice maps", "#2ca02c", lambda s, p: "slicemap" in s),
+    ("other", "#8c564b", lambda s, p: True),
+]
+MARKERS = {"compact": "o", "texture3d": "s", "chunked": "^", "blocked": "D", "beer": "o",
+           "avsm": "s", "moments": "^", "fourier": "D", "occupancy": "v", "shadowmap": "o",
+           "none": "X", "transmittance-slicemap": "o", "reference": "*", "exact": "*"}
+SPARE_MARKERS = ["P", "h", "<", ">", "p", "8"]
+# Time columns that are sums of timed columns (shadow_driver.cpp): their whiskers add up.
+SUMS = {"frame_ms": ("generate_ms", "render_ms")}
+# Headline error, the first present column that ranks (see headline_error).
+HEADLINE_ERRORS = ["image_rmse", "probe_error_all:p90", "probe_error_all:mean"]
+
+
+def split_column(spec):
+    metric, _, stat = spec.partition(":")
+    return metric, stat
+
 
 def metric_value(rows, spec):
-    metric, _, stat = spec.partition(":")
+    metric, stat = split_column(spec)
     for wanted in ([stat] if stat else ["value", "median"]):
         for r in rows:
             if r["metric"] == metric and r["stat"] == wanted:
@@ -30,19 +74,551 @@ def metric_value(rows, spec):
     return None, ""
 
 
-def pareto_front(points):
-    """The points no other point beats in both coordinates (smaller is better), by x."""
-    front, best_y = [], math.inf
-    for x, y in sorted(points):
-        if y < best_y:
-            front.append((x, y))
-            best_y = y
-    return front
+def value_range(rows, spec):
+    """(value, min, max) of a column: min and max of the repetitions when rows.csv has them for a
+    median (or a sum of medians, SUMS), else the value itself (no whisker)."""
+    v, _ = metric_value(rows, spec)
+    metric, stat = split_column(spec)
+    if v is None or stat not in ("", "median", "value"):
+        return v, v, v
+    lo, _ = metric_value(rows, metric + ":min")
+    hi, _ = metric_value(rows, metric + ":max")
+    if lo is None or hi is None:
+        parts = [(metric_value(rows, m + ":min")[0], metric_value(rows, m + ":max")[0])
+                 for m in SUMS.get(metric, ())]
+        if not parts or any(a is None or b is None for a, b in parts):
+            return v, v, v
+        lo, hi = sum(a for a, _ in parts), sum(b for _, b in parts)
+    return v, min(lo, v), max(hi, v)
+
+
+def params_of(rows):
+    return dict(kv.split("=", 1) for kv in rows[0]["params"].split() if "=" in kv)
 
 
 def label(rows):
     r = rows[0]
     return (r["strategy"] + " " + r["params"]).strip()
+
+
+def base_params(runs):
+    """Per strategy the parameters that more than half of its items share (the base the suite
+    sweeps around, e.g. dsm eps=0.05 res=512)."""
+    counts, items = {}, {}
+    for rows in runs:
+        s = rows[0]["strategy"]
+        items[s] = items.get(s, 0) + 1
+        for k, v in params_of(rows).items():
+            c = counts.setdefault(s, {}).setdefault(k, {})
+            c[v] = c.get(v, 0) + 1
+    return {s: {k: v for k, c in keys.items() for v, n in c.items() if 2 * n > items[s]}
+            for s, keys in counts.items()}
+
+
+def short_label(rows, base):
+    """The item's name for a plot: dsm by its storage, parameters at their base value and
+    "storage." prefixes left out."""
+    s = rows[0]["strategy"].replace("transmittance-slicemap", "slicemap")
+    words = []
+    for k, v in params_of(rows).items():
+        if k == "storage" and s == "dsm":
+            s = v
+        elif base.get(rows[0]["strategy"], {}).get(k) != v:
+            words.append("%s=%s" % (k.replace("storage.", ""), v))
+    return " ".join([s] + words)
+
+
+def family(rows):
+    s, p = rows[0]["strategy"], params_of(rows)
+    member = p.get("storage", "compact") if s == "dsm" else s
+    for name, colour, test in FAMILIES:
+        if test(s, p):
+            return name, colour, member
+
+
+def scene_name(scene):
+    return os.path.splitext(os.path.basename(scene))[0]
+
+
+def scene_number(scene):
+    numbers = re.findall(r"\d+", scene_name(scene))
+    return float(numbers[-1]) if numbers else None
+
+
+def axis_label(spec, unit):
+    return spec + (" (" + unit + ")" if unit and unit != "1" else "")
+
+
+class Markers:
+    """A marker per family member, the same in every plot of a run."""
+
+    def __init__(self):
+        self.spare = {}
+
+    def __call__(self, member):
+        if member in MARKERS:
+            return MARKERS[member]
+        if member not in self.spare:
+            self.spare[member] = SPARE_MARKERS[len(self.spare) % len(SPARE_MARKERS)]
+        return self.spare[member]
+
+
+def overlaps(a, b):
+    return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
+
+
+OFFSETS = [(4, 3), (4, -9), (-4, 3), (-4, -9), (4, 12), (-4, 12), (4, -18), (-4, -18), (14, 20),
+           (14, -26), (-14, 20), (-14, -26), (24, 32), (24, -38)]
+
+
+def place_labels(ax, points, fontsize=6, obstacles=()):
+    """Labels beside points, each at the first offset (OFFSETS) where it stays inside the axes and
+    overlaps no label placed before and no point (greedy, in the given order; a leader line when
+    it had to move away); where nowhere is free, at the first offset. Obstacles: (x, y) of the
+    unlabelled points."""
+    renderer = ax.figure.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    taken = []
+    for x, y in [p[:2] for p in points] + list(obstacles):
+        px, py = ax.transData.transform((x, y))
+        taken.append(matplotlib.transforms.Bbox([[px - 3, py - 3], [px + 3, py + 3]]))
+    done = set()
+    for x, y, text in points:
+        if (x, y, text) in done:
+            continue  # items with the same result (e.g. lossless storages) are labelled once
+        done.add((x, y, text))
+        for dx, dy in OFFSETS:
+            far = abs(dx) > 10 or abs(dy) > 12
+            t = ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",
+                            fontsize=fontsize, ha="left" if dx > 0 else "right",
+                            va="bottom" if dy > 0 else "top",
+                            arrowprops=dict(arrowstyle="-", color="0.4", linewidth=0.5,
+                                            shrinkA=0, shrinkB=2) if far else None)
+            box = t.get_window_extent(renderer)
+            if (box.x0 >= frame.x0 and box.x1 <= frame.x1 and box.y0 >= frame.y0 and
+                    box.y1 <= frame.y1 and not any(overlaps(box, b) for b in taken)):
+                break
+            t.remove()
+        else:
+            t = ax.annotate(text, (x, y), xytext=OFFSETS[0], textcoords="offset points",
+                            fontsize=fontsize)
+            box = t.get_window_extent(renderer)
+        taken.append(box)
+
+
+def pareto_front(points):
+    """The points no other point beats in both coordinates (smaller is better), by x."""
+    front, best_y = [], math.inf
+    for p in sorted(points):
+        if p[1] < best_y:
+            front.append(p)
+            best_y = p[1]
+    return front
+
+
+def sweep_keys(exp, runs):
+    """The swept parameters that vary among the items, in the suite's order."""
+    keys = [k for k in exp.get("sweep", {})]
+    return [k for k in keys if len({params_of(rows).get(k) for rows in runs}) > 1]
+
+
+def without(rows, keys, runs):
+    """The item's configuration along the given parameters: its strategy (when the items have
+    several) and the parameters that vary among the items, except those keys."""
+    constant = {k: v for k, v in params_of(runs[0]).items()
+                if all(params_of(r).get(k) == v for r in runs)}
+    words = ["%s=%s" % (k, v) for k, v in params_of(rows).items()
+             if k not in keys and constant.get(k) != v]
+    if len({r[0]["strategy"] for r in runs}) > 1 or not words:
+        words.insert(0, rows[0]["strategy"])
+    return " ".join(words)
+
+
+def save(fig, folder, name, captions, exp, caption):
+    fig.savefig(os.path.join(folder, "plots", name), bbox_inches="tight",
+                metadata={"Software": None})
+    plt.close(fig)
+    captions.append({"experiment": exp["name"], "file": name, "caption": caption})
+
+
+def whiskers(ax, x, y, colour, xr=None, yr=None):
+    xerr = [[x - xr[0]], [xr[1] - x]] if xr and xr[1] > xr[0] else None
+    yerr = [[y - yr[0]], [yr[1] - y]] if yr and yr[1] > yr[0] else None
+    if xerr or yerr:
+        ax.errorbar([x], [y], xerr=xerr, yerr=yerr, fmt="none", ecolor=colour, elinewidth=0.7,
+                    capsize=1.5, alpha=0.8, zorder=2)
+
+
+def scatter_plot(folder, exp, runs, spec, name, captions):
+    keys = sweep_keys(exp, runs)
+    along = keys[:1]
+    series = {}
+    for rows in runs:
+        x, xlo, xhi = value_range(rows, spec["x"])
+        y, ylo, yhi = value_range(rows, spec["y"])
+        if x is None or y is None or (spec.get("logx") and x <= 0):
+            continue  # a log axis cannot show x <= 0 (e.g. methods keeping no bytes)
+        key = without(rows, along, runs) + ("" if len(exp_scenes(runs)) < 2 else
+                                      " on " + scene_name(rows[0]["scene"]))
+        series.setdefault(key, []).append(
+            (x, y, (xlo, xhi), (ylo, yhi), params_of(rows).get(along[0], "") if along else ""))
+    fig, ax = plt.subplots(figsize=(7.5, 4.2), dpi=110)
+    colours = palette(len(series))
+    points, labelled = [], []
+    for (key, pts), colour in zip(series.items(), colours):
+        xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+        ax.plot(xs, ys, "-o" if along else "o", color=colour, markersize=4, linewidth=0.8,
+                label=key)
+        for x, y, xr, yr, value in pts:
+            whiskers(ax, x, y, colour, xr, yr)
+            points.append((x, y))
+            if value:
+                labelled.append((x, y, value))
+    if spec.get("pareto") and points:
+        front = pareto_front(points)
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black",
+                linewidth=0.8, label="Pareto front")
+    if spec.get("logx"):
+        ax.set_xscale("log")
+    if spec.get("logy"):
+        ax.set_yscale("symlog", linthresh=1e-4)
+    unit_x, unit_y = unit_of(runs, spec["x"]), unit_of(runs, spec["y"])
+    ax.set_xlabel(axis_label(spec["x"], unit_x))
+    ax.set_ylabel(axis_label(spec["y"], unit_y))
+    ax.set_title(spec.get("title", exp["name"]), fontsize=9)
+    ax.tick_params(which="both", labelsize=7)
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+    ax.autoscale_view()  # the limits the labels are placed in
+    place_labels(ax, labelled, fontsize=5)
+    caption = ("%s: %s against %s, one point per item of `%s` (%d)" %
+               (spec.get("title", exp["name"]), spec["y"], spec["x"], exp["name"], len(points)))
+    if along:
+        caption += ("; a line and colour per configuration joins its values of %s (the number "
+                    "beside each point)" % along[0])
+    caption += "; whiskers: min-max over the repetitions where rows.csv has them"
+    if spec.get("pareto"):
+        caption += "; black step: the Pareto front (smaller is better in both)"
+    save(fig, folder, name, captions, exp, caption + ".")
+
+
+def exp_scenes(runs):
+    scenes = []
+    for rows in runs:
+        if rows[0]["scene"] not in scenes:
+            scenes.append(rows[0]["scene"])
+    return scenes
+
+
+def palette(n):
+    cmap = plt.get_cmap("tab10" if n <= 10 else "tab20")
+    return [cmap(i % cmap.N) for i in range(n)]
+
+
+def grid(n, width=3.6, height=2.6, cols=2):
+    cols = min(cols, n)
+    rows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(width * cols, height * rows), dpi=110,
+                             squeeze=False, constrained_layout=True)
+    for ax in axes.flat[n:]:
+        ax.set_visible(False)
+    return fig, list(axes.flat[:n])
+
+
+def bar_plot(folder, exp, runs, spec, name, captions):
+    unit = unit_of(runs, spec["y"])
+    pts = [(rows, value_range(rows, spec["y"])) for rows in runs]
+    pts = [(rows, v) for rows, v in pts if v[0] is not None and math.isfinite(v[0])
+           and (v[0] > 0 or not spec.get("logx"))]
+    keys = sweep_keys(exp, runs)
+    scenes = exp_scenes(runs)
+    axes_of = (["scene"] if len(scenes) > 1 else []) + keys
+    title = spec.get("title", exp["name"])
+    if not axes_of:  # nothing swept: one bar per item
+        fig, ax = plt.subplots(figsize=(6.4, 0.6 + 0.22 * len(pts)), dpi=110)
+        for i, (rows, (v, lo, hi)) in enumerate(pts):
+            colour = family(rows)[1]
+            ax.barh([i], [v], color=colour)
+            if hi > lo:
+                ax.errorbar([v], [i], xerr=[[v - lo], [hi - v]], fmt="none", ecolor="black",
+                            elinewidth=0.7, capsize=2)
+        ax.set_yticks(range(len(pts)), [label(rows) for rows, _ in pts], fontsize=7)
+        ax.invert_yaxis()
+        ax.set_xlabel(axis_label(spec["y"], unit))
+        if spec.get("logx"):
+            ax.set_xscale("log")
+        ax.set_title(title, fontsize=9)
+        ax.tick_params(which="both", labelsize=7)
+        save(fig, folder, name, captions, exp,
+             "%s: %s per item of `%s`, coloured by method family; whiskers: min-max over the "
+             "repetitions where rows.csv has them." % (title, spec["y"], exp["name"]))
+        return
+
+    def coordinate(rows, key):
+        return scene_name(rows[0]["scene"]) if key == "scene" else params_of(rows).get(key, "")
+
+    group_key, series_keys = axes_of[0], axes_of[1:]
+    panels = {}
+    for rows, v in pts:
+        panel = without(rows, keys, runs)
+        group = coordinate(rows, group_key)
+        series = " ".join("%s=%s" % (k, coordinate(rows, k)) for k in series_keys)
+        panels.setdefault(panel, {}).setdefault(group, {})[series] = v
+    groups = []
+    all_series = []
+    for rows, _ in pts:
+        g = coordinate(rows, group_key)
+        s = " ".join("%s=%s" % (k, coordinate(rows, k)) for k in series_keys)
+        if g not in groups:
+            groups.append(g)
+        if s not in all_series:
+            all_series.append(s)
+    colours = palette(len(all_series))
+    fig, axes = grid(len(panels))
+    width = 0.8 / max(1, len(all_series))
+    for ax, (panel, by_group) in zip(axes, panels.items()):
+        for j, (s, colour) in enumerate(zip(all_series, colours)):
+            xs, vs, errs = [], [], [[], []]
+            for i, g in enumerate(groups):
+                if s in by_group.get(g, {}):
+                    v, lo, hi = by_group[g][s]
+                    xs.append(i - 0.4 + width * (j + 0.5))
+                    vs.append(v)
+                    errs[0].append(v - lo)
+                    errs[1].append(hi - v)
+            ax.bar(xs, vs, width=width, color=colour, label=s or panel)
+            if any(errs[0]) or any(errs[1]):
+                ax.errorbar(xs, vs, yerr=errs, fmt="none", ecolor="black", elinewidth=0.6,
+                            capsize=1.5)
+        ax.set_xticks(range(len(groups)), groups, fontsize=7)
+        ax.set_xlabel(group_key, fontsize=7)
+        ax.set_ylabel(axis_label(spec["y"], unit), fontsize=7)
+        if spec.get("logx"):
+            ax.set_yscale("log")
+        ax.set_title(panel, fontsize=8)
+        ax.tick_params(which="both", labelsize=7)
+    if series_keys:
+        legend_below(fig, axes, 4)
+    fig.suptitle(title, fontsize=9)
+    save(fig, folder, name, captions, exp,
+         "%s: %s of `%s`, a panel per strategy entry (%d), bars grouped by %s%s; whiskers: "
+         "min-max over the repetitions%s." %
+         (title, spec["y"], exp["name"], len(panels), group_key,
+          ", a colour per " + " and ".join(series_keys) if series_keys else "",
+          ", log scale" if spec.get("logx") else ""))
+
+
+def unit_of(runs, spec):
+    return next((u for u in (metric_value(r, spec)[1] for r in runs) if u), "")
+
+
+def line_plot(folder, exp, runs, spec, name, captions):
+    ys = [spec["y"]] if isinstance(spec["y"], str) else list(spec["y"])
+    title = spec.get("title", exp["name"])
+    fig, axes = grid(len(ys), width=3.6, height=3.0, cols=3)
+    keys = [] if spec["x"] == "scene" else sweep_keys(exp, runs)[:1]
+    configs = sorted({without(rows, keys, runs) for rows in runs})
+    colours = dict(zip(configs, palette(len(configs))))
+    for ax, y_spec in zip(axes, ys):
+        series = {}
+        for rows in runs:
+            x = (scene_number(rows[0]["scene"]) if spec["x"] == "scene"
+                 else metric_value(rows, spec["x"])[0])
+            y, lo, hi = value_range(rows, y_spec)
+            if x is not None and y is not None:
+                series.setdefault(without(rows, keys, runs), []).append((x, y, lo, hi))
+        for key, pts in sorted(series.items()):
+            pts.sort()
+            ax.errorbar([p[0] for p in pts], [p[1] for p in pts],
+                        yerr=[[p[1] - p[2] for p in pts], [p[3] - p[1] for p in pts]],
+                        color=colours[key], marker="o", markersize=3, linewidth=1,
+                        elinewidth=0.6, capsize=1.5)
+        ax.set_ylabel(axis_label(y_spec, unit_of(runs, y_spec)), fontsize=7)
+        ax.set_xlabel(spec.get("xlabel", "number in the scene name" if spec["x"] == "scene"
+                               else spec["x"]), fontsize=7)
+        if spec.get("logy"):
+            ax.set_yscale("log")
+        ax.tick_params(which="both", labelsize=7)
+        ax.grid(True, linewidth=0.3, alpha=0.5)
+    fig.legend(handles=[Line2D([], [], color=colours[c], marker="o", markersize=3, label=c)
+                        for c in configs], loc="upper center", bbox_to_anchor=(0.5, 0.0),
+               ncol=2, fontsize=7, frameon=False)
+    fig.suptitle(title, fontsize=9)
+    save(fig, folder, name, captions, exp,
+         "%s: %s against %s, a line and colour per configuration of `%s` (the same in every "
+         "panel; a panel lacks the configurations without that column); whiskers: min-max over "
+         "the repetitions." % (title, ", ".join(ys), spec.get("xlabel", spec["x"]), exp["name"]))
+
+
+def family_legend(where, used, markers, extra=()):
+    """Right of the panels (where: the figure or the one axes): the extra handles, then an entry per family member used, in the
+    families' order (colour = family, marker = member)."""
+    handles = list(extra)
+    for fam, colour, _ in FAMILIES:
+        for m in sorted(m for f, m in used if f == fam):
+            handles.append(Line2D([], [], color=colour, marker=markers(m), linestyle="",
+                                  markersize=5, label="%s: %s" % (fam.split(" (")[0], m)))
+    where.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=6,
+                 frameon=False)
+
+
+def legend_below(fig, axes, ncol):
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+               ncol=min(ncol, len(labels)), fontsize=7, frameon=False)
+
+
+def draw_items(ax, pts, markers):
+    """Every item: family colour, member marker, whiskers (one collection per member)."""
+    groups = {}
+    for p in pts:
+        groups.setdefault((p["colour"], p["member"]), []).append(p)
+    for (colour, member), group in sorted(groups.items()):
+        xs, ys = [p["x"] for p in group], [p["y"] for p in group]
+        ax.errorbar(xs, ys, xerr=[[p["x"] - p["xr"][0] for p in group],
+                                  [p["xr"][1] - p["x"] for p in group]],
+                    yerr=[[p["y"] - p["yr"][0] for p in group], [p["yr"][1] - p["y"] for p in group]],
+                    fmt="none", ecolor=colour, elinewidth=0.7, capsize=1.5, alpha=0.8, zorder=2)
+        ax.scatter(xs, ys, color=colour, marker=markers(member), s=18, zorder=3,
+                   edgecolors="white", linewidths=0.3)
+
+
+def points_of(runs, scene, err, cost):
+    pts, base = [], base_params(runs)
+    for rows in runs:
+        if rows[0]["scene"] != scene:
+            continue
+        x, xlo, xhi = value_range(rows, cost)
+        y, ylo, yhi = value_range(rows, err)
+        if x is None or y is None or x <= 0 or not math.isfinite(y):
+            continue
+        fam, colour, member = family(rows)
+        pts.append({"x": x, "y": y, "xr": (xlo, xhi), "yr": (ylo, yhi), "label": short_label(rows, base),
+                    "family": fam, "colour": colour, "member": member})
+    return pts
+
+
+def columns(v):
+    return [v] if isinstance(v, str) else list(v)
+
+
+def pareto_plots(folder, exp, runs, captions, markers):
+    """Per scene and (error, cost) pair: every item by family, the front joined and labelled."""
+    n = 0
+    for scene in exp_scenes(runs):
+        for err in columns(exp["pareto"]["error"]):
+            for cost in columns(exp["pareto"]["cost"]):
+                n += 1
+                pts = points_of(runs, scene, err, cost)
+                if not pts:
+                    continue
+                left_out = sum(1 for rows in runs if rows[0]["scene"] == scene) - len(pts)
+                fig, ax = plt.subplots(figsize=(7.0, 4.4), dpi=110)
+                draw_items(ax, pts, markers)
+                front = pareto_front([(p["x"], p["y"], i) for i, p in enumerate(pts)])
+                ax.step([p[0] for p in front], [p[1] for p in front], where="post",
+                        color="black", linewidth=0.8, zorder=2)
+                ax.set_xscale("log")
+                if all(p["y"] > 0 for p in pts):
+                    ax.set_yscale("log")
+                ax.set_xlabel(axis_label(cost, unit_of(runs, cost)), fontsize=8)
+                ax.set_ylabel(err, fontsize=8)
+                ax.set_title("%s: %s vs %s" % (scene_name(scene), err, cost), fontsize=9)
+                ax.tick_params(which="both", labelsize=7)
+                family_legend(ax, {(p["family"], p["member"]) for p in pts}, markers)
+                ax.autoscale_view()  # the limits the labels are placed in
+                place_labels(ax, [(x, y, pts[i]["label"]) for x, y, i in front], fontsize=5,
+                             obstacles=[(p["x"], p["y"]) for p in pts])
+                save(fig, folder, "%s_pareto_%02d.png" % (exp["name"], n), captions, exp,
+                     "Pareto plot %d: `%s`, %s against %s (log axes) for the %d items of `%s` "
+                     "on this scene%s. Colour: method family, marker: storage or strategy "
+                     "(legend); whiskers: min-max over the repetitions; black step and labels: "
+                     "the front (%d items no other beats in both; the table above), labelled without "
+                     "the parameters that most items of the strategy share (its base)." %
+                     (n, scene_name(scene), err, cost, len(pts), exp["name"],
+                      " (%d with no %s left out)" % (left_out, cost) if left_out else "",
+                      len(front)))
+
+
+def ranks(runs, spec):
+    """A column ranks when it has values and fewer than a third of each scene's items tie at
+    that scene's maximum (p99 and max columns saturate at 1)."""
+    by_scene = {}
+    for rows in runs:
+        v, _ = metric_value(rows, spec)
+        if v is not None and math.isfinite(v):
+            by_scene.setdefault(rows[0]["scene"], []).append(v)
+    if not by_scene:
+        return False
+    return all(sum(1 for v in vs if v == max(vs)) < max(2, len(vs) / 3)
+               for vs in by_scene.values())
+
+
+def headline_error(runs):
+    """The headline's error column: a camera-visible probe class (p90, then mean) when the rows
+    have one, else HEADLINE_ERRORS; the first that ranks."""
+    metrics = sorted({r["metric"] for rows in runs for r in rows})
+    camera = [m for m in metrics if m.startswith("probe_error_") and
+              ("camera" in m or "visible" in m)]
+    candidates = [m + ":" + s for m in camera for s in ("p90", "mean")] + HEADLINE_ERRORS
+    return next((c for c in candidates if ranks(runs, c)), None)
+
+
+def oracle_times(all_runs):
+    """Per scene the exact oracle's frame time (a `reference` or `exact` item anywhere)."""
+    times = {}
+    for rows in all_runs:
+        if rows[0]["strategy"] in ("reference", "exact"):
+            v, lo, hi = value_range(rows, "frame_ms")
+            if v is not None:
+                times.setdefault(rows[0]["scene"], (v, lo, hi))
+    return times
+
+
+def headline_plot(folder, exp, runs, all_runs, captions, markers):
+    """Error against frame time on every scene: what accuracy costs, at a glance."""
+    err = headline_error(runs)
+    if err is None or "frame_ms" not in columns(exp["pareto"]["cost"]):
+        return
+    scenes = exp_scenes(runs)
+    oracle = oracle_times(all_runs)
+    fig, axes = grid(len(scenes), width=4.0, height=3.0)
+    used = set()
+    for ax, scene in zip(axes, scenes):
+        pts = [p for p in points_of(runs, scene, err, "frame_ms") if p["family"] != "exact oracle"]
+        draw_items(ax, pts, markers)
+        used |= {(p["family"], p["member"]) for p in pts}
+        front = pareto_front([(p["x"], p["y"]) for p in pts])
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black",
+                linewidth=0.7, zorder=2)
+        if scene in oracle:
+            t, lo, hi = oracle[scene]
+            ax.axvline(t, color="black", linestyle="--", linewidth=0.9)
+            if hi > lo:
+                ax.axvspan(lo, hi, color="black", alpha=0.08, linewidth=0)
+            ax.annotate("exact oracle\n%.3g ms" % t, (t, 0), xycoords=("data", "axes fraction"),
+                        xytext=(-3, 3), textcoords="offset points", ha="right", va="bottom",
+                        fontsize=6)
+            used.add(("exact oracle", "reference"))
+        ax.set_xscale("log")
+        if pts and all(p["y"] > 0 for p in pts):
+            ax.set_yscale("log")
+        ax.set_title(scene_name(scene), fontsize=8)
+        ax.set_xlabel("frame time (ms, median; whiskers min-max)", fontsize=7)
+        ax.set_ylabel(err, fontsize=7)
+        ax.tick_params(which="both", labelsize=7)
+        ax.grid(True, which="major", linewidth=0.3, alpha=0.5)
+    used.discard(("exact oracle", "reference"))
+    family_legend(fig, used, markers, [
+        Line2D([], [], color="black", linestyle="--", label="exact oracle (frame time)"),
+        Line2D([], [], color="black", linewidth=0.7, label="Pareto front")])
+    fig.suptitle("What accuracy costs: %s against frame time, per scene" % err, fontsize=9)
+    save(fig, folder, "%s_headline.png" % exp["name"], captions, exp,
+         "Headline: %s (smaller is better) against frame time (median generation + median "
+         "render, ms, log axes) for every item of `%s`, one panel per scene. Colour: method "
+         "family, marker: storage or strategy; whiskers: min-max over the repetitions (the sum "
+         "of the passes' minima and maxima); black step: the Pareto front; dashed line: the "
+         "exact oracle's frame time on that scene (its error is 0). Items with no frame time "
+         "are left out." % (err, exp["name"]))
 
 
 def main(folder):
@@ -52,98 +628,29 @@ def main(folder):
     with open(os.path.join(folder, "rows.csv"), newline="") as f:
         for r in csv.DictReader(f):
             items.setdefault((r["experiment"], int(r["item"])), []).append(r)
-    os.makedirs(os.path.join(folder, "plots"), exist_ok=True)
+    plots = os.path.join(folder, "plots")
+    os.makedirs(plots, exist_ok=True)
+    all_runs = [rows for _, rows in sorted(items.items())
+                if not any(r["metric"] == "failed" for r in rows)]
+    captions, markers = [], Markers()
     for exp in suite["experiments"]:
-        runs = [rows for (name, _), rows in sorted(items.items()) if name == exp["name"]]
-        runs = [rows for rows in runs if not any(r["metric"] == "failed" for r in rows)]
+        runs = [rows for rows in all_runs if rows[0]["experiment"] == exp["name"]]
         if not runs:
             continue  # not run in this folder (another shard, --only, interrupted)
-        for n, spec in enumerate(exp.get("plots", [])):
-            fig, ax = plt.subplots(figsize=(6.4, 3.6), dpi=110)
-            if spec.get("type", "scatter") == "bar":
-                pairs = [(label(rows), metric_value(rows, spec["y"])) for rows in runs]
-                pairs = [(l, v) for l, (v, _) in pairs if v is not None and math.isfinite(v)
-                         and (v > 0 or not spec.get("logx"))]
-                ax.barh([l for l, _ in pairs], [v for _, v in pairs])
-                unit = next((metric_value(r, spec["y"])[1] for r in runs), "")
-                ax.set_xlabel(spec["y"] + (" (" + unit + ")" if unit else ""))
-                ax.invert_yaxis()
-                if spec.get("logx"):
-                    ax.set_xscale("log")
-            else:
-                points = []
-                for rows in runs:
-                    x, xu = metric_value(rows, spec["x"])
-                    y, yu = metric_value(rows, spec["y"])
-                    if x is None or y is None or (spec.get("logx") and x <= 0):
-                        continue  # a log axis cannot show x <= 0 (e.g. methods keeping no bytes)
-                    ax.scatter([x], [y], label=label(rows))
-                    points.append((x, y))
-                    ax.set_xlabel(spec["x"] + (" (" + xu + ")" if xu else ""))
-                    ax.set_ylabel(spec["y"] + (" (" + yu + ")" if yu else ""))
-                if spec.get("pareto") and points:
-                    front = pareto_front(points)
-                    ax.step([p[0] for p in front], [p[1] for p in front], where="post",
-                            color="grey", linewidth=0.8, label="Pareto front")
-                if spec.get("logx"):
-                    ax.set_xscale("log")
-                if spec.get("logy"):
-                    ax.set_yscale("symlog", linthresh=1e-4)
-                ax.legend(fontsize=6, loc="best")
-            ax.set_title(spec.get("title", exp["name"]), fontsize=9)
-            ax.tick_params(labelsize=7)
-            fig.tight_layout()
-            fig.savefig(os.path.join(folder, "plots", "%s_%d.png" % (exp["name"], n + 1)))
-            plt.close(fig)
+        for old in os.listdir(plots):  # redrawn below; names may have changed
+            if old.startswith(exp["name"] + "_") and old.endswith(".png"):
+                os.remove(os.path.join(plots, old))
         if "pareto" in exp:
-            pareto_plots(folder, exp, runs)
-
-
-def columns(v):
-    return [v] if isinstance(v, str) else list(v)
-
-
-def pareto_plots(folder, exp, runs):
-    """Per scene and (error, cost) pair: all points grey, the front joined and labelled."""
-    scenes = []
-    for rows in runs:
-        if rows[0]["scene"] not in scenes:
-            scenes.append(rows[0]["scene"])
-    n = 0
-    for scene in scenes:
-        for err in columns(exp["pareto"]["error"]):
-            for cost in columns(exp["pareto"]["cost"]):
-                pts = []
-                for rows in runs:
-                    if rows[0]["scene"] != scene:
-                        continue
-                    x, _ = metric_value(rows, cost)
-                    y, _ = metric_value(rows, err)
-                    if x is not None and y is not None and x > 0 and math.isfinite(y):
-                        pts.append((x, y, label(rows)))
-                n += 1
-                if not pts:
-                    continue
-                fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=110)
-                ax.scatter([p[0] for p in pts], [p[1] for p in pts], color="lightgrey", s=12)
-                front = pareto_front([(p[0], p[1]) for p in pts])
-                ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="C0",
-                        linewidth=1.0)
-                for x, y in front:
-                    name = next(p[2] for p in pts if p[0] == x and p[1] == y)
-                    ax.scatter([x], [y], color="C0", s=16)
-                    ax.annotate(name, (x, y), fontsize=5, xytext=(3, 3),
-                                textcoords="offset points")
-                ax.set_xscale("log")
-                if all(p[1] > 0 for p in pts):
-                    ax.set_yscale("log")
-                ax.set_xlabel(cost)
-                ax.set_ylabel(err)
-                ax.set_title("%s: %s vs %s" % (os.path.basename(scene), err, cost), fontsize=9)
-                ax.tick_params(labelsize=7)
-                fig.tight_layout()
-                fig.savefig(os.path.join(folder, "plots", "%s_pareto_%d.png" % (exp["name"], n)))
-                plt.close(fig)
+            headline_plot(folder, exp, runs, all_runs, captions, markers)
+        for n, spec in enumerate(exp.get("plots", [])):
+            name = "%s_%02d.png" % (exp["name"], n + 1)
+            draw = {"bar": bar_plot, "line": line_plot}.get(spec.get("type"), scatter_plot)
+            draw(folder, exp, runs, spec, name, captions)
+        if "pareto" in exp:
+            pareto_plots(folder, exp, runs, captions, markers)
+    with open(os.path.join(plots, "plots.json"), "w") as f:
+        json.dump(captions, f, indent=1)
+        f.write("\n")
 
 
 if __name__ == "__main__":
