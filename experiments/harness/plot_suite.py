@@ -529,12 +529,12 @@ def pareto_plots(folder, exp, runs, captions, markers):
                 place_labels(ax, [(x, y, pts[i]["label"]) for x, y, i in front], fontsize=5,
                              obstacles=[(p["x"], p["y"]) for p in pts])
                 save(fig, folder, "%s_pareto_%02d.png" % (exp["name"], n), captions, exp,
-                     "Pareto plot %d: `%s`, %s against %s (log axes) for the %d items of `%s` "
-                     "on this scene%s. Colour: method family, marker: storage or strategy "
+                     "Pareto front %d of `%s` on `%s`: %s against %s (log axes), %d items%s. "
+                     "Colour: method family, marker: storage or strategy "
                      "(legend); whiskers: min-max over the repetitions; black step and labels: "
                      "the front (%d items no other beats in both; the table above), labelled without "
                      "the parameters that most items of the strategy share (its base)." %
-                     (n, scene_name(scene), err, cost, len(pts), exp["name"],
+                     (n, exp["name"], scene_name(scene), err, cost, len(pts),
                       " (%d with no %s left out)" % (left_out, cost) if left_out else "",
                       len(front)))
 

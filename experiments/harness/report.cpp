@@ -242,6 +242,34 @@ void write_pareto(std::ostream& md, const ExperimentSpec& e,
       }
 }
 
+// The experiment's plots in the order and with the captions plot_suite.py wrote to
+// plots/plots.json, numbered; PNGs it does not list (a folder drawn by an older script) after
+// them, by name.
+void write_plots(std::ostream& md, const fs::path& dir, const std::string& experiment) {
+  Json index = Json::array();
+  try {
+    if (fs::exists(dir / "plots" / "plots.json"))
+      index = parse_json_file((dir / "plots" / "plots.json").string());
+  } catch (const std::exception&) {
+  }
+  std::set<std::string> listed, rest;
+  int figure = 0;
+  for (const Json& p : index) {
+    if (!p.is_object() || p.value("experiment", "") != experiment) continue;
+    const std::string file = p.value("file", "");
+    if (!fs::exists(dir / "plots" / file) || !listed.insert(file).second) continue;
+    md << "\n**Figure " << experiment << "." << ++figure << "** (`plots/" << file
+       << "`): " << p.value("caption", "") << "\n\n![" << file << "](plots/" << file << ")\n";
+  }
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir / "plots", ec))
+    if (const std::string f = entry.path().filename().string();
+        f.rfind(experiment + "_", 0) == 0 && !listed.count(f))
+      rest.insert(f);
+  for (const std::string& p : rest) md << "![" << p << "](plots/" << p << ")\n";
+  md << "\n";
+}
+
 void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpec& e,
                       const std::map<int, std::vector<const Row*>>& items,
                       const std::string& our_machine) {
@@ -324,13 +352,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     diffs.insert(diffs.begin(), "");
     write_table(md, labels, {renders, diffs});
   }
-  std::set<std::string> plots;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir / "plots", ec))
-    if (entry.path().filename().string().rfind(e.name + "_", 0) == 0)
-      plots.insert(entry.path().filename().string());
-  for (const std::string& p : plots) md << "![" << p << "](plots/" << p << ")\n";
-  md << "\n";
+  write_plots(md, dir, e.name);
 }
 
 // "- scale-out: 2 GPUs on 1 host (node1); missing shards: 2 of 2" for a merged folder.
