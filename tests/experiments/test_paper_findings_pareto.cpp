@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "experiments/harness/findings.h"
 #include "experiments/harness/pareto.h"
 #include "experiments/harness/rows.h"
@@ -279,6 +280,45 @@ TEST_F(PaperFindings, PlotsSkipExperimentsNotRunHere) {
   const std::string md = read(fs::path(r.folder) / "report.md");
   EXPECT_EQ(md.find("the plot script failed"), std::string::npos) << md;
   EXPECT_FALSE(fs::exists(fs::path(r.folder) / "plots" / "alpha_1.png"));
+}
+
+// With python3-matplotlib, an experiment with a Pareto spec gets the headline chart (error
+// against frame time per scene) first, then its fronts, zero-padded, each captioned in
+// plots/plots.json and numbered in the report in that order; the headline's error is the image
+// RMSE (the rows have no camera-visible probe class).
+TEST_F(PaperFindings, PlotsHeadlineChartFirstAndEveryPlotCaptioned) {
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
+  const std::string suite = write("headline.json", R"({"suite": "headline", "repeat": 1,
+    "experiments": [{"name": "m", "kind": "shadow", "scene": ")" +
+                                                       scene + R"(",
+     "strategy": ["reference", "none", {"name": "shadowmap", "params": {"res": 32}},
+                  {"name": "dsm", "params": {"res": 32, "eps": 0.05}},
+                  {"name": "dsm", "params": {"res": 32, "eps": 0.05, "storage": "beer"}}],
+     "settings": {"width": 32, "height": 24, "probe_points": 40, "seed": 3, "images": 0},
+     "pareto": {"error": "probe_error_all:mean", "cost": ["frame_ms", "bytes"]}}]})");
+  const SuiteOutcome r = run(suite, false);
+  ASSERT_EQ(r.exit_code, 0);
+  const std::string md = read(fs::path(r.folder) / "report.md");
+  if (md.find("- plots: skipped") != std::string::npos)
+    GTEST_SKIP() << "no plots here: " << md.substr(md.find("- plots: skipped"), 80);
+  const fs::path plots = fs::path(r.folder) / "plots";
+  const Json index = parse_json_file((plots / "plots.json").string());
+  std::vector<std::string> files;
+  for (const Json& p : index) {
+    files.push_back(p["file"].get<std::string>());
+    EXPECT_TRUE(fs::exists(plots / files.back())) << files.back();
+    EXPECT_FALSE(p["caption"].get<std::string>().empty()) << files.back();
+  }
+  EXPECT_EQ(files,
+            (std::vector<std::string>{"m_headline.png", "m_pareto_01.png", "m_pareto_02.png"}));
+  ASSERT_FALSE(index.empty());
+  EXPECT_EQ(index[0]["caption"].get<std::string>().rfind("Headline: image_rmse ", 0), 0u)
+      << index[0]["caption"];
+  const size_t headline = md.find("**Figure m.1** (`plots/m_headline.png`): Headline: ");
+  const size_t front = md.find("**Figure m.2** (`plots/m_pareto_01.png`): Pareto front 1 ");
+  EXPECT_NE(headline, std::string::npos) << md;
+  EXPECT_NE(front, std::string::npos) << md;
+  EXPECT_LT(headline, front);
 }
 
 // The voxelize setting `bounds` places the grid as `deepvox voxelize --bounds`: the thesis's
