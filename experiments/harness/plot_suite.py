@@ -435,6 +435,8 @@ def line_plot(folder, exp, runs, spec, name, captions):
         ax.set_ylabel(axis_label(y_spec, unit_of(runs, y_spec)), fontsize=7)
         ax.set_xlabel(spec.get("xlabel", "number in the scene name" if spec["x"] == "scene"
                                else spec["x"]), fontsize=7)
+        if spec.get("logx"):
+            ax.set_xscale("log")
         if spec.get("logy"):
             ax.set_yscale("log")
         ax.tick_params(which="both", labelsize=7)
