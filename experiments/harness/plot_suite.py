@@ -54,6 +54,7 @@ MARKERS = {"compact": "o", "texture3d": "s", "chunked": "^", "blocked": "D", "be
            "avsm": "s", "moments": "^", "fourier": "D", "occupancy": "v", "shadowmap": "o",
            "none": "X", "transmittance-slicemap": "o", "reference": "*", "exact": "*"}
 SPARE_MARKERS = ["P", "h", "<", ">", "p", "8"]
+SERIES_MARKERS = ["o", "s", "^", "D", "v", "P", "X", "h"]
 # Time columns that are sums of timed columns (shadow_driver.cpp): their whiskers add up.
 SUMS = {"frame_ms": ("generate_ms", "render_ms")}
 # Headline error, the first present column that ranks (see headline_error).
@@ -265,10 +266,11 @@ def scatter_plot(folder, exp, runs, spec, name, captions):
     fig, ax = plt.subplots(figsize=(7.5, 4.2), dpi=110)
     colours = palette(len(series))
     points, labelled = [], []
-    for (key, pts), colour in zip(series.items(), colours):
+    for i, ((key, pts), colour) in enumerate(zip(series.items(), colours)):
         xs, ys = [p[0] for p in pts], [p[1] for p in pts]
-        ax.plot(xs, ys, "-o" if along else "o", color=colour, markersize=4, linewidth=0.8,
-                label=key)
+        # hollow markers of different shapes keep series with the same values visible
+        ax.plot(xs, ys, "-" if along else "", marker=SERIES_MARKERS[i % len(SERIES_MARKERS)],
+                color=colour, markerfacecolor="none", markersize=5, linewidth=0.8, label=key)
         for x, y, xr, yr, value in pts:
             whiskers(ax, x, y, colour, xr, yr)
             points.append((x, y))
@@ -283,8 +285,8 @@ def scatter_plot(folder, exp, runs, spec, name, captions):
     if spec.get("logy"):
         ax.set_yscale("symlog", linthresh=1e-4)
     unit_x, unit_y = unit_of(runs, spec["x"]), unit_of(runs, spec["y"])
-    ax.set_xlabel(axis_label(spec["x"], unit_x))
-    ax.set_ylabel(axis_label(spec["y"], unit_y))
+    ax.set_xlabel(axis_label(spec["x"], unit_x), fontsize=8)
+    ax.set_ylabel(axis_label(spec["y"], unit_y), fontsize=8)
     ax.set_title(spec.get("title", exp["name"]), fontsize=9)
     ax.tick_params(which="both", labelsize=7)
     ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
