@@ -253,12 +253,12 @@ void write_plots(std::ostream& md, const fs::path& dir, const std::string& exper
   } catch (const std::exception&) {
   }
   std::set<std::string> listed, rest;
-  int figure = 0;
+  int number = 0;
   for (const Json& p : index) {
     if (!p.is_object() || p.value("experiment", "") != experiment) continue;
     const std::string file = p.value("file", "");
     if (!fs::exists(dir / "plots" / file) || !listed.insert(file).second) continue;
-    md << "\n**Figure " << experiment << "." << ++figure << "** (`plots/" << file
+    md << "\n**Plot " << experiment << "." << ++number << "** (`plots/" << file
        << "`): " << p.value("caption", "") << "\n\n![" << file << "](plots/" << file << ")\n";
   }
   std::error_code ec;

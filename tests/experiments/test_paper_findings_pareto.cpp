@@ -314,8 +314,8 @@ TEST_F(PaperFindings, PlotsHeadlineChartFirstAndEveryPlotCaptioned) {
   ASSERT_FALSE(index.empty());
   EXPECT_EQ(index[0]["caption"].get<std::string>().rfind("Headline: image_rmse ", 0), 0u)
       << index[0]["caption"];
-  const size_t headline = md.find("**Figure m.1** (`plots/m_headline.png`): Headline: ");
-  const size_t front = md.find("**Figure m.2** (`plots/m_pareto_01.png`): Pareto front 1 ");
+  const size_t headline = md.find("**Plot m.1** (`plots/m_headline.png`): Headline: ");
+  const size_t front = md.find("**Plot m.2** (`plots/m_pareto_01.png`): Pareto front 1 ");
   EXPECT_NE(headline, std::string::npos) << md;
   EXPECT_NE(front, std::string::npos) << md;
   EXPECT_LT(headline, front);
