@@ -641,8 +641,9 @@ def main(folder):
         runs = [rows for rows in all_runs if rows[0]["experiment"] == exp["name"]]
         if not runs:
             continue  # not run in this folder (another shard, --only, interrupted)
-        for old in os.listdir(plots):  # redrawn below; names may have changed
-            if old.startswith(exp["name"] + "_") and old.endswith(".png"):
+        drawn = re.compile(re.escape(exp["name"]) + r"_(\d+|headline|pareto_\d+)\.png")
+        for old in os.listdir(plots):  # redrawn below (an older script numbered them 1, 2, ...)
+            if drawn.fullmatch(old):
                 os.remove(os.path.join(plots, old))
         if "pareto" in exp:
             headline_plot(folder, exp, runs, all_runs, captions, markers)

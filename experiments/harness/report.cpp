@@ -251,6 +251,7 @@ void write_plots(std::ostream& md, const fs::path& dir, const std::string& exper
     if (fs::exists(dir / "plots" / "plots.json"))
       index = parse_json_file((dir / "plots" / "plots.json").string());
   } catch (const std::exception&) {
+    // unreadable (a folder copied half-way): the PNGs by name below
   }
   std::set<std::string> listed, rest;
   int number = 0;
