@@ -505,8 +505,9 @@ def columns(v):
     return [v] if isinstance(v, str) else list(v)
 
 
-def pareto_plots(folder, exp, runs, captions, markers):
-    """Per scene and (error, cost) pair: every item by family, the front joined and labelled."""
+def pareto_plots(folder, exp, runs, oracle, captions, markers):
+    """Per scene and (error, cost) pair: every item by family, the front joined and labelled;
+    against frame_ms the exact oracle's time dashed."""
     n = 0
     for scene in exp_scenes(runs):
         for err in columns(exp["pareto"]["error"]):
@@ -521,6 +522,8 @@ def pareto_plots(folder, exp, runs, captions, markers):
                 front = pareto_front([(p["x"], p["y"], i) for i, p in enumerate(pts)])
                 ax.step([p[0] for p in front], [p[1] for p in front], where="post",
                         color="black", linewidth=0.8, zorder=2)
+                if cost == "frame_ms":
+                    mark_oracle(ax, oracle, scene)
                 ax.set_xscale("log")
                 if all(p["y"] > 0 for p in pts):
                     ax.set_yscale("log")
@@ -537,10 +540,11 @@ def pareto_plots(folder, exp, runs, captions, markers):
                      "Colour: method family, marker: storage or strategy "
                      "(legend); whiskers: min-max over the repetitions; black step and labels: "
                      "the front (%d items no other beats in both; the table above), labelled without "
-                     "the parameters that most items of the strategy share (its base)." %
+                     "the parameters that most items of the strategy share (its base)%s." %
                      (n, exp["name"], scene_name(scene), err, cost, len(pts),
                       " (%d with no %s left out)" % (left_out, cost) if left_out else "",
-                      len(front)))
+                      len(front), "; dashed: the exact oracle's frame time"
+                      if cost == "frame_ms" and scene in oracle else ""))
 
 
 def ranks(runs, spec):
@@ -578,6 +582,18 @@ def oracle_times(all_runs):
     return times
 
 
+def mark_oracle(ax, oracle, scene):
+    """The exact oracle's frame time on the scene: a dashed line (its min-max shaded)."""
+    if scene not in oracle:
+        return
+    t, lo, hi = oracle[scene]
+    ax.axvline(t, color="black", linestyle="--", linewidth=0.9)
+    if hi > lo:
+        ax.axvspan(lo, hi, color="black", alpha=0.08, linewidth=0)
+    ax.annotate("exact oracle\n%.3g ms" % t, (t, 0), xycoords=("data", "axes fraction"),
+                xytext=(-3, 3), textcoords="offset points", ha="right", va="bottom", fontsize=6)
+
+
 def headline_plot(folder, exp, runs, all_runs, captions, markers):
     """Error against frame time on every scene: what accuracy costs, at a glance."""
     err = headline_error(runs)
@@ -594,15 +610,7 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
         front = pareto_front([(p["x"], p["y"]) for p in pts])
         ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black",
                 linewidth=0.7, zorder=2)
-        if scene in oracle:
-            t, lo, hi = oracle[scene]
-            ax.axvline(t, color="black", linestyle="--", linewidth=0.9)
-            if hi > lo:
-                ax.axvspan(lo, hi, color="black", alpha=0.08, linewidth=0)
-            ax.annotate("exact oracle\n%.3g ms" % t, (t, 0), xycoords=("data", "axes fraction"),
-                        xytext=(-3, 3), textcoords="offset points", ha="right", va="bottom",
-                        fontsize=6)
-            used.add(("exact oracle", "reference"))
+        mark_oracle(ax, oracle, scene)
         ax.set_xscale("log")
         if pts and all(p["y"] > 0 for p in pts):
             ax.set_yscale("log")
@@ -611,7 +619,6 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
         ax.set_ylabel(err, fontsize=7)
         ax.tick_params(which="both", labelsize=7)
         ax.grid(True, which="major", linewidth=0.3, alpha=0.5)
-    used.discard(("exact oracle", "reference"))
     family_legend(fig, used, markers, [
         Line2D([], [], color="black", linestyle="--", label="exact oracle (frame time)"),
         Line2D([], [], color="black", linewidth=0.7, label="Pareto front")])
@@ -652,7 +659,7 @@ def main(folder):
             draw = {"bar": bar_plot, "line": line_plot}.get(spec.get("type"), scatter_plot)
             draw(folder, exp, runs, spec, name, captions)
         if "pareto" in exp:
-            pareto_plots(folder, exp, runs, captions, markers)
+            pareto_plots(folder, exp, runs, oracle_times(all_runs), captions, markers)
     with open(os.path.join(plots, "plots.json"), "w") as f:
         json.dump(captions, f, indent=1)
         f.write("\n")
