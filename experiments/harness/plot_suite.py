@@ -454,8 +454,8 @@ def line_plot(folder, exp, runs, spec, name, captions):
 
 
 def family_legend(where, used, markers, extra=()):
-    """Right of the panels (where: the figure or the one axes): the extra handles, then an entry per family member used, in the
-    families' order (colour = family, marker = member)."""
+    """Right of the panels (where: the figure or the one axes): the extra handles, then an entry
+    per family member used, in the families' order (colour = family, marker = member)."""
     handles = list(extra)
     for fam, colour, _ in FAMILIES:
         for m in sorted(m for f, m in used if f == fam):
@@ -478,8 +478,8 @@ def draw_items(ax, pts, markers):
         groups.setdefault((p["colour"], p["member"]), []).append(p)
     for (colour, member), group in sorted(groups.items()):
         xs, ys = [p["x"] for p in group], [p["y"] for p in group]
-        ax.errorbar(xs, ys, xerr=[[p["x"] - p["xr"][0] for p in group],
-                                  [p["xr"][1] - p["x"] for p in group]],
+        ax.errorbar(xs, ys,
+                    xerr=[[p["x"] - p["xr"][0] for p in group], [p["xr"][1] - p["x"] for p in group]],
                     yerr=[[p["y"] - p["yr"][0] for p in group], [p["yr"][1] - p["y"] for p in group]],
                     fmt="none", ecolor=colour, elinewidth=0.7, capsize=1.5, alpha=0.8, zorder=2)
         ax.scatter(xs, ys, color=colour, marker=markers(member), s=18, zorder=3,
@@ -496,8 +496,9 @@ def points_of(runs, scene, err, cost):
         if x is None or y is None or x <= 0 or not math.isfinite(y):
             continue
         fam, colour, member = family(rows)
-        pts.append({"x": x, "y": y, "xr": (xlo, xhi), "yr": (ylo, yhi), "label": short_label(rows, base),
-                    "family": fam, "colour": colour, "member": member})
+        pts.append({"x": x, "y": y, "xr": (xlo, xhi), "yr": (ylo, yhi),
+                    "label": short_label(rows, base), "family": fam, "colour": colour,
+                    "member": member})
     return pts
 
 
@@ -537,10 +538,10 @@ def pareto_plots(folder, exp, runs, oracle, captions, markers):
                              obstacles=[(p["x"], p["y"]) for p in pts])
                 save(fig, folder, "%s_pareto_%02d.png" % (exp["name"], n), captions, exp,
                      "Pareto front %d of `%s` on `%s`: %s against %s (log axes), %d items%s. "
-                     "Colour: method family, marker: storage or strategy "
-                     "(legend); whiskers: min-max over the repetitions; black step and labels: "
-                     "the front (%d items no other beats in both; the table above), labelled without "
-                     "the parameters that most items of the strategy share (its base)%s." %
+                     "Colour: method family, marker: storage or strategy (legend); whiskers: "
+                     "min-max over the repetitions; black step and labels: the front (%d items no "
+                     "other beats in both; the table above), labelled without the parameters that "
+                     "most items of the strategy share (its base)%s." %
                      (n, exp["name"], scene_name(scene), err, cost, len(pts),
                       " (%d with no %s left out)" % (left_out, cost) if left_out else "",
                       len(front), "; dashed: the exact oracle's frame time"
