@@ -478,9 +478,9 @@ def draw_items(ax, pts, markers):
         groups.setdefault((p["colour"], p["member"]), []).append(p)
     for (colour, member), group in sorted(groups.items()):
         xs, ys = [p["x"] for p in group], [p["y"] for p in group]
-        ax.errorbar(xs, ys,
-                    xerr=[[p["x"] - p["xr"][0] for p in group], [p["xr"][1] - p["x"] for p in group]],
-                    yerr=[[p["y"] - p["yr"][0] for p in group], [p["yr"][1] - p["y"] for p in group]],
+        xerr = [[p["x"] - p["xr"][0] for p in group], [p["xr"][1] - p["x"] for p in group]]
+        yerr = [[p["y"] - p["yr"][0] for p in group], [p["yr"][1] - p["y"] for p in group]]
+        ax.errorbar(xs, ys, xerr=xerr, yerr=yerr,
                     fmt="none", ecolor=colour, elinewidth=0.7, capsize=1.5, alpha=0.8, zorder=2)
         ax.scatter(xs, ys, color=colour, marker=markers(member), s=18, zorder=3,
                    edgecolors="white", linewidths=0.3)
