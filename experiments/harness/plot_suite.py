@@ -259,8 +259,9 @@ def scatter_plot(folder, exp, runs, spec, name, captions):
         y, ylo, yhi = value_range(rows, spec["y"])
         if x is None or y is None or (spec.get("logx") and x <= 0):
             continue  # a log axis cannot show x <= 0 (e.g. methods keeping no bytes)
-        key = without(rows, along, runs) + ("" if len(exp_scenes(runs)) < 2 else
-                                      " on " + scene_name(rows[0]["scene"]))
+        key = without(rows, along, runs)
+        if len(exp_scenes(runs)) > 1:
+            key += " on " + scene_name(rows[0]["scene"])
         series.setdefault(key, []).append(
             (x, y, (xlo, xhi), (ylo, yhi), params_of(rows).get(along[0], "") if along else ""))
     fig, ax = plt.subplots(figsize=(7.5, 4.2), dpi=110)
