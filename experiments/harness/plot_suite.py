@@ -338,22 +338,24 @@ def bar_plot(folder, exp, runs, spec, name, captions):
     title = spec.get("title", exp["name"])
     if not axes_of:  # nothing swept: one bar per item
         fig, ax = plt.subplots(figsize=(6.4, 0.6 + 0.22 * len(pts)), dpi=110)
+        shadow = exp.get("kind") == "shadow"  # the families are shadow methods
         for i, (rows, (v, lo, hi)) in enumerate(pts):
-            colour = family(rows)[1]
+            colour = family(rows)[1] if shadow else "C0"
             ax.barh([i], [v], color=colour)
             if hi > lo:
                 ax.errorbar([v], [i], xerr=[[v - lo], [hi - v]], fmt="none", ecolor="black",
                             elinewidth=0.7, capsize=2)
         ax.set_yticks(range(len(pts)), [label(rows) for rows, _ in pts], fontsize=7)
         ax.invert_yaxis()
-        ax.set_xlabel(axis_label(spec["y"], unit))
+        ax.set_xlabel(axis_label(spec["y"], unit), fontsize=8)
         if spec.get("logx"):
             ax.set_xscale("log")
         ax.set_title(title, fontsize=9)
         ax.tick_params(which="both", labelsize=7)
         save(fig, folder, name, captions, exp,
-             "%s: %s per item of `%s`, coloured by method family; whiskers: min-max over the "
-             "repetitions where rows.csv has them." % (title, spec["y"], exp["name"]))
+             "%s: %s per item of `%s`%s; whiskers: min-max over the repetitions where rows.csv "
+             "has them." % (title, spec["y"], exp["name"],
+                            ", coloured by method family" if shadow else ""))
         return
 
     def coordinate(rows, key):
@@ -397,14 +399,15 @@ def bar_plot(folder, exp, runs, spec, name, captions):
         ax.set_ylabel(axis_label(spec["y"], unit), fontsize=7)
         if spec.get("logx"):
             ax.set_yscale("log")
-        ax.set_title(panel, fontsize=8)
+        if len(panels) > 1:
+            ax.set_title(panel, fontsize=8)
         ax.tick_params(which="both", labelsize=7)
     if series_keys:
         legend_below(fig, axes, 4)
     fig.suptitle(title, fontsize=9)
     save(fig, folder, name, captions, exp,
          "%s: %s of `%s`, a panel per strategy entry (%d), bars grouped by %s%s; whiskers: "
-         "min-max over the repetitions%s." %
+         "min-max over the repetitions where rows.csv has them%s." %
          (title, spec["y"], exp["name"], len(panels), group_key,
           ", a colour per " + " and ".join(series_keys) if series_keys else "",
           ", log scale" if spec.get("logx") else ""))
