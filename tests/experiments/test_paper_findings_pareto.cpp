@@ -279,7 +279,7 @@ TEST_F(PaperFindings, PlotsSkipExperimentsNotRunHere) {
   ASSERT_EQ(r.exit_code, 0);
   const std::string md = read(fs::path(r.folder) / "report.md");
   EXPECT_EQ(md.find("the plot script failed"), std::string::npos) << md;
-  EXPECT_FALSE(fs::exists(fs::path(r.folder) / "plots" / "alpha_1.png"));
+  EXPECT_FALSE(fs::exists(fs::path(r.folder) / "plots" / "alpha_01.png"));
 }
 
 // With python3-matplotlib, an experiment with a Pareto spec gets the headline chart (error
