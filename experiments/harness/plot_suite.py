@@ -168,8 +168,11 @@ def overlaps(a, b):
     return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
 
 
-OFFSETS = [(4, 3), (4, -9), (-4, 3), (-4, -9), (4, 12), (-4, 12), (4, -18), (-4, -18), (14, 20),
-           (14, -26), (-14, 20), (-14, -26), (24, 32), (24, -38)]
+# Label positions tried in turn (points from the point): beside it, then further away with a
+# leader line.
+OFFSETS = [(4, 3), (4, -9), (-4, 3), (-4, -9), (4, 12), (-4, 12), (4, -18), (-4, -18)] + [
+    (sx * r, sy * r * 0.7) for r in (20, 32, 46, 60) for sx, sy in
+    ((1, 1), (1, -1), (-1, 1), (-1, -1))]
 
 
 def place_labels(ax, points, fontsize=6, obstacles=()):
@@ -195,7 +198,8 @@ def place_labels(ax, points, fontsize=6, obstacles=()):
                             va="bottom" if dy > 0 else "top",
                             arrowprops=dict(arrowstyle="-", color="0.4", linewidth=0.5,
                                             shrinkA=0, shrinkB=2) if far else None)
-            box = t.get_window_extent(renderer)
+            t.update_positions(renderer)
+            box = matplotlib.text.Text.get_window_extent(t, renderer)  # the text, not its line
             if (box.x0 >= frame.x0 and box.x1 <= frame.x1 and box.y0 >= frame.y0 and
                     box.y1 <= frame.y1 and not any(overlaps(box, b) for b in taken)):
                 break
