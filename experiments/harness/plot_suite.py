@@ -366,21 +366,15 @@ def bar_plot(folder, exp, runs, spec, name, captions):
         return scene_name(rows[0]["scene"]) if key == "scene" else params_of(rows).get(key, "")
 
     group_key, series_keys = axes_of[0], axes_of[1:]
-    panels = {}
+    panels, groups, all_series = {}, [], []
     for rows, v in pts:
-        panel = without(rows, keys, runs)
         group = coordinate(rows, group_key)
         series = " ".join("%s=%s" % (k, coordinate(rows, k)) for k in series_keys)
-        panels.setdefault(panel, {}).setdefault(group, {})[series] = v
-    groups = []
-    all_series = []
-    for rows, _ in pts:
-        g = coordinate(rows, group_key)
-        s = " ".join("%s=%s" % (k, coordinate(rows, k)) for k in series_keys)
-        if g not in groups:
-            groups.append(g)
-        if s not in all_series:
-            all_series.append(s)
+        panels.setdefault(without(rows, keys, runs), {}).setdefault(group, {})[series] = v
+        if group not in groups:
+            groups.append(group)
+        if series not in all_series:
+            all_series.append(series)
     colours = palette(len(all_series))
     fig, axes = grid(len(panels))
     width = 0.8 / max(1, len(all_series))
