@@ -321,11 +321,11 @@ def palette(n):
     return [cmap(i % cmap.N) for i in range(n)]
 
 
-def grid(n, width=3.6, height=2.6, cols=2):
+def grid(n, width=3.6, height=2.6, cols=2, sharey=False):
     cols = min(cols, n)
     rows = (n + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(width * cols, height * rows), dpi=110,
-                             squeeze=False, constrained_layout=True)
+                             squeeze=False, constrained_layout=True, sharey=sharey)
     for ax in axes.flat[n:]:
         ax.set_visible(False)
     return fig, list(axes.flat[:n])
@@ -376,7 +376,7 @@ def bar_plot(folder, exp, runs, spec, name, captions):
         if series not in all_series:
             all_series.append(series)
     colours = palette(len(all_series))
-    fig, axes = grid(len(panels))
+    fig, axes = grid(len(panels), sharey=True)  # one scale: the panels compare
     width = 0.8 / max(1, len(all_series))
     for ax, (panel, by_group) in zip(axes, panels.items()):
         for j, (s, colour) in enumerate(zip(all_series, colours)):
@@ -395,16 +395,23 @@ def bar_plot(folder, exp, runs, spec, name, captions):
         ax.set_xticks(range(len(groups)), groups, fontsize=7)
         ax.set_xlabel(group_key, fontsize=7)
         ax.set_ylabel(axis_label(spec["y"], unit), fontsize=7)
-        if spec.get("logx"):
-            ax.set_yscale("log")
+        ax.yaxis.set_tick_params(labelleft=True)
         if len(panels) > 1:
             ax.set_title(panel, fontsize=8)
         ax.tick_params(which="both", labelsize=7)
+    if spec.get("logx") and pts:  # log bars start at 0: the shared scale from the data
+        for ax in axes:
+            ax.set_yscale("log")
+            ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+            ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+            ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        axes[0].set_ylim(min(v[1] for _, v in pts) / 1.5, max(v[2] for _, v in pts) * 1.3)
     if series_keys:
         legend_below(fig, axes, 4)
     fig.suptitle(title, fontsize=9)
     save(fig, folder, name, captions, exp,
-         "%s: %s of `%s`, a panel per strategy entry (%d), bars grouped by %s%s; whiskers: "
+         "%s: %s of `%s`, a panel per strategy entry (%d, one scale), bars grouped by %s%s; "
+         "whiskers: "
          "min-max over the repetitions where rows.csv has them%s." %
          (title, spec["y"], exp["name"], len(panels), group_key,
           ", a colour per " + " and ".join(series_keys) if series_keys else "",
