@@ -179,13 +179,14 @@ def place_labels(ax, points, fontsize=6, obstacles=()):
     """Labels beside points, each at the first offset (OFFSETS) where it stays inside the axes and
     overlaps no label placed before and no point (greedy, in the given order; a leader line when
     it had to move away); where nowhere is free, at the first offset. Obstacles: (x, y) of the
-    unlabelled points."""
+    unlabelled points, and the texts already in the axes."""
     renderer = ax.figure.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
     taken = []
     for x, y in [p[:2] for p in points] + list(obstacles):
         px, py = ax.transData.transform((x, y))
         taken.append(matplotlib.transforms.Bbox([[px - 3, py - 3], [px + 3, py + 3]]))
+    taken += [t.get_window_extent(renderer) for t in ax.texts]  # e.g. the oracle's time
     done = set()
     for x, y, text in points:
         if (x, y, text) in done:
