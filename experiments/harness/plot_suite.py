@@ -322,6 +322,13 @@ def palette(n):
     return [cmap(i % cmap.N) for i in range(n)]
 
 
+def readable_log(axis):
+    """A log axis ticked at 1, 2 and 5 times the powers of ten, written as plain numbers."""
+    axis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+
 def grid(n, width=3.6, height=2.6, cols=2, sharey=False):
     cols = min(cols, n)
     rows = (n + cols - 1) // cols
@@ -403,9 +410,7 @@ def bar_plot(folder, exp, runs, spec, name, captions):
     if spec.get("logx") and pts:  # log bars start at 0: the shared scale from the data
         for ax in axes:
             ax.set_yscale("log")
-            ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
-            ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
-            ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+            readable_log(ax.yaxis)
         axes[0].set_ylim(min(v[1] for _, v in pts) / 1.5, max(v[2] for _, v in pts) * 1.3)
     if series_keys:
         legend_below(fig, axes, 4)
@@ -536,8 +541,11 @@ def pareto_plots(folder, exp, runs, oracle, captions, markers):
                 if cost == "frame_ms":
                     mark_oracle(ax, oracle, scene)
                 ax.set_xscale("log")
+                if cost != "bytes":
+                    readable_log(ax.xaxis)
                 if all(p["y"] > 0 for p in pts):
                     ax.set_yscale("log")
+                    readable_log(ax.yaxis)
                 ax.set_xlabel(axis_label(cost, unit_of(runs, cost)), fontsize=8)
                 ax.set_ylabel(err, fontsize=8)
                 ax.set_title("%s: %s vs %s" % (scene_name(scene), err, cost), fontsize=9)
@@ -623,8 +631,10 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
                 linewidth=0.7, zorder=2)
         mark_oracle(ax, oracle, scene)
         ax.set_xscale("log")
+        readable_log(ax.xaxis)
         if pts and all(p["y"] > 0 for p in pts):
             ax.set_yscale("log")
+            readable_log(ax.yaxis)
         ax.set_title(scene_name(scene), fontsize=8)
         ax.set_xlabel("frame time (ms, median; whiskers min-max)", fontsize=7)
         ax.set_ylabel(err, fontsize=7)
