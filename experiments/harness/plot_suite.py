@@ -322,6 +322,17 @@ def palette(n):
     return [cmap(i % cmap.N) for i in range(n)]
 
 
+def scale_by_spread(ax, pts, plain_bytes=False):
+    """Log axes where the values span more than a factor of 5 (all positive), else linear; log
+    ticks at 1, 2, 5 x 10^n (bytes keep matplotlib's 10^n)."""
+    for name, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
+        values = [p[name] for p in pts]
+        if values and min(values) > 0 and max(values) > 5 * min(values):
+            getattr(ax, "set_%sscale" % name)("log")
+            if not (plain_bytes and name == "x"):
+                readable_log(axis)
+
+
 def readable_log(axis):
     """A log axis ticked at 1, 2 and 5 times the powers of ten, written as plain numbers."""
     axis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
@@ -540,12 +551,7 @@ def pareto_plots(folder, exp, runs, oracle, captions, markers):
                         color="black", linewidth=0.8, zorder=2)
                 if cost == "frame_ms":
                     mark_oracle(ax, oracle, scene)
-                ax.set_xscale("log")
-                if cost != "bytes":
-                    readable_log(ax.xaxis)
-                if all(p["y"] > 0 for p in pts):
-                    ax.set_yscale("log")
-                    readable_log(ax.yaxis)
+                scale_by_spread(ax, pts, plain_bytes=cost == "bytes")
                 ax.set_xlabel(axis_label(cost, unit_of(runs, cost)), fontsize=8)
                 ax.set_ylabel(err, fontsize=8)
                 ax.set_title("%s: %s vs %s" % (scene_name(scene), err, cost), fontsize=9)
@@ -555,7 +561,8 @@ def pareto_plots(folder, exp, runs, oracle, captions, markers):
                 place_labels(ax, [(x, y, pts[i]["label"]) for x, y, i in front], fontsize=5,
                              obstacles=[(p["x"], p["y"]) for p in pts])
                 save(fig, folder, "%s_pareto_%02d.png" % (exp["name"], n), captions, exp,
-                     "Pareto front %d of `%s` on `%s`: %s against %s (log axes), %d items%s. "
+                     "Pareto front %d of `%s` on `%s`: %s against %s (log axes where the values "
+                     "span over 5x), %d items%s. "
                      "Colour: method family, marker: storage or strategy (legend); whiskers: "
                      "min-max over the repetitions; black step and labels: the front (%d items no "
                      "other beats in both; the table above), labelled without the parameters that "
@@ -630,11 +637,8 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
         ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black",
                 linewidth=0.7, zorder=2)
         mark_oracle(ax, oracle, scene)
-        ax.set_xscale("log")
-        readable_log(ax.xaxis)
-        if pts and all(p["y"] > 0 for p in pts):
-            ax.set_yscale("log")
-            readable_log(ax.yaxis)
+        scale_by_spread(ax, pts + ([{"x": oracle[scene][0], "y": pts[0]["y"]}]
+                                   if scene in oracle and pts else []))
         ax.set_title(scene_name(scene), fontsize=8)
         ax.set_xlabel("frame time (ms, median; whiskers min-max)", fontsize=7)
         ax.set_ylabel(err, fontsize=7)
@@ -646,11 +650,11 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
     fig.suptitle("What accuracy costs: %s against frame time, per scene" % err, fontsize=9)
     save(fig, folder, "%s_headline.png" % exp["name"], captions, exp,
          "Headline: %s (smaller is better) against frame time (median generation + median "
-         "render, ms, log axes) for every item of `%s`, one panel per scene. Colour: method "
-         "family, marker: storage or strategy; whiskers: min-max over the repetitions (the sum "
-         "of the passes' minima and maxima); black step: the Pareto front; dashed line: the "
-         "exact oracle's frame time on that scene (its error is 0). Items with no frame time "
-         "are left out." % (err, exp["name"]))
+         "render, ms) for every item of `%s`, one panel per scene, log axes where the values "
+         "span over 5x. Colour: method family, marker: storage or strategy; whiskers: min-max "
+         "over the repetitions (the sum of the passes' minima and maxima); black step: the "
+         "Pareto front; dashed line: the exact oracle's frame time on that scene (its error is "
+         "0). Items with no frame time are left out." % (err, exp["name"]))
 
 
 def main(folder):
