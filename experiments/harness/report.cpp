@@ -334,6 +334,31 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
 }
 
 // "- scale-out: 2 GPUs on 1 host (node1); missing shards: 2 of 2" for a merged folder.
+// The machine's state at the start (run_metadata.h's machine_state; "unknown" for what a run
+// could not read, and for folders written before it was recorded).
+std::string machine_lines(const Json& run) {
+  const Json machine = run.value("machine", Json::object());
+  const auto at = [&](const char* key) {
+    return machine.contains(key) ? cell(machine[key]) : std::string("unknown");
+  };
+  const auto mhz = [&](const char* now, const char* max) {
+    return at(now) + " of " + at(max) + " MHz";
+  };
+  std::string cuda;
+  if (run.contains("cuda")) {
+    const Json& c = run["cuda"];
+    const char* api = c.contains("driver_api_version") ? "driver_api_version" : "driver_version";
+    cuda = " (CUDA driver API " + cell(c.value(api, Json("unknown"))) + ", runtime " +
+           cell(c.value("runtime_version", Json("unknown"))) + ")";
+  }
+  return "- GPU: NVIDIA driver " + at("nvidia_driver") + cuda + ", SM clock " +
+         mhz("sm_clock_mhz", "sm_clock_max_mhz") + ", memory clock " +
+         mhz("memory_clock_mhz", "memory_clock_max_mhz") + ", persistence mode " +
+         at("persistence_mode") + ", compute mode " + at("compute_mode") +
+         ", shared with other compute processes: " + at("gpu_shared") + "\n- OS: " + at("os") +
+         ", kernel " + at("kernel") + "\n";
+}
+
 std::string scale_out_line(const Json& meta) {
   std::string hosts;
   for (const Json& h : meta["scale_out"]["hosts"]) hosts += (hosts.empty() ? "" : ", ") + cell(h);
@@ -452,6 +477,7 @@ void build_report(const std::string& folder) {
   md << "- backend: " << cell(run["backend"]) << " on "
      << (run.contains("device") ? cell(run["device"]) + ", " : "") << cell(run["cpu_model"]) << ", "
      << cell(run["cpu_threads"]) << " threads\n";
+  md << machine_lines(run);
   if (meta.value("smoke", false))
     md << "- size: SMOKE (each experiment's `smoke` overrides: a correctness run, not a "
           "measurement)\n";
