@@ -10,12 +10,15 @@
 
 #include "core/error.h"
 #include "engine/raster/fragment_walk.h"
+#include "engine/raster/visible_surface.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/probe_points.h"
 #include "experiments/source_paths.h"
+#include "render/frame/raster_render.h"
 #include "render/load/mesh_generators.h"
 #include "render/load/scene_loader.h"
+#include "strategies/shadow/shadow_method.h"
 #include "strategies/voxelizer/triangle_soup.h"
 
 namespace dv {
@@ -136,6 +139,30 @@ TEST(ImageMetrics, ViewDepthIsTheDistanceAlongTheViewingDirection) {
   const SceneData host(scene, Memory::host);
   const VisibleSurface view = visible_surface(Backend::cpu, host, scene.camera);
   for (double d : view_depths(view, scene.camera)) EXPECT_NEAR(d, 5.0, 1e-9);
+}
+
+// The camera's sight lines up with the rendered image: on a scene without media, the pixels
+// that see no surface show the background and the others do not.
+TEST(ImageMetrics, SightMatchesTheRenderedImage) {
+  Scene scene = load_scene(test::source_dir() + "/experiments/scenes/translucent-boxes.json");
+  scene.camera.width = 60;
+  scene.camera.height = 40;
+  const SceneData host(scene, Memory::host);
+  const VisibleSurface view = visible_surface(Backend::cpu, host, scene.camera);
+  auto oracle = shadow_registry().create("reference");
+  const Image image =
+      render_raster(Backend::cpu, host, scene.camera, *oracle, scene.background).render.image;
+  int seen = 0, background = 0, mismatched = 0;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 60; ++x) {
+      const bool shows_background = glm::length(image.at(x, y) - scene.background) < 1e-6;
+      const bool hit = view.hit[size_t(y) * 60 + x] != 0;
+      (hit ? seen : background)++;
+      mismatched += hit == shows_background;
+    }
+  EXPECT_GT(seen, 100);
+  EXPECT_GT(background, 100);
+  EXPECT_EQ(mismatched, 0);
 }
 
 TEST(ImageMetrics, DepthBinsCoverTheImageNearestFirst) {
