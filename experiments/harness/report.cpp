@@ -122,8 +122,16 @@ std::string our_cell(const Json& map, size_t row, size_t column,
   return m.items ? format_value(m.mean) : "";
 }
 
+// A paper rate (a number or a [low, high] range in fps) as milliseconds, 1000 / fps: a range's
+// ends swap.
+Json milliseconds_from_fps(const Json& v) {
+  if (v.is_array()) return Json::array({1000.0 / v[1].get<double>(), 1000.0 / v[0].get<double>()});
+  return 1000.0 / v.get<double>();
+}
+
 // A paper table file (docs/paper-tables.md) as printed, with both machines named; with a map
-// (suite-format.md) every mapped value cell shows "paper / ours".
+// (suite-format.md) every mapped value cell shows "paper / ours", the paper's rate also in ms
+// where the map says "paper_as": "ms_from_fps".
 void write_paper_table(std::ostream& md, const std::string& file, const std::string& our_machine,
                        const Json& map, const std::map<int, std::vector<const Row*>>& items) {
   Json t;
@@ -150,6 +158,10 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
       !map.is_null() && map["rows"].size() == rows.size() && map["columns"].size() == values;
   if (!map.is_null() && !beside)
     md << "- the suite's map of this table does not fit its rows and columns: ours not shown\n";
+  const bool as_ms = beside && map.value("paper_as", "") == "ms_from_fps";
+  if (as_ms)
+    md << "- the paper's rates converted: `fps = ms` with ms = 1000 / fps (a range's ends swap), "
+          "ours in ms\n";
   if (beside)
     md << "- cells: paper / ours (ours: the mean over our items matching `" +
               map.value("where", "") +
@@ -172,6 +184,7 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
     for (size_t k = 0; k < rows[i].size(); ++k) {
       std::string text = paper_cell(rows[i][k]);
       if (beside && k >= labels && !rows[i][k].is_null()) {
+        if (as_ms) text += " fps = " + cell(milliseconds_from_fps(rows[i][k])) + " ms";
         const std::string ours = our_cell(map, i, k - labels, items);
         if (!ours.empty()) text += " / " + ours;
       }
