@@ -218,10 +218,15 @@ std::string cpu_model() {
   return "unknown";
 }
 
-nlohmann::json run_metadata(Backend backend) {
+std::string utc_time_now() {
   char when[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return when;
+}
+
+nlohmann::json run_metadata(Backend backend) {
+  const std::string when = utc_time_now();
   const std::string sha = build_git_sha();
   nlohmann::json m = {{"deepvox_version", DEEPVOX_VERSION},
                       {"git_sha", sha},

@@ -21,6 +21,8 @@ void remember_command_line(int argc, char** argv);
 // The command line given to remember_command_line, arguments joined by spaces.
 const std::string& command_line();
 nlohmann::json run_metadata(Backend backend);
+// Now, as run_metadata's "utc_time" writes it (2026-12-04T17:45:21Z).
+std::string utc_time_now();
 
 // The commit the binary was built from: 12 hex digits, "-dirty" appended when tracked files
 // differed, or "unknown".
