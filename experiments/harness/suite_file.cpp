@@ -95,10 +95,14 @@ void check_findings(JsonReader& r, const Json& findings) {
 
 // A paper table's mapping to our rows: {"table": FILE, "where": SELECTOR, "rows": [one
 // [SELECTOR, COLUMN] or null per paper row], "columns": [one SELECTOR, [SELECTOR, COLUMN] (its
-// column replaces the row's) or null per value column]}; the counts are checked against the
-// table when its file can be read here.
+// column replaces the row's) or null per value column], "paper_as": "ms_from_fps" (optional: the
+// paper's rates also shown as milliseconds)}; the counts are checked against the table when its
+// file can be read here.
 Json check_paper_map(JsonReader& r, const Json& map, const std::string& table_file) {
   r.string("where", "");
+  const std::string paper_as = r.string("paper_as", "");
+  if (!paper_as.empty() && paper_as != "ms_from_fps")
+    r.fail("paper_as", "expected \"ms_from_fps\" (or nothing)");
   const Json& rows = r.raw("rows");
   const Json& columns = r.raw("columns");
   if (!rows.is_array()) r.fail("rows", "expected one [selector, column] or null per paper row");
