@@ -190,18 +190,22 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
        << cell(t["notes"]) << "\n\n</details>\n\n";
 }
 
-void write_findings(std::ostream& md, const ExperimentSpec& e,
-                    const std::map<int, std::vector<const Row*>>& items) {
-  const std::vector<FindingResult> results = evaluate_findings(e.findings, items);
+void write_findings(std::ostream& md, const ExperimentSpec& e, const std::vector<RunView>& runs) {
+  const std::vector<FindingResult> results = evaluate_findings(e.findings, runs);
   if (results.empty()) return;
-  md << "\nFindings (mean of the first side's items below the second's = confirmed):\n\n";
+  md << "\nFindings (effect: first side / second side, or their difference for probe errors, "
+        "with its 95 % bootstrap interval; confirmed: the interval entirely on the claimed "
+        "side, refuted: entirely on the other, tie: it holds no effect; a trend tests every "
+        "step of its sweep):\n\n";
   std::vector<std::vector<std::string>> body;
   for (const FindingResult& f : results)
-    body.push_back({f.claim, f.lower_text, f.lower_items ? format_value(f.lower) : "-", f.than_text,
-                    f.than_items ? format_value(f.than) : "-", f.verdict, f.explanation});
+    body.push_back({f.claim, f.lower_text, f.lower_items ? format_value(f.lower) : "-",
+                    f.than_text.empty() ? "-" : f.than_text,
+                    f.than_items ? format_value(f.than) : "-", f.effect.empty() ? "-" : f.effect,
+                    f.basis.empty() ? "-" : f.basis, f.verdict, f.explanation});
   write_table(md,
-              {"claim", "ours (lower?)", "value", "than", "value", "verdict",
-               "why (from the data, then the suite's reading)"},
+              {"claim", "ours (lower?)", "value", "than", "value", "effect [95 % interval]",
+               "interval rests on", "verdict", "why (from the data, then the suite's reading)"},
               body);
 }
 
@@ -243,8 +247,8 @@ void write_pareto(std::ostream& md, const ExperimentSpec& e,
 }
 
 void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpec& e,
-                      const std::map<int, std::vector<const Row*>>& items,
-                      const std::string& our_machine) {
+                      const std::vector<RunView>& runs, const std::string& our_machine) {
+  const std::map<int, std::vector<const Row*>>& items = runs[0].items;
   md << "## " << e.name << " (" << e.kind << ")\n\n";
   if (!e.description.empty()) md << e.description << "\n\n";
   if (items.empty()) {
@@ -302,7 +306,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
   for (size_t p = 0; p < e.paper_files.size(); ++p)
     write_paper_table(md, e.paper_files[p], our_machine,
                       p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items);
-  write_findings(md, e, items);
+  write_findings(md, e, runs);
   write_pareto(md, e, items);
   // Image strip: the reference, then each render with its difference below.
   std::string reference;
@@ -417,7 +421,57 @@ std::string missing_list(const RunState& state, const Suite& suite) {
   return md.str();
 }
 
+// An item's samples/<item>.json, null when the folder has none (written before samples/, or a
+// driver without samples).
+Json read_samples(const fs::path& dir, int item) {
+  const fs::path file = dir / "samples" / (std::to_string(item) + ".json");
+  if (!fs::is_regular_file(file)) return Json();
+  return parse_json_file(file.string());
+}
+
+// InputError naming `other` when it is no run of the suite file `dir` ran.
+void check_same_suite(const fs::path& other, const fs::path& dir, const std::string& suite,
+                      const std::string& suite_hash) {
+  const Json meta = read_run_state(other).meta;
+  if (meta.value("suite", "") != suite || meta.value("suite_hash", "") != suite_hash)
+    throw InputError(other.string(), "not a run of the same suite file as " + dir.string() +
+                                         " (suite " + meta.value("suite", "") + ", hash " +
+                                         meta.value("suite_hash", "") + ")");
+}
+
+// The folders runs.json names (paths relative to `dir`), each checked to be a run of the same
+// suite file.
+std::vector<fs::path> other_runs(const fs::path& dir, const std::string& suite,
+                                 const std::string& suite_hash) {
+  const fs::path file = dir / "runs.json";
+  if (!fs::is_regular_file(file)) return {};
+  const Json runs = parse_json_file(file.string());
+  if (!runs.contains("runs") || !runs["runs"].is_array())
+    throw InputError(file.string(), "expected {\"runs\": [folder, ...]}");
+  std::vector<fs::path> out;
+  for (const Json& r : runs["runs"]) {
+    if (!r.is_string()) throw InputError(file.string(), "runs: expected folder names");
+    out.push_back(dir / r.get<std::string>());
+    check_same_suite(out.back(), dir, suite, suite_hash);
+  }
+  return out;
+}
+
 }  // namespace
+
+void record_runs(const std::string& folder, const std::vector<std::string>& others) {
+  const fs::path dir = fs::absolute(folder);
+  Json runs = Json::array();
+  for (const std::string& o : others) {
+    if (!fs::is_directory(o)) throw InputError(o, "no such result folder");
+    runs.push_back(fs::relative(fs::absolute(o), dir).string());
+  }
+  const Json meta = read_run_state(dir).meta;
+  for (const Json& r : runs)
+    check_same_suite(dir / r.get<std::string>(), dir, meta.value("suite", ""),
+                     meta.value("suite_hash", ""));
+  write_file_atomically(dir / "runs.json", Json{{"runs", runs}}.dump(1) + "\n");
+}
 
 void build_report(const std::string& folder) {
   const fs::path dir(folder);
@@ -430,11 +484,21 @@ void build_report(const std::string& folder) {
   for (ExperimentSpec& e : suite.experiments)
     for (std::string& paper : e.paper_files)
       if (!fs::exists(paper)) paper = resolve_data_file(paper, meta.value("suite_file", ""));
-  const std::vector<Row>& rows = state.rows;
-  std::vector<std::map<int, std::vector<const Row*>>> by_experiment(suite.experiments.size());
-  for (const Row& r : rows)
-    for (size_t e = 0; e < suite.experiments.size(); ++e)
-      if (suite.experiments[e].name == r.experiment) by_experiment[e][r.item].push_back(&r);
+  // The runs the findings' intervals rest on: this folder, then those runs.json names.
+  std::vector<RunState> states{state};
+  for (const fs::path& other : other_runs(dir, suite.name, meta.value("suite_hash", "")))
+    states.push_back(read_run_state(other));
+  std::vector<std::vector<RunView>> by_experiment(suite.experiments.size(),
+                                                  std::vector<RunView>(states.size()));
+  for (size_t run = 0; run < states.size(); ++run)
+    for (const Row& r : states[run].rows)
+      for (size_t e = 0; e < suite.experiments.size(); ++e)
+        if (suite.experiments[e].name == r.experiment) {
+          RunView& view = by_experiment[e][run];
+          view.items[r.item].push_back(&r);
+          if (!view.samples.count(r.item))
+            view.samples[r.item] = read_samples(states[run].dir, r.item);
+        }
 
   bool plots_asked = false;
   for (const ExperimentSpec& e : suite.experiments)
@@ -456,7 +520,12 @@ void build_report(const std::string& folder) {
     md << "- size: SMOKE (each experiment's `smoke` overrides: a correctness run, not a "
           "measurement)\n";
   md << "- timings: one warm-up, then " << cell(meta["repeat"])
-     << " repetitions, median (min, max in rows.csv)\n";
+     << " repetitions, median (min, max in rows.csv; every repetition in samples/)\n";
+  md << "- findings' intervals rest on " << states.size() << " independent process run"
+     << (states.size() == 1 ? " (this folder)" : "s (this folder and those runs.json names)")
+     << (states.size() < 3 ? "; fewer than 3: drift between runs is not in the timing intervals"
+                           : "")
+     << "\n";
   md << status_lines(state, dir);
   if (meta.contains("scale_out")) md << scale_out_line(meta);
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)

@@ -3,13 +3,16 @@
 // the method's stats, one warm-up and `repeat` timed repetitions with a fresh method each; the
 // render (raster renderer at the setting's size) timed the same way; bytes; the transmittance
 // at the run's probe points against the exact oracle (|T' - T| max, mean, p99, split into
-// surface and medium points); image error against the reference render, and PNGs (the
+// surface and medium points, or any other probe class by its name; every probe's signed error
+// goes to the item's samples); image error against the reference render, and PNGs (the
 // render and its difference) for the report's image strip. `frame_ms` (median generation plus
 // median render) is the one time a Pareto front of error against time takes. The timed
 // generation and frame are shadow_measure.h's, which bench_dsm and bench_renderer call too.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <string>
 #include <utility>
 
 #include "experiments/harness/driver.h"
@@ -146,6 +149,10 @@ class ShadowDriver : public Driver {
     render.emit(rows, "");
     rows.add("frame_ms", "value",
              spread_of(generate_samples).median + spread_of(render_samples).median, "ms");
+    std::vector<double> frame_samples;
+    for (size_t k = 0; k < generate_samples.size(); ++k)
+      frame_samples.push_back(generate_samples[k] + render_samples[k]);
+    rows.samples()["timings"]["frame_ms"] = frame_samples;
     rows.add("render_flagged_pixels", "value",
              double(last.render.counters.overflow_pixels + last.render.counters.oracle_flag_pixels),
              "count");
@@ -164,17 +171,27 @@ class ShadowDriver : public Driver {
     const ProbeResults r = probe_transmittance(ctx.backend, ctx.scenes->data(item.scene_path),
                                                method, probes.points.points);
     rows.add("probe_ms", "value", r.milliseconds, "ms");
-    std::vector<double> surface, medium, all;
+    // Signed errors per class name (every class of probe_points.h, in point order), kept as
+    // samples for the findings' paired bootstrap; the rows summarise |error|.
+    std::map<std::string, std::vector<double>> signed_errors;
+    std::vector<double> all;
     size_t flagged = 0;
     for (size_t i = 0; i < r.transmittance.size(); ++i) {
-      const double e = std::abs(r.transmittance[i] - probes.exact[i]);
-      const ProbeClass c = probes.points.classes[i / size_t(r.light_count)];
-      (c == ProbeClass::surface ? surface : medium).push_back(e);
-      all.push_back(e);
+      const double e = r.transmittance[i] - probes.exact[i];
+      signed_errors[to_string(probes.points.classes[i / size_t(r.light_count)])].push_back(e);
+      all.push_back(std::abs(e));
       flagged += r.flags[i] != 0 || probes.exact_flags[i] != 0;
     }
-    emit_errors(rows, "probe_error_surface", surface);
-    emit_errors(rows, "probe_error_medium", medium);
+    std::vector<std::string> names{"surface", "medium"};  // rows even when empty, first
+    for (const auto& [name, errors] : signed_errors)
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    for (const std::string& name : names) {
+      const std::vector<double>& errors = signed_errors[name];
+      std::vector<double> absolute;
+      for (double e : errors) absolute.push_back(std::abs(e));
+      emit_errors(rows, "probe_error_" + name, std::move(absolute));
+      rows.samples()["probe_errors"][name] = errors;
+    }
     emit_errors(rows, "probe_error_all", all);
     rows.add("probe_flagged", "value", double(flagged), "count");
   }

@@ -77,19 +77,43 @@ void check_finding_side(JsonReader& r, const Json& side, const std::string& key)
     r.fail(key, "expected [\"selector\", \"metric:stat\"]");
 }
 
+// A comparison {claim, lower, than, why, why_not} or a trend {claim, trend, over, selector,
+// column, levels, from, why, why_not} (findings.h).
 void check_findings(JsonReader& r, const Json& findings) {
   if (!findings.is_array()) r.fail("findings", "expected an array of claims");
   for (size_t i = 0; i < findings.size(); ++i) {
     const std::string at = "findings/" + std::to_string(i);
     const Json& f = findings[i];
-    if (!f.is_object() || !f.contains("claim") || !f["claim"].is_string() || !f.contains("lower") ||
-        !f.contains("than"))
-      r.fail(at, "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]}");
+    if (!f.is_object() || !f.contains("claim") || !f["claim"].is_string())
+      r.fail(at,
+             "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]} or {\"claim\": "
+             "..., \"trend\": ..., \"over\": ..., \"selector\": ..., \"column\": ...}");
+    const bool trend = f.contains("trend");
+    const std::vector<std::string> known =
+        trend ? std::vector<std::string>{"claim",  "trend", "over", "selector", "column",
+                                         "levels", "from",  "why",  "why_not"}
+              : std::vector<std::string>{"claim", "lower", "than", "why", "why_not"};
     for (const auto& [key, v] : f.items())
-      if (key != "claim" && key != "lower" && key != "than" && key != "why" && key != "why_not")
-        r.fail(at + "/" + key, "unknown key (known: claim, lower, than, why, why_not)");
-    check_finding_side(r, f["lower"], at + "/lower");
-    check_finding_side(r, f["than"], at + "/than");
+      if (std::find(known.begin(), known.end(), key) == known.end()) {
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        r.fail(at + "/" + key, "unknown key (known: " + list + ")");
+      }
+    if (!trend) {
+      if (!f.contains("lower") || !f.contains("than"))
+        r.fail(at, "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]}");
+      check_finding_side(r, f["lower"], at + "/lower");
+      check_finding_side(r, f["than"], at + "/than");
+      continue;
+    }
+    const Json& t = f["trend"];
+    if (!t.is_string() || (t != "increasing" && t != "decreasing" && t != "plateau"))
+      r.fail(at + "/trend", "expected \"increasing\", \"decreasing\" or \"plateau\"");
+    for (const char* key : {"over", "selector", "column"})
+      if (!f.contains(key) || !f[key].is_string()) r.fail(at + "/" + key, "expected a string");
+    if (f.contains("levels") && (!f["levels"].is_array() || f["levels"].size() < 2))
+      r.fail(at + "/levels", "expected an array of at least two levels");
+    if (f.contains("from") && t != "plateau") r.fail(at + "/from", "only for a plateau");
   }
 }
 
