@@ -21,19 +21,6 @@ double mean_of(const std::vector<double>& v) {
   return v.empty() ? 0.0 : sum / double(v.size());
 }
 
-// The side's mean: the mean over items of each item's mean over all its samples.
-double side_mean(const std::vector<RunSamples>& side) {
-  double sum = 0.0;
-  for (const RunSamples& item : side) {
-    double s = 0.0;
-    size_t n = 0;
-    for (const auto& run : item)
-      for (double x : run) s += x, ++n;
-    sum += n ? s / double(n) : 0.0;
-  }
-  return sum / double(side.size());
-}
-
 double effect_of(double first, double second, bool ratio) {
   return ratio ? first / second : first - second;
 }
@@ -73,6 +60,18 @@ double statistic_of(std::vector<double>& values, const std::string& statistic) {
 }
 
 }  // namespace
+
+double side_mean(const std::vector<RunSamples>& side) {
+  double sum = 0.0;
+  for (const RunSamples& item : side) {
+    double s = 0.0;
+    size_t n = 0;
+    for (const auto& run : item)
+      for (double x : run) s += x, ++n;
+    sum += n ? s / double(n) : 0.0;
+  }
+  return side.empty() ? 0.0 : sum / double(side.size());
+}
 
 EffectInterval cluster_bootstrap(const std::vector<RunSamples>& first,
                                  const std::vector<RunSamples>& second, uint64_t seed) {

@@ -34,6 +34,8 @@ constexpr int kResamples = 2000;
 // Per item: per run the samples of that run ([run][sample]). Items without samples are left
 // out by the caller; both sides non-empty.
 using RunSamples = std::vector<std::vector<double>>;
+// A side's mean: the mean over its items of each item's mean over all its samples.
+double side_mean(const std::vector<RunSamples>& side);
 EffectInterval cluster_bootstrap(const std::vector<RunSamples>& first,
                                  const std::vector<RunSamples>& second, uint64_t seed);
 

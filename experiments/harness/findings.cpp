@@ -411,6 +411,8 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
                                  "(a result folder from before samples/)");
   c.interval = cluster_bootstrap(sa, sb, seed);
   c.has_interval = true;
+  c.first = side_mean(sa);
+  c.second = side_mean(sb);
   c.basis = std::to_string(max_runs) + " run" + (max_runs == 1 ? "" : "s") + " x " +
             (timing ? std::to_string(repetitions) + " repetitions" : "1 value") + ", " + items_text;
   if (max_runs < 3 && timing) c.basis += " (fewer than 3 runs: drift between runs not in it)";
@@ -456,9 +458,14 @@ std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
                         : "first side " + std::string(difference < 0.0 ? "lower" : "higher") +
                               " by " + number(std::abs(difference));
     if (c.second != 0.0) r.explanation += " (" + number(c.first / c.second) + "x)";
-    if (f["lower"][1] == f["than"][1])
-      r.explanation +=
-          pass_breakdown(lower_selector, than_selector, lower_column, difference, runs[0].items);
+    if (f["lower"][1] == f["than"][1]) {
+      // The passes are read from the first run's rows: so is the total they split.
+      const double rows_difference =
+          selection_mean(lower_selector, lower_column, runs[0].items).mean -
+          selection_mean(than_selector, than_column, runs[0].items).mean;
+      r.explanation += pass_breakdown(lower_selector, than_selector, lower_column,
+                                      rows_difference, runs[0].items);
+    }
     r.explanation += reading(f, r.verdict == "confirmed");
     out.push_back(std::move(r));
   }

@@ -48,7 +48,9 @@ struct RunView {
 struct Comparison {
   std::string verdict;  // "confirmed" (first below second), "refuted", "tie", "not comparable
                         // (...)", "defect (...)"
-  double first = 0.0, second = 0.0;  // means over the items (first run's rows)
+  // Means over the items: of every sample of every run where the interval rests on samples,
+  // else of the first run's rows.
+  double first = 0.0, second = 0.0;
   int first_items = 0, second_items = 0;
   bool has_interval = false;
   EffectInterval interval;
