@@ -74,9 +74,10 @@ double side_mean(const std::vector<RunSamples>& side) {
 }
 
 EffectInterval cluster_bootstrap(const std::vector<RunSamples>& first,
-                                 const std::vector<RunSamples>& second, uint64_t seed) {
+                                 const std::vector<RunSamples>& second, uint64_t seed,
+                                 bool difference) {
   const double a = side_mean(first), b = side_mean(second);
-  const bool ratio = b != 0.0;
+  const bool ratio = !difference && b != 0.0;
   size_t runs = 1;
   for (const auto* side : {&first, &second})
     for (const RunSamples& item : *side) runs = std::max(runs, item.size());

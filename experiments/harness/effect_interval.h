@@ -36,8 +36,10 @@ constexpr int kResamples = 2000;
 using RunSamples = std::vector<std::vector<double>>;
 // A side's mean: the mean over its items of each item's mean over all its samples.
 double side_mean(const std::vector<RunSamples>& side);
+// `difference`: the effect is the difference of the means (an overhead), not their ratio.
 EffectInterval cluster_bootstrap(const std::vector<RunSamples>& first,
-                                 const std::vector<RunSamples>& second, uint64_t seed);
+                                 const std::vector<RunSamples>& second, uint64_t seed,
+                                 bool difference = false);
 
 // One item's signed errors at its probe points, and its pairing group (items of one group have
 // the same points, in the same order).

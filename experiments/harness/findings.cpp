@@ -27,6 +27,7 @@ bool term_matches(const std::string& term, const Row& r) {
   const std::string key = term.substr(0, eq), value = term.substr(eq + 1);
   if (key == "strategy") return r.strategy == value;
   if (key == "scene") return r.scene.find(value) != std::string::npos;
+  if (key == "experiment") return r.experiment == value;
   for (const std::string& item : words(r.params))
     if (item == term) return true;
   return false;
@@ -325,13 +326,15 @@ FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>
     r.verdict = problem;
   else if (tested == 0)
     r.verdict = "not comparable (no step from level " + levels[from] + " on)";
-  else
-    r.verdict = against ? "refuted" : along == tested ? "confirmed" : "tie";
+  else if (against)
+    r.verdict = "refuted";
+  else  // a plateau whose every step holds "no effect" is a tie, as the claim says, never more
+    r.verdict = along == tested && trend != "plateau" ? "confirmed" : "tie";
   r.explanation = std::to_string(along) + " of " + std::to_string(tested) + " tested steps " +
                   (trend == "plateau" ? "flat (from " + over + "=" + levels[from] + ")"
                                       : "in the claimed direction") +
                   (against ? ", " + std::to_string(against) + " against it" : "") +
-                  reading(f, r.verdict == "confirmed");
+                  reading(f, problem.empty() && tested > 0 && along == tested);
   return r;
 }
 
@@ -345,7 +348,7 @@ std::string interval_text(const EffectInterval& iv) {
 
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
-                              const std::vector<RunView>& runs, uint64_t seed) {
+                              const std::vector<RunView>& runs, uint64_t seed, bool difference) {
   Comparison c;
   const RunView& run = runs[0];
   const SelectionMean a = selection_mean(first_selector, first_column, run.items);
@@ -409,7 +412,7 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
     return not_comparable(c, std::to_string(missing) +
                                  " items without per-repetition samples: interval unavailable "
                                  "(a result folder from before samples/)");
-  c.interval = cluster_bootstrap(sa, sb, seed);
+  c.interval = cluster_bootstrap(sa, sb, seed, difference);
   c.has_interval = true;
   c.first = side_mean(sa);
   c.second = side_mean(sb);
@@ -463,8 +466,8 @@ std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
       const double rows_difference =
           selection_mean(lower_selector, lower_column, runs[0].items).mean -
           selection_mean(than_selector, than_column, runs[0].items).mean;
-      r.explanation += pass_breakdown(lower_selector, than_selector, lower_column,
-                                      rows_difference, runs[0].items);
+      r.explanation += pass_breakdown(lower_selector, than_selector, lower_column, rows_difference,
+                                      runs[0].items);
     }
     r.explanation += reading(f, r.verdict == "confirmed");
     out.push_back(std::move(r));

@@ -14,16 +14,18 @@
 //   k+1 against level k. Increasing / decreasing: every step's interval above / below "no
 //   effect"; plateau: every step from the level `from` on (default: the second level) contains
 //   "no effect".
-// Verdicts: "confirmed" (the interval entirely on the claimed side; every step for a trend),
-// "refuted" (entirely on the other side; a step of a trend against it, or a plateau step that
-// moves), "tie" (the interval contains "no effect", whatever the claim), "not comparable (...)"
+// Verdicts: "confirmed" (the interval entirely on the claimed side; every step for a monotone
+// trend), "refuted" (entirely on the other side; a step of a trend against it, or a plateau step
+// that moves), "tie" (the interval contains "no effect", whatever the claim: a plateau whose
+// every step holds no effect is a tie, as it claims, never "confirmed"), "not comparable (...)"
 // (a side without items, units that differ, no samples to build an interval: a folder from
 // before samples/), "defect (...)" (an item of a side has a row whose metric names an
 // "overflow" or "dropped" count above 0: its measurement lost data). A selector is
-// space-separated `key=value` terms that all must hold: `strategy=NAME`, `scene=SUBSTRING`, or a
-// parameter (`storage=chunked`); an empty selector matches every item. The explanation is built
-// from the data (difference and ratio of the means and, for a time column `X_ms`, which of its
-// timed passes `X.*_ms` carries the difference), then the suite's `why` (confirmed) or `why_not`.
+// space-separated `key=value` terms that all must hold: `strategy=NAME`, `scene=SUBSTRING`,
+// `experiment=NAME`, or a parameter (`storage=chunked`); an empty selector matches every item. The
+// explanation is built from the data (difference and ratio of the means and, for a time column
+// `X_ms`, which of its timed passes `X.*_ms` carries the difference), then the suite's `why`
+// (confirmed) or `why_not`.
 #pragma once
 
 #include <map>
@@ -87,9 +89,11 @@ SelectionMean selection_mean(const std::string& selector, const Column& column,
 
 // The first selection against the second on `runs` (runs[0]: the folder reported; at least
 // one run); `seed` makes the bootstrap reproducible.
+// `difference`: the effect is the difference of the means, not their ratio.
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
-                              const std::vector<RunView>& runs, uint64_t seed);
+                              const std::vector<RunView>& runs, uint64_t seed,
+                              bool difference = false);
 
 // `findings` as validated by the suite loader.
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,

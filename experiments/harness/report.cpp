@@ -105,27 +105,117 @@ void write_table(std::ostream& md, const std::vector<std::string>& header,
   md << "\n";
 }
 
-// Ours for one value cell of a mapped paper table: the mean of the row's column over the items
-// matching the map's `where`, the row's and the column's selectors; empty when unmapped or
-// nothing matches.
-std::string our_cell(const Json& map, size_t row, size_t column,
-                     const std::map<int, std::vector<const Row*>>& items) {
+// The selection behind one value cell of a mapped paper table: the map's `where`, the row's and
+// the column's selectors, and the row's column (or the column's own); false when unmapped.
+bool cell_selection(const Json& map, size_t row, size_t column, std::string& selector,
+                    Column& metric) {
   const Json& r = map["rows"][row];
   const Json& c = map["columns"][column];
-  if (r.is_null() || c.is_null()) return "";
+  if (r.is_null() || c.is_null()) return false;
   const std::string column_selector =
       c.is_string() ? c.get<std::string>() : c[0].get<std::string>();
-  const std::string metric = c.is_array() ? c[1].get<std::string>() : r[1].get<std::string>();
-  const std::string selector =
-      map.value("where", "") + " " + r[0].get<std::string>() + " " + column_selector;
-  const SelectionMean m = selection_mean(selector, parse_column(metric), items);
+  metric = parse_column(c.is_array() ? c[1].get<std::string>() : r[1].get<std::string>());
+  selector = map.value("where", "") + " " + r[0].get<std::string>() + " " + column_selector;
+  return true;
+}
+
+// Ours for one value cell of a mapped paper table: the mean of the cell's column over the items
+// of its selection; empty when unmapped or nothing matches.
+std::string our_cell(const Json& map, size_t row, size_t column,
+                     const std::map<int, std::vector<const Row*>>& items) {
+  std::string selector;
+  Column metric;
+  if (!cell_selection(map, row, column, selector, metric)) return "";
+  const SelectionMean m = selection_mean(selector, metric, items);
   return m.items ? format_value(m.mean) : "";
+}
+
+// The paper's number in a cell, NaN for a range, text or null.
+double paper_number(const Json& v) {
+  return v.is_number() ? v.get<double>() : std::nan("");
+}
+
+// The shape table of a mapped paper table with a "shape" entry (suite-format.md): the paper's
+// ratios beside ours with our intervals (between two value columns of a row: across the sweep;
+// between two rows of a column: within the table) and the overhead above the no-shadow frame,
+// then the suite's sentence on what the machine change predicts. `runs`: every experiment's
+// items, so that a baseline in another experiment can be selected (`experiment=NAME`).
+void write_shape_table(std::ostream& md, const Json& t, const Json& map,
+                       const std::string& experiment, const std::vector<RunView>& runs) {
+  const Json& shape = map["shape"];
+  const size_t labels = size_t(t.value("label_columns", 1));
+  const Json& rows = t["rows"];
+  const Json& columns = t["columns"];
+  const auto row_name = [&](size_t r) {
+    return labels > 0 ? cell(rows[r][labels - 1]) : "row " + std::to_string(r + 1);
+  };
+  const auto column_name = [&](size_t c) { return cell(columns[labels + c]); };
+  std::vector<std::vector<std::string>> body;
+  // One line: a paper number beside our comparison of two selections.
+  const auto line = [&](const std::string& what, double paper, const std::string& first_selector,
+                        const Column& first, const std::string& second_selector,
+                        const Column& second, bool difference) {
+    const Comparison c =
+        compare_selections("experiment=" + experiment + " " + first_selector, first,
+                           second_selector, second, runs, seed_of(experiment + what), difference);
+    body.push_back({what, std::isnan(paper) ? "–" : format_value(paper),
+                    c.has_interval ? interval_text(c.interval) : c.verdict,
+                    c.basis.empty() ? "-" : c.basis});
+  };
+  const auto pairs = [&](const char* key, bool of_rows) {
+    for (const Json& pair : shape.value(key, Json::array())) {
+      const size_t a = pair[0].get<size_t>(), b = pair[1].get<size_t>();
+      const size_t lines = of_rows ? columns.size() - labels : rows.size();
+      for (size_t k = 0; k < lines; ++k) {
+        const size_t ra = of_rows ? a : k, rb = of_rows ? b : k;
+        const size_t ca = of_rows ? k : a, cb = of_rows ? k : b;
+        std::string sa, sb;
+        Column ma, mb;
+        if (!cell_selection(map, ra, ca, sa, ma) || !cell_selection(map, rb, cb, sb, mb)) continue;
+        const std::string what =
+            of_rows ? row_name(ra) + " / " + row_name(rb) + ", " + column_name(ca)
+                    : row_name(ra) + ", " + column_name(ca) + " / " + column_name(cb);
+        line(what, paper_number(rows[ra][labels + ca]) / paper_number(rows[rb][labels + cb]), sa,
+             ma, "experiment=" + experiment + " " + sb, mb, false);
+      }
+    }
+  };
+  pairs("column_pairs", false);
+  pairs("row_pairs", true);
+  if (shape.contains("baseline")) {
+    const Json& base = shape["baseline"];
+    const Column base_column = parse_column(base["column"].get<std::string>());
+    for (const Json& r : base["rows"]) {
+      const size_t row = r.get<size_t>();
+      for (size_t c = 0; c + labels < columns.size(); ++c) {
+        std::string selector;
+        Column metric;
+        if (!cell_selection(map, row, c, selector, metric)) continue;
+        line(row_name(row) + ", " + column_name(c) + " − the no-shadow frame",
+             paper_number(rows[row][labels + c]) - base["paper"].get<double>(), selector, metric,
+             base["selector"].get<std::string>(), base_column, true);
+      }
+    }
+  }
+  if (body.empty()) return;
+  md << "Shape (ratios within the table and across the sweep, paper beside ours with our 95 % "
+        "interval"
+     << (shape.contains("baseline")
+             ? "; overhead above the no-shadow frame: the paper's " +
+                   format_value(shape["baseline"]["paper"].get<double>()) + " ms (" +
+                   shape["baseline"].value("source", std::string("paper")) + ") against ours, `" +
+                   shape["baseline"]["selector"].get<std::string>() + "`"
+             : std::string())
+     << "):\n\n";
+  write_table(md, {"ratio", "paper", "ours [95 % interval]", "interval rests on"}, body);
+  if (shape.contains("machine")) md << "Machine change: " << cell(shape["machine"]) << "\n\n";
 }
 
 // A paper table file (docs/paper-tables.md) as printed, with both machines named; with a map
 // (suite-format.md) every mapped value cell shows "paper / ours".
 void write_paper_table(std::ostream& md, const std::string& file, const std::string& our_machine,
-                       const Json& map, const std::map<int, std::vector<const Row*>>& items) {
+                       const Json& map, const std::map<int, std::vector<const Row*>>& items,
+                       const std::string& experiment, const std::vector<RunView>& all_runs) {
   Json t;
   try {
     t = parse_json_file(file);
@@ -185,6 +275,7 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
     body.push_back(std::move(line));
   }
   if (!header.empty()) write_table(md, header, body);
+  if (beside && map.contains("shape")) write_shape_table(md, t, map, experiment, all_runs);
   if (t.contains("notes"))
     md << "<details><summary>paper table notes (setup mapping, formulas, ambiguities)</summary>\n\n"
        << cell(t["notes"]) << "\n\n</details>\n\n";
@@ -247,7 +338,8 @@ void write_pareto(std::ostream& md, const ExperimentSpec& e,
 }
 
 void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpec& e,
-                      const std::vector<RunView>& runs, const std::string& our_machine) {
+                      const std::vector<RunView>& runs, const std::vector<RunView>& all_runs,
+                      const std::string& our_machine) {
   const std::map<int, std::vector<const Row*>>& items = runs[0].items;
   md << "## " << e.name << " (" << e.kind << ")\n\n";
   if (!e.description.empty()) md << e.description << "\n\n";
@@ -305,7 +397,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
   }
   for (size_t p = 0; p < e.paper_files.size(); ++p)
     write_paper_table(md, e.paper_files[p], our_machine,
-                      p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items);
+                      p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items, e.name, all_runs);
   write_findings(md, e, runs);
   write_pareto(md, e, items);
   // Image strip: the reference, then each render with its difference below.
@@ -490,15 +582,18 @@ void build_report(const std::string& folder) {
     states.push_back(read_run_state(other));
   std::vector<std::vector<RunView>> by_experiment(suite.experiments.size(),
                                                   std::vector<RunView>(states.size()));
+  std::vector<RunView> all_runs(states.size());
   for (size_t run = 0; run < states.size(); ++run)
-    for (const Row& r : states[run].rows)
+    for (const Row& r : states[run].rows) {
+      RunView& all = all_runs[run];
+      all.items[r.item].push_back(&r);
+      if (!all.samples.count(r.item)) all.samples[r.item] = read_samples(states[run].dir, r.item);
       for (size_t e = 0; e < suite.experiments.size(); ++e)
         if (suite.experiments[e].name == r.experiment) {
-          RunView& view = by_experiment[e][run];
-          view.items[r.item].push_back(&r);
-          if (!view.samples.count(r.item))
-            view.samples[r.item] = read_samples(states[run].dir, r.item);
+          by_experiment[e][run].items[r.item].push_back(&r);
+          by_experiment[e][run].samples[r.item] = all.samples[r.item];
         }
+    }
 
   bool plots_asked = false;
   for (const ExperimentSpec& e : suite.experiments)
@@ -538,7 +633,7 @@ void build_report(const std::string& folder) {
   md << "Command (command.txt; a merged folder lists its shards' too):\n\n```\n"
      << command.str() << "```\n\n";
   for (size_t e = 0; e < suite.experiments.size(); ++e)
-    write_experiment(md, dir, suite.experiments[e], by_experiment[e], our_machine);
+    write_experiment(md, dir, suite.experiments[e], by_experiment[e], all_runs, our_machine);
   try {
     write_file_atomically(dir / "report.md", md.str());
   } catch (const ResultWriteError& e) {

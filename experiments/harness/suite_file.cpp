@@ -121,10 +121,46 @@ void check_findings(JsonReader& r, const Json& findings) {
 // [SELECTOR, COLUMN] or null per paper row], "columns": [one SELECTOR, [SELECTOR, COLUMN] (its
 // column replaces the row's) or null per value column]}; the counts are checked against the
 // table when its file can be read here.
+// A paper map's "shape" (report.cpp's shape table): {"machine": text, "column_pairs": [[a, b],
+// ...], "row_pairs": [[a, b], ...], "baseline": {"selector", "column", "paper", "source",
+// "rows"}}, indices into the map's rows and value columns.
+void check_shape(JsonReader& r, const Json& shape, size_t rows, size_t columns) {
+  if (!shape.is_object()) r.fail("shape", "expected an object");
+  const auto index_pairs = [&](const char* key, size_t limit) {
+    const Json& pairs = shape.value(key, Json::array());
+    if (!pairs.is_array()) r.fail(std::string("shape/") + key, "expected [[a, b], ...]");
+    for (const Json& p : pairs)
+      if (!p.is_array() || p.size() != 2 || !p[0].is_number_unsigned() ||
+          !p[1].is_number_unsigned() || p[0].get<size_t>() >= limit || p[1].get<size_t>() >= limit)
+        r.fail(std::string("shape/") + key,
+               "expected pairs of indices below " + std::to_string(limit));
+  };
+  for (const auto& [key, v] : shape.items())
+    if (key != "machine" && key != "column_pairs" && key != "row_pairs" && key != "baseline")
+      r.fail("shape/" + key, "unknown key (known: machine, column_pairs, row_pairs, baseline)");
+  if (shape.contains("machine") && !shape["machine"].is_string())
+    r.fail("shape/machine", "expected a sentence");
+  index_pairs("column_pairs", columns);
+  index_pairs("row_pairs", rows);
+  if (!shape.contains("baseline")) return;
+  const Json& b = shape["baseline"];
+  if (!b.is_object() || !b.contains("selector") || !b["selector"].is_string() ||
+      !b.contains("column") || !b["column"].is_string() || !b.contains("paper") ||
+      !b["paper"].is_number() || !b.contains("rows") || !b["rows"].is_array() ||
+      (b.contains("source") && !b["source"].is_string()))
+    r.fail("shape/baseline",
+           "expected {\"selector\", \"column\", \"paper\": number, \"source\", \"rows\": [...]}");
+  for (const Json& i : b["rows"])
+    if (!i.is_number_unsigned() || i.get<size_t>() >= rows)
+      r.fail("shape/baseline/rows", "expected row indices below " + std::to_string(rows));
+}
+
 Json check_paper_map(JsonReader& r, const Json& map, const std::string& table_file) {
   r.string("where", "");
   const Json& rows = r.raw("rows");
   const Json& columns = r.raw("columns");
+  if (r.has("shape") && rows.is_array() && columns.is_array())
+    check_shape(r, r.raw("shape"), rows.size(), columns.size());
   if (!rows.is_array()) r.fail("rows", "expected one [selector, column] or null per paper row");
   for (size_t i = 0; i < rows.size(); ++i)
     if (!rows[i].is_null()) check_finding_side(r, rows[i], "rows/" + std::to_string(i));
