@@ -158,7 +158,7 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
     const Comparison c =
         compare_selections("experiment=" + experiment + " " + first_selector, first,
                            second_selector, second, runs, seed_of(experiment + what), difference);
-    body.push_back({what, std::isnan(paper) ? "–" : format_value(paper),
+    body.push_back({what, std::isnan(paper) ? "–" : format_value(paper) + (difference ? "" : "x"),
                     c.has_interval ? interval_text(c.interval) : c.verdict,
                     c.basis.empty() ? "-" : c.basis});
   };

@@ -1,8 +1,9 @@
 // The findings' verdicts from effect sizes with 95 % intervals (findings.h, effect_interval.h),
 // on synthetic samples: a confirmation, a refutation, a tie (also one that only drift between
 // runs makes a tie), paired probe errors, a monotone trend and a plateau, a defect, claims that
-// are not comparable, a reproducible bootstrap; and a report over a result folder from before
-// samples/ (it still builds, its timing claims say the interval is unavailable).
+// are not comparable, a reproducible bootstrap; a report over a result folder from before
+// samples/ (it still builds, its timing claims say the interval is unavailable) and over three
+// recorded runs; a shape table (the paper's ratios beside ours with intervals).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -352,6 +353,64 @@ TEST_F(OldFolders, ReportWithoutSamplesStillBuilds) {
   md = report();
   EXPECT_NE(md.find("rest on 3 independent process runs"), std::string::npos) << md;
   EXPECT_THROW(record_runs(dir.string(), {(dir_ / "nowhere").string()}), InputError);
+}
+
+// A mapped paper table with a "shape": the paper's ratios beside ours with intervals, across the
+// sweep, within the table and above the no-shadow frame of another experiment.
+TEST_F(OldFolders, ShapeTablePutsThePapersRatiosBesideOurs) {
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
+  write("shape-table.json", R"({"source": "Tiny 2024, Table 2", "machine": "an abacus",
+    "units": {"*": "ms"}, "columns": ["", "16", "32"],
+    "rows": [["gen", 10, 20], ["render", 50, 55]]})");
+  const std::string suite = write("shape.json", R"({"suite": "tiny-shape", "repeat": 2,
+    "experiments": [
+     {"name": "base", "kind": "shadow", "scene": ")" +
+                                                    scene + R"(", "strategy": "none",
+      "settings": {"width": 32, "height": 24, "probe_points": 0, "images": 0}},
+     {"name": "dsm", "kind": "shadow", "scene": ")" +
+                                                    scene + R"(", "strategy": "dsm",
+      "sweep": {"res": [16, 32]},
+      "settings": {"width": 32, "height": 24, "probe_points": 0, "images": 0},
+      "paper": [{"table": "shape-table.json", "where": "",
+                 "rows": [["", "generate_ms:median"], ["", "render_ms:median"]],
+                 "columns": ["res=16", "res=32"],
+                 "shape": {"machine": "Abacus to silicon predicts nothing.",
+                           "column_pairs": [[1, 0]], "row_pairs": [[1, 0]],
+                           "baseline": {"selector": "experiment=base",
+                                        "column": "render_ms:median", "paper": 43,
+                                        "source": "Tiny's text", "rows": [1]}}}]}]})");
+  SuiteOptions o = cpu_options(suite);
+  const SuiteOutcome r = run_suite(o);
+  ASSERT_EQ(r.exit_code, 0);
+  std::ifstream in(fs::path(r.folder) / "report.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string md = text.str();
+  EXPECT_NE(md.find("overhead above the no-shadow frame: the paper's 43 ms (Tiny's text)"),
+            std::string::npos)
+      << md;
+  for (const char* line :
+       {"| gen, 32 / 16 | 2x | ", "| render, 32 / 16 | 1.1x | ", "| render / gen, 16 | 5x | ",
+        "| render / gen, 32 | 2.75x | ", "| render, 16 − the no-shadow frame | 7 | ",
+        "| render, 32 − the no-shadow frame | 12 | "}) {
+    const size_t at = md.find(line);
+    ASSERT_NE(at, std::string::npos) << line << "\n" << md;
+    const std::string rest = md.substr(at, md.find('\n', at) - at);
+    EXPECT_NE(rest.find(" ["), std::string::npos) << rest;  // ours with its interval
+    EXPECT_NE(rest.find("1 run x 2 repetitions"), std::string::npos) << rest;
+  }
+  EXPECT_NE(md.find("Machine change: Abacus to silicon predicts nothing."), std::string::npos)
+      << md;
+  // A shape that names a row the map lacks is rejected when the suite loads.
+  const std::string text_of_suite = [&] {
+    std::ifstream f(suite);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  }();
+  std::string broken = text_of_suite;
+  broken.replace(broken.find("\"rows\": [1]"), 12, "\"rows\": [5]");
+  EXPECT_THROW(run_suite(cpu_options(write("bad-shape.json", broken))), InputError);
 }
 
 }  // namespace
