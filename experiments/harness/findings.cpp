@@ -134,20 +134,33 @@ bool is_error_column(const Column& c) {
          (c.stat == "mean" || c.stat == "max" || c.stat == "p99");
 }
 
-// "item 4: stats.storage.overflowed_texels = 12" for the first row of `items` (any run) whose
-// metric names an overflow or a drop with a count above 0; empty when none.
-std::string lossy_row(const std::vector<int>& items, const std::vector<RunView>& runs) {
-  for (const RunView& run : runs)
-    for (int index : items) {
+// "item 4: stats.storage.overflowed_texels = 8816, stats.storage.overflow_max_error = 1; 3 of 8
+// items lossy": the rows (any run) whose metric names an overflow or a drop with a value above 0,
+// those of the first such item named; empty when no item has one.
+std::string lossy_rows(const std::vector<int>& items, const std::vector<RunView>& runs) {
+  std::string first;
+  int lossy = 0;
+  for (int index : items) {
+    std::string named;
+    for (const RunView& run : runs) {
       const auto it = run.items.find(index);
       if (it == run.items.end()) continue;
       for (const Row* r : it->second)
         if ((r->metric.find("overflow") != std::string::npos ||
              r->metric.find("dropped") != std::string::npos) &&
-            r->value > 0.0)
-          return "item " + std::to_string(index) + ": " + r->metric + " = " + number(r->value);
+            r->value > 0.0 && named.find(r->metric + " ") == std::string::npos)
+          named += (named.empty() ? "" : ", ") + r->metric + " = " +
+                   (r->value == std::floor(r->value) && r->value < 1e15
+                        ? std::to_string(int64_t(r->value))
+                        : number(r->value));
     }
-  return "";
+    if (named.empty()) continue;
+    if (first.empty()) first = "item " + std::to_string(index) + ": " + named;
+    ++lossy;
+  }
+  if (first.empty()) return "";
+  return first + "; " + std::to_string(lossy) + " of " + std::to_string(items.size()) +
+         " items lossy";
 }
 
 // The signed errors of a probe class in an item's samples ("all": every class, by name).
@@ -364,7 +377,7 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
   const std::vector<int> second = matching_items(second_selector, second_column, run);
   std::vector<int> both = first;
   both.insert(both.end(), second.begin(), second.end());
-  if (const std::string lossy = lossy_row(both, runs); !lossy.empty()) {
+  if (const std::string lossy = lossy_rows(both, runs); !lossy.empty()) {
     c.verdict = "defect (" + lossy + ": the measurement lost data)";
     return c;
   }

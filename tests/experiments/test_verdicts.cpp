@@ -241,7 +241,8 @@ TEST(Verdicts, LossyRowsMakeADefect) {
   runs.value(1, "storage=texture3d", "stats.tiles.dropped_tiles", 0);  // 0: no loss
   const FindingResult f = one(kChunkedFaster, runs.views());
   EXPECT_EQ(f.verdict,
-            "defect (item 0: stats.storage.overflowed_texels = 12: the measurement lost data)");
+            "defect (item 0: stats.storage.overflowed_texels = 12; 1 of 2 items lossy: the "
+            "measurement lost data)");
   EXPECT_EQ(f.effect, "-");
 }
 
