@@ -158,9 +158,16 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
     const Comparison c =
         compare_selections("experiment=" + experiment + " " + first_selector, first,
                            second_selector, second, runs, seed_of(experiment + what), difference);
+    // Without an interval: our point value where both sides were measured, and why.
+    std::string ours = c.verdict;
+    if (c.has_interval)
+      ours = interval_text(c.interval);
+    else if (c.first_items && c.second_items && (difference || c.second != 0.0))
+      ours =
+          (difference ? format_value(c.first - c.second) : format_value(c.first / c.second) + "x") +
+          ", " + c.verdict;
     body.push_back({what, std::isnan(paper) ? "–" : format_value(paper) + (difference ? "" : "x"),
-                    c.has_interval ? interval_text(c.interval) : c.verdict,
-                    c.basis.empty() ? "-" : c.basis});
+                    ours, c.basis.empty() ? "-" : c.basis});
   };
   const auto pairs = [&](const char* key, bool of_rows) {
     for (const Json& pair : shape.value(key, Json::array())) {
