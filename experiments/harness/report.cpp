@@ -559,7 +559,8 @@ std::vector<fs::path> other_runs(const fs::path& dir, const std::string& suite,
 }  // namespace
 
 void record_runs(const std::string& folder, const std::vector<std::string>& others) {
-  const fs::path dir = fs::absolute(folder);
+  fs::path dir = fs::absolute(folder).lexically_normal();
+  if (!dir.has_filename()) dir = dir.parent_path();  // "DIR/" names DIR
   Json runs = Json::array();
   for (const std::string& o : others) {
     if (!fs::is_directory(o)) throw InputError(o, "no such result folder");
