@@ -632,8 +632,9 @@ void build_report(const std::string& folder) {
   md << status_lines(state, dir);
   if (meta.contains("scale_out")) md << scale_out_line(meta);
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)
-     << "\n- files: rows.csv (one row per measurement), params.json (echoed parameters), "
-        "meta.json, command.txt\n\n";
+     << "\n- files: rows.csv (one row per measurement), samples/ (every repetition and probe "
+        "error), params.json (echoed parameters), meta.json, command.txt, runs.json (further "
+        "runs, when there are)\n\n";
   md << missing_list(state, suite);
   std::ifstream command_in(dir / "command.txt");
   std::stringstream command;
