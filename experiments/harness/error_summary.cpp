@@ -6,6 +6,11 @@
 
 namespace dv {
 
+double nearest_rank(const std::vector<double>& sorted, double fraction) {
+  const size_t rank = size_t(std::ceil(fraction * double(sorted.size())));
+  return sorted[std::clamp<size_t>(rank, 1, sorted.size()) - 1];
+}
+
 ErrorSummary summarize_errors(std::vector<double> errors) {
   ErrorSummary s;
   s.count = errors.size();
@@ -13,8 +18,10 @@ ErrorSummary summarize_errors(std::vector<double> errors) {
   std::sort(errors.begin(), errors.end());
   for (double e : errors) s.mean += e / double(errors.size());
   s.max = errors.back();
-  const size_t rank = size_t(std::ceil(0.99 * double(errors.size())));
-  s.p99 = errors[std::clamp<size_t>(rank, 1, errors.size()) - 1];
+  s.p50 = nearest_rank(errors, 0.50);
+  s.p90 = nearest_rank(errors, 0.90);
+  s.p95 = nearest_rank(errors, 0.95);
+  s.p99 = nearest_rank(errors, 0.99);
   return s;
 }
 

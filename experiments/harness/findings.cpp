@@ -164,12 +164,15 @@ std::string lossy_rows(const std::vector<int>& items, const std::vector<RunView>
          " items lossy";
 }
 
-// The signed errors of a probe class in an item's samples ("all": every class, by name).
+// The signed errors of a probe class in an item's samples; "all": the classes the samples'
+// "probe_all" names (those probe_error_all pools), else every class, in name order.
 std::vector<double> class_errors(const nlohmann::json& samples, const std::string& name) {
   std::vector<double> out;
   if (!samples.contains("probe_errors")) return out;
+  const nlohmann::json pooled = samples.value("probe_all", nlohmann::json::array());
   for (const auto& [c, errors] : samples["probe_errors"].items())
-    if (name == "all" || c == name)
+    if (c == name || (name == "all" && (pooled.empty() || std::find(pooled.begin(), pooled.end(),
+                                                                    c) != pooled.end())))
       for (const auto& e : errors) out.push_back(e.get<double>());
   return out;
 }

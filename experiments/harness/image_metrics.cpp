@@ -44,6 +44,15 @@ int largest_channel_difference(const Image& a, const Image& b, size_t pixel) {
   return d;
 }
 
+// Adds the squared differences of a pixel's three 8-bit channels, in [0, 1] units, to `sum`
+// one by one (so image_error's sum keeps its order of additions).
+void add_squared_difference(const Image& a, const Image& b, size_t pixel, double& sum) {
+  for (size_t i = pixel * 3; i < pixel * 3 + 3; ++i) {
+    const double d = (int(srgb_byte(a.rgb[i])) - int(srgb_byte(b.rgb[i]))) / 255.0;
+    sum += d * d;
+  }
+}
+
 }  // namespace
 
 ImageError image_error(const Image& image, const Image& reference) {
@@ -51,10 +60,7 @@ ImageError image_error(const Image& image, const Image& reference) {
   const size_t pixels = size_t(image.width) * image.height;
   double sum = 0.0;
   size_t over = 0;
-  for (size_t i = 0; i < pixels * 3; ++i) {
-    const double d = (int(srgb_byte(image.rgb[i])) - int(srgb_byte(reference.rgb[i]))) / 255.0;
-    sum += d * d;
-  }
+  for (size_t p = 0; p < pixels; ++p) add_squared_difference(image, reference, p, sum);
   for (size_t p = 0; p < pixels; ++p) over += largest_channel_difference(image, reference, p) > 8;
   ImageError e;
   e.rmse = pixels ? std::sqrt(sum / double(pixels * 3)) : 0.0;
@@ -62,6 +68,52 @@ ImageError image_error(const Image& image, const Image& reference) {
       e.rmse > 0.0 ? 20.0 * std::log10(1.0 / e.rmse) : std::numeric_limits<double>::infinity();
   e.fraction_over_8 = pixels ? double(over) / double(pixels) : 0.0;
   return e;
+}
+
+std::vector<double> view_depths(const VisibleSurface& view, const Camera& camera) {
+  const dvec3 forward = glm::normalize(camera.target - camera.position);
+  std::vector<double> depth(view.hit.size(), std::numeric_limits<double>::infinity());
+  for (size_t p = 0; p < depth.size(); ++p)
+    if (view.hit[p]) depth[p] = glm::dot(view.points[p] - camera.position, forward);
+  return depth;
+}
+
+DepthBins depth_bins(const std::vector<double>& depth, int count) {
+  if (count < 1) throw InputError("depth bins", "need at least one bin");
+  std::vector<size_t> order;
+  for (size_t p = 0; p < depth.size(); ++p)
+    if (std::isfinite(depth[p])) order.push_back(p);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return depth[a] < depth[b]; });
+  DepthBins bins;
+  bins.bin.assign(depth.size(), count - 1);
+  bins.pixels.assign(size_t(count), 0);
+  const double inf = std::numeric_limits<double>::infinity();
+  bins.edges.assign(size_t(count) + 1, inf);
+  const size_t n = order.size(), base = n / size_t(count), longer = n % size_t(count);
+  size_t next = 0;
+  for (size_t k = 0; k < size_t(count); ++k) {
+    const size_t size = base + (k < longer ? 1 : 0);
+    if (size > 0) bins.edges[k] = depth[order[next]];
+    for (size_t i = 0; i < size; ++i) bins.bin[order[next++]] = int(k);
+  }
+  if (n > 0) bins.edges.back() = depth[order.back()];
+  for (size_t k = size_t(count); k-- > 0;)  // an empty bin starts where the next one does
+    if (bins.edges[k] == inf) bins.edges[k] = bins.edges[k + 1];
+  for (int b : bins.bin) ++bins.pixels[size_t(b)];
+  return bins;
+}
+
+std::vector<double> binned_rmse(const Image& image, const Image& reference, const DepthBins& bins) {
+  check_sizes(image, reference);
+  if (bins.bin.size() != size_t(image.width) * image.height)
+    throw InputError("depth bins", "one bin per pixel needed");
+  std::vector<double> sum(bins.pixels.size(), 0.0);
+  for (size_t p = 0; p < bins.bin.size(); ++p)
+    add_squared_difference(image, reference, p, sum[size_t(bins.bin[p])]);
+  for (size_t k = 0; k < sum.size(); ++k)
+    sum[k] = bins.pixels[k] ? std::sqrt(sum[k] / double(bins.pixels[k] * 3)) : 0.0;
+  return sum;
 }
 
 void write_difference_png(const std::string& path, const Image& image, const Image& reference) {

@@ -72,7 +72,15 @@ std::vector<Aabb> media_boxes(const Scene& scene) {
 }  // namespace
 
 const char* to_string(ProbeClass c) {
-  return c == ProbeClass::surface ? "surface" : "medium";
+  switch (c) {
+    case ProbeClass::surface:
+      return "surface";
+    case ProbeClass::medium:
+      return "medium";
+    case ProbeClass::visible:
+      return "visible";
+  }
+  return "unknown";
 }
 
 ProbePoints make_probe_points(const Scene& scene, const SceneData& host, int count,
@@ -95,6 +103,23 @@ ProbePoints make_probe_points(const Scene& scene, const SceneData& host, int cou
   while (!surfaces.objects.empty() && int(out.points.size()) < count) {
     out.points.push_back(surface_point(surfaces, rng));
     out.classes.push_back(ProbeClass::surface);
+  }
+  return out;
+}
+
+ProbePoints make_visible_probe_points(const VisibleSurface& view, int count, uint64_t seed) {
+  std::vector<size_t> seen;
+  for (size_t i = 0; i < view.hit.size(); ++i)
+    if (view.hit[i]) seen.push_back(i);
+  // A partial Fisher-Yates shuffle: the first `wanted` entries are a uniform draw without
+  // replacement.
+  std::mt19937_64 rng(seed);
+  const size_t wanted = std::min(seen.size(), size_t(std::max(count, 0)));
+  ProbePoints out;
+  for (size_t k = 0; k < wanted; ++k) {
+    std::swap(seen[k], seen[k + pick(rng, seen.size() - k)]);
+    out.points.push_back(view.points[seen[k]]);
+    out.classes.push_back(ProbeClass::visible);
   }
   return out;
 }

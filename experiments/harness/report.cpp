@@ -218,8 +218,16 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
   if (shape.contains("machine")) md << "Machine change: " << cell(shape["machine"]) << "\n\n";
 }
 
+// A paper rate (a number or a [low, high] range in fps) as milliseconds, 1000 / fps: a range's
+// ends swap.
+Json milliseconds_from_fps(const Json& v) {
+  if (v.is_array()) return Json::array({1000.0 / v[1].get<double>(), 1000.0 / v[0].get<double>()});
+  return 1000.0 / v.get<double>();
+}
+
 // A paper table file (docs/paper-tables.md) as printed, with both machines named; with a map
-// (suite-format.md) every mapped value cell shows "paper / ours".
+// (suite-format.md) every mapped value cell shows "paper / ours", the paper's rate also in ms
+// where the map says "paper_as": "ms_from_fps".
 void write_paper_table(std::ostream& md, const std::string& file, const std::string& our_machine,
                        const Json& map, const std::map<int, std::vector<const Row*>>& items,
                        const std::string& experiment, const std::vector<RunView>& all_runs) {
@@ -247,6 +255,10 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
       !map.is_null() && map["rows"].size() == rows.size() && map["columns"].size() == values;
   if (!map.is_null() && !beside)
     md << "- the suite's map of this table does not fit its rows and columns: ours not shown\n";
+  const bool as_ms = beside && map.value("paper_as", "") == "ms_from_fps";
+  if (as_ms)
+    md << "- the paper's rates converted: `fps = ms` with ms = 1000 / fps (a range's ends swap), "
+          "ours in ms\n";
   if (beside)
     md << "- cells: paper / ours (ours: the mean over our items matching `" +
               map.value("where", "") +
@@ -269,6 +281,7 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
     for (size_t k = 0; k < rows[i].size(); ++k) {
       std::string text = paper_cell(rows[i][k]);
       if (beside && k >= labels && !rows[i][k].is_null()) {
+        if (as_ms) text += " fps = " + cell(milliseconds_from_fps(rows[i][k])) + " ms";
         const std::string ours = our_cell(map, i, k - labels, items);
         if (!ours.empty()) text += " / " + ours;
       }
@@ -437,6 +450,31 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
 }
 
 // "- scale-out: 2 GPUs on 1 host (node1); missing shards: 2 of 2" for a merged folder.
+// The machine's state at the start (run_metadata.h's machine_state; "unknown" for what a run
+// could not read, and for folders written before it was recorded).
+std::string machine_lines(const Json& run) {
+  const Json machine = run.value("machine", Json::object());
+  const auto at = [&](const char* key) {
+    return machine.contains(key) ? cell(machine[key]) : std::string("unknown");
+  };
+  const auto mhz = [&](const char* now, const char* max) {
+    return at(now) + " of " + at(max) + " MHz";
+  };
+  std::string cuda;
+  if (run.contains("cuda")) {
+    const Json& c = run["cuda"];
+    const char* api = c.contains("driver_api_version") ? "driver_api_version" : "driver_version";
+    cuda = " (CUDA driver API " + cell(c.value(api, Json("unknown"))) + ", runtime " +
+           cell(c.value("runtime_version", Json("unknown"))) + ")";
+  }
+  return "- GPU: NVIDIA driver " + at("nvidia_driver") + cuda + ", SM clock " +
+         mhz("sm_clock_mhz", "sm_clock_max_mhz") + ", memory clock " +
+         mhz("memory_clock_mhz", "memory_clock_max_mhz") + ", persistence mode " +
+         at("persistence_mode") + ", compute mode " + at("compute_mode") +
+         ", shared with other compute processes: " + at("gpu_shared") + "\n- OS: " + at("os") +
+         ", kernel " + at("kernel") + "\n";
+}
+
 std::string scale_out_line(const Json& meta) {
   std::string hosts;
   for (const Json& h : meta["scale_out"]["hosts"]) hosts += (hosts.empty() ? "" : ", ") + cell(h);
@@ -619,6 +657,7 @@ void build_report(const std::string& folder) {
   md << "- backend: " << cell(run["backend"]) << " on "
      << (run.contains("device") ? cell(run["device"]) + ", " : "") << cell(run["cpu_model"]) << ", "
      << cell(run["cpu_threads"]) << " threads\n";
+  md << machine_lines(run);
   if (meta.value("smoke", false))
     md << "- size: SMOKE (each experiment's `smoke` overrides: a correctness run, not a "
           "measurement)\n";

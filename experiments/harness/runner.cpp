@@ -28,13 +28,10 @@ namespace fs = std::filesystem;
 namespace {
 
 // One entry of meta.json's "attempts": who ran (a part of) the folder, with what.
-Json attempt_entry(Backend backend, const std::string& suite_hash) {
-  return {{"utc_time", run_metadata(backend)["utc_time"]},
-          {"host", host_name()},
-          {"pid", int(getpid())},
-          {"git_sha", build_git_sha()},
-          {"suite_hash", suite_hash},
-          {"command_line", command_line()}};
+Json attempt_entry(const std::string& suite_hash) {
+  return {{"utc_time", utc_time_now()}, {"host", host_name()},
+          {"pid", int(getpid())},       {"git_sha", build_git_sha()},
+          {"suite_hash", suite_hash},   {"command_line", command_line()}};
 }
 
 // What a call runs: the items still to run, into which folder.
@@ -82,7 +79,7 @@ Plan new_run(const SuiteOptions& o) {
             {"items", p.items.size()},
             {"planned_items", planned},
             {"state", "running"},
-            {"attempts", Json::array({attempt_entry(p.backend, p.suite.hash)})},
+            {"attempts", Json::array({attempt_entry(p.suite.hash)})},
             {"run", run_metadata(p.backend)}};
   const std::string sha = build_git_sha();
   const std::string tag =
@@ -177,7 +174,7 @@ Plan resumed_run(const SuiteOptions& o) {
   }
   p.meta = p.before.meta;
   if (p.before.finished) return p;  // nothing to run, nothing to change
-  Json attempt = attempt_entry(p.backend, loaded.hash);
+  Json attempt = attempt_entry(loaded.hash);
   if (!differ.empty()) {
     attempt["forced"] = differ;
     p.meta["mixed"] = true;

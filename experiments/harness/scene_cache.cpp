@@ -1,6 +1,7 @@
 // The per-run cache of scenes, probe sets and reference renders (scene_cache.h).
 #include "experiments/harness/scene_cache.h"
 
+#include "experiments/harness/image_metrics.h"
 #include "render/frame/raster_render.h"
 #include "render/load/scene_loader.h"
 #include "strategies/shadow/probe.h"
@@ -36,15 +37,43 @@ const ProbeSet& SceneCache::probes(const std::string& path, int count, double me
   const auto key = std::make_tuple(path, count, medium_fraction, seed);
   auto it = probes_.find(key);
   if (it != probes_.end()) return it->second;
+  ProbePoints points =
+      make_probe_points(scene(path), host_data(path), count, medium_fraction, seed);
+  return probes_.emplace(key, with_oracle(path, std::move(points))).first->second;
+}
+
+ProbeSet SceneCache::with_oracle(const std::string& path, ProbePoints points) {
   ProbeSet set;
-  set.points = make_probe_points(scene(path), host_data(path), count, medium_fraction, seed);
+  set.points = std::move(points);
   auto oracle = shadow_registry().create("reference");
   const ProbeResults r = probe_transmittance(backend_, data(path), *oracle, set.points.points);
   set.exact = r.transmittance;
   set.exact_flags = r.flags;
   set.light_count = r.light_count;
   set.oracle_ms = r.milliseconds;
-  return probes_.emplace(key, std::move(set)).first->second;
+  return set;
+}
+
+const CameraSight& SceneCache::sight(const std::string& path, int width, int height) {
+  const auto key = std::make_tuple(path, width, height);
+  auto it = sights_.find(key);
+  if (it != sights_.end()) return it->second;
+  Camera camera = scene(path).camera;
+  camera.width = width;
+  camera.height = height;
+  CameraSight sight;
+  sight.surface = visible_surface(Backend::cpu, host_data(path), camera);
+  sight.depth = view_depths(sight.surface, camera);
+  return sights_.emplace(key, std::move(sight)).first->second;
+}
+
+const ProbeSet& SceneCache::visible_probes(const std::string& path, int width, int height,
+                                           int count, uint64_t seed) {
+  const auto key = std::make_tuple(path, width, height, count, seed);
+  auto it = visible_probes_.find(key);
+  if (it != visible_probes_.end()) return it->second;
+  ProbePoints points = make_visible_probe_points(sight(path, width, height).surface, count, seed);
+  return visible_probes_.emplace(key, with_oracle(path, std::move(points))).first->second;
 }
 
 ReferenceRender& SceneCache::reference(const std::string& path, int width, int height) {

@@ -1,6 +1,8 @@
 // What a suite run computes once and shares between experiments: loaded scenes, their kernel
 // data (in host memory, and in device memory on CUDA), probe points with the exact oracle's
-// answers, and reference renders. Keyed by resolved scene path and the settings that shape them.
+// answers, reference renders, and the camera's view (the surface each pixel sees, its depth)
+// with the camera-visible probe points drawn from it. Keyed by resolved scene path and the settings
+// that shape them.
 #pragma once
 
 #include <map>
@@ -10,6 +12,7 @@
 
 #include "core/image.h"
 #include "cuda/execute.h"
+#include "engine/raster/visible_surface.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_view.h"
 #include "experiments/harness/probe_points.h"
@@ -30,6 +33,13 @@ struct ReferenceRender {
   std::string png;  // path relative to the run folder, once written
 };
 
+// What the scene's camera at a size sees: computed on the host (Backend::cpu) whatever the
+// run's backend, so the points and depths are the same on every machine.
+struct CameraSight {
+  VisibleSurface surface;
+  std::vector<double> depth;  // per pixel: image_metrics.h's view_depths
+};
+
 class SceneCache {
  public:
   explicit SceneCache(Backend backend) : backend_(backend) {}
@@ -41,6 +51,11 @@ class SceneCache {
   const ProbeSet& probes(const std::string& path, int count, double medium_fraction, uint64_t seed);
   // The raster renderer with the exact oracle's shadows at width x height.
   ReferenceRender& reference(const std::string& path, int width, int height);
+  // The scene's camera at width x height: what each pixel sees.
+  const CameraSight& sight(const std::string& path, int width, int height);
+  // `count` points of sight(path, width, height) (make_visible_probe_points) with the oracle.
+  const ProbeSet& visible_probes(const std::string& path, int width, int height, int count,
+                                 uint64_t seed);
 
  private:
   struct Entry {
@@ -48,11 +63,14 @@ class SceneCache {
     std::unique_ptr<SceneData> host, device;
   };
   Entry& entry(const std::string& path);
+  ProbeSet with_oracle(const std::string& path, ProbePoints points);
 
   Backend backend_;
   std::map<std::string, Entry> scenes_;
   std::map<std::tuple<std::string, int, double, uint64_t>, ProbeSet> probes_;
   std::map<std::tuple<std::string, int, int>, ReferenceRender> references_;
+  std::map<std::tuple<std::string, int, int>, CameraSight> sights_;
+  std::map<std::tuple<std::string, int, int, int, uint64_t>, ProbeSet> visible_probes_;
 };
 
 }  // namespace dv

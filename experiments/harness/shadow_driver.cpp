@@ -2,9 +2,11 @@
 // dsm storage) on a scene. Per item: generation (prepare) timed by PassTimer and per pass from
 // the method's stats, one warm-up and `repeat` timed repetitions with a fresh method each; the
 // render (raster renderer at the setting's size) timed the same way; bytes; the transmittance
-// at the run's probe points against the exact oracle (|T' - T| max, mean, p99, split into
-// surface and medium points, or any other probe class by its name; every probe's signed error
-// goes to the item's samples); image error against the reference render, and PNGs (the
+// at the run's probe points against the exact oracle (|T' - T| max, mean, p50/p90/p95/p99,
+// split into world-uniform surface and medium points, and the camera-visible points that
+// weight the error as the image does; every probe's signed error goes to the item's samples,
+// per class by name); image error against the reference render, over the image and per
+// view-depth bin (nearest quarter of the surface pixels first), and PNGs (the
 // render and its difference) for the report's image strip. `frame_ms` (median generation plus
 // median render) is the one time a Pareto front of error against time takes. The timed
 // generation and frame are shadow_measure.h's, which bench_dsm and bench_renderer call too.
@@ -30,22 +32,32 @@ namespace dv {
 
 namespace {
 
+// The image error's view-depth bins: quarters of the surface pixels, nearest first.
+constexpr int kDepthBins = 4;
+
 struct ShadowSettings {
   int width, height, probe_points;
   double medium_fraction;
   uint64_t seed;
   bool images;
+  int visible_points;  // camera-visible probes; default probe_points
 };
 
 ShadowSettings read_settings(const RunItem& item, const Scene& scene) {
   const StrategyParams p(item.settings);
-  ShadowSettings s{p.integer("width", scene.camera.width), p.integer("height", scene.camera.height),
-                   p.integer("probe_points", 400),         p.number("medium_fraction", 0.5),
-                   uint64_t(p.integer("seed", 1)),         p.integer("images", 1) != 0};
+  ShadowSettings s{p.integer("width", scene.camera.width),
+                   p.integer("height", scene.camera.height),
+                   p.integer("probe_points", 400),
+                   p.number("medium_fraction", 0.5),
+                   uint64_t(p.integer("seed", 1)),
+                   p.integer("images", 1) != 0,
+                   0};
+  s.visible_points = p.integer("visible_points", s.probe_points);
   p.finish("experiment '" + item.experiment_name + "' settings");
-  if (s.width < 1 || s.height < 1 || s.probe_points < 0)
+  if (s.width < 1 || s.height < 1 || s.probe_points < 0 || s.visible_points < 0)
     throw InputError("experiment '" + item.experiment_name + "'",
-                     "width, height must be positive and probe_points not negative");
+                     "width, height must be positive and probe_points, visible_points not "
+                     "negative");
   return s;
 }
 
@@ -85,19 +97,36 @@ void collect_stats(const nlohmann::json& j, const std::string& path, PassTimes* 
   }
 }
 
+// The summary rows of |error| over signed errors T' - T.
 void emit_errors(RowSink& rows, const std::string& metric, std::vector<double> errors) {
+  for (double& e : errors) e = std::abs(e);
   const ErrorSummary e = summarize_errors(std::move(errors));
   rows.add(metric, "count", double(e.count), "count");
   if (e.count == 0) return;
   rows.add(metric, "max", e.max, "T");
   rows.add(metric, "mean", e.mean, "T");
+  rows.add(metric, "p50", e.p50, "T");
+  rows.add(metric, "p90", e.p90, "T");
+  rows.add(metric, "p95", e.p95, "T");
   rows.add(metric, "p99", e.p99, "T");
+}
+
+// The signed error T' - T per point-light pair of `probes`, into the vector of the point's
+// class; counts the pairs the method or the oracle flagged.
+void class_errors(const ProbeResults& r, const ProbeSet& probes,
+                  std::map<ProbeClass, std::vector<double>>& errors, size_t& flagged) {
+  for (size_t i = 0; i < r.transmittance.size(); ++i) {
+    errors[probes.points.classes[i / size_t(r.light_count)]].push_back(r.transmittance[i] -
+                                                                       probes.exact[i]);
+    flagged += r.flags[i] != 0 || probes.exact_flags[i] != 0;
+  }
 }
 
 class ShadowDriver : public Driver {
  public:
   std::vector<std::string> settings() const override {
-    return {"width", "height", "probe_points", "medium_fraction", "seed", "images"};
+    return {"width", "height", "probe_points",  "medium_fraction",
+            "seed",  "images", "visible_points"};
   }
   std::vector<std::string> default_columns() const override {
     return {
@@ -165,35 +194,34 @@ class ShadowDriver : public Driver {
  private:
   static void probe_errors(const RunItem& item, RunContext& ctx, const ShadowSettings& s,
                            ShadowMethod& method, RowSink& rows) {
-    if (s.probe_points == 0) return;
-    const ProbeSet& probes =
-        ctx.scenes->probes(item.scene_path, s.probe_points, s.medium_fraction, s.seed);
-    const ProbeResults r = probe_transmittance(ctx.backend, ctx.scenes->data(item.scene_path),
-                                               method, probes.points.points);
-    rows.add("probe_ms", "value", r.milliseconds, "ms");
-    // Signed errors per class name (every class of probe_points.h, in point order), kept as
-    // samples for the findings' paired bootstrap; the rows summarise |error|.
-    std::map<std::string, std::vector<double>> signed_errors;
-    std::vector<double> all;
+    const SceneData& data = ctx.scenes->data(item.scene_path);
+    std::map<ProbeClass, std::vector<double>> errors;
     size_t flagged = 0;
-    for (size_t i = 0; i < r.transmittance.size(); ++i) {
-      const double e = r.transmittance[i] - probes.exact[i];
-      signed_errors[to_string(probes.points.classes[i / size_t(r.light_count)])].push_back(e);
-      all.push_back(std::abs(e));
-      flagged += r.flags[i] != 0 || probes.exact_flags[i] != 0;
+    if (s.probe_points > 0) {
+      const ProbeSet& probes =
+          ctx.scenes->probes(item.scene_path, s.probe_points, s.medium_fraction, s.seed);
+      const ProbeResults r = probe_transmittance(ctx.backend, data, method, probes.points.points);
+      rows.add("probe_ms", "value", r.milliseconds, "ms");
+      class_errors(r, probes, errors, flagged);
+      std::vector<double> all = errors[ProbeClass::surface];
+      all.insert(all.end(), errors[ProbeClass::medium].begin(), errors[ProbeClass::medium].end());
+      emit_errors(rows, "probe_error_surface", errors[ProbeClass::surface]);
+      emit_errors(rows, "probe_error_medium", errors[ProbeClass::medium]);
+      emit_errors(rows, "probe_error_all", std::move(all));
+      rows.samples()["probe_all"] = {to_string(ProbeClass::surface), to_string(ProbeClass::medium)};
     }
-    std::vector<std::string> names{"surface", "medium"};  // rows even when empty, first
-    for (const auto& [name, errors] : signed_errors)
-      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-    for (const std::string& name : names) {
-      const std::vector<double>& errors = signed_errors[name];
-      std::vector<double> absolute;
-      for (double e : errors) absolute.push_back(std::abs(e));
-      emit_errors(rows, "probe_error_" + name, std::move(absolute));
-      rows.samples()["probe_errors"][name] = errors;
+    if (s.visible_points > 0) {
+      const ProbeSet& probes =
+          ctx.scenes->visible_probes(item.scene_path, s.width, s.height, s.visible_points, s.seed);
+      const ProbeResults r = probe_transmittance(ctx.backend, data, method, probes.points.points);
+      class_errors(r, probes, errors, flagged);
+      emit_errors(rows, std::string("probe_error_") + to_string(ProbeClass::visible),
+                  errors[ProbeClass::visible]);
     }
-    emit_errors(rows, "probe_error_all", all);
-    rows.add("probe_flagged", "value", double(flagged), "count");
+    if (s.probe_points > 0 || s.visible_points > 0)
+      rows.add("probe_flagged", "value", double(flagged), "count");
+    // The signed errors per class, in point order, for the findings' paired bootstrap.
+    for (const auto& [c, e] : errors) rows.samples()["probe_errors"][to_string(c)] = e;
   }
 
   static void image_errors(const RunItem& item, RunContext& ctx, const ShadowSettings& s,
@@ -203,6 +231,16 @@ class ShadowDriver : public Driver {
     rows.add("image_rmse", "value", e.rmse, "1");
     rows.add("image_psnr", "value", e.psnr_db, "dB");
     rows.add("image_over_8", "value", e.fraction_over_8, "fraction");
+    const DepthBins bins =
+        depth_bins(ctx.scenes->sight(item.scene_path, s.width, s.height).depth, kDepthBins);
+    const std::vector<double> binned = binned_rmse(image, ref.image, bins);
+    for (int k = 0; k < kDepthBins; ++k) {
+      const std::string bin = "depth" + std::to_string(k);
+      rows.add("image_rmse_" + bin, "value", binned[size_t(k)], "1");
+      rows.add("image_pixels_" + bin, "value", double(bins.pixels[size_t(k)]), "count");
+    }
+    for (int k = 0; k <= kDepthBins; ++k)
+      rows.add("image_depth_edge" + std::to_string(k), "value", bins.edges[size_t(k)], "world");
     if (!s.images) return;
     namespace fs = std::filesystem;
     std::error_code ec;

@@ -117,10 +117,6 @@ void check_findings(JsonReader& r, const Json& findings) {
   }
 }
 
-// A paper table's mapping to our rows: {"table": FILE, "where": SELECTOR, "rows": [one
-// [SELECTOR, COLUMN] or null per paper row], "columns": [one SELECTOR, [SELECTOR, COLUMN] (its
-// column replaces the row's) or null per value column]}; the counts are checked against the
-// table when its file can be read here.
 // A paper map's "shape" (report.cpp's shape table): {"machine": text, "column_pairs": [[a, b],
 // ...], "row_pairs": [[a, b], ...], "baseline": {"selector", "column", "paper", "source",
 // "rows"}}, indices into the map's rows and value columns.
@@ -155,8 +151,16 @@ void check_shape(JsonReader& r, const Json& shape, size_t rows, size_t columns) 
       r.fail("shape/baseline/rows", "expected row indices below " + std::to_string(rows));
 }
 
+// A paper table's mapping to our rows: {"table": FILE, "where": SELECTOR, "rows": [one
+// [SELECTOR, COLUMN] or null per paper row], "columns": [one SELECTOR, [SELECTOR, COLUMN] (its
+// column replaces the row's) or null per value column], "paper_as": "ms_from_fps" (optional: the
+// paper's rates also shown as milliseconds)}; the counts are checked against the table when its
+// file can be read here.
 Json check_paper_map(JsonReader& r, const Json& map, const std::string& table_file) {
   r.string("where", "");
+  const std::string paper_as = r.string("paper_as", "");
+  if (!paper_as.empty() && paper_as != "ms_from_fps")
+    r.fail("paper_as", "expected \"ms_from_fps\" (or nothing)");
   const Json& rows = r.raw("rows");
   const Json& columns = r.raw("columns");
   if (r.has("shape") && rows.is_array() && columns.is_array())

@@ -1,17 +1,24 @@
 // The harness's measurements: probe points (deterministic, on surfaces or inside media as
-// classified), error summaries and image error against a reference.
+// classified, or on the surfaces the camera sees), error summaries with their quantiles, and
+// image error against a reference, over the image and per view-depth bin.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <tuple>
 
 #include "core/error.h"
 #include "engine/raster/fragment_walk.h"
+#include "engine/raster/visible_surface.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/probe_points.h"
 #include "experiments/source_paths.h"
+#include "render/frame/raster_render.h"
+#include "render/load/mesh_generators.h"
 #include "render/load/scene_loader.h"
+#include "strategies/shadow/shadow_method.h"
 #include "strategies/voxelizer/triangle_soup.h"
 
 namespace dv {
@@ -68,6 +75,128 @@ TEST(ProbePoints, SceneWithoutMediaGivesSurfacePointsOnly) {
   for (ProbeClass c : p.classes) EXPECT_EQ(c, ProbeClass::surface);
 }
 
+// A floor quad (y = 0, 40 wide) filling a 32x24 camera looking straight down from y = 5, and
+// a box under it that the camera cannot see.
+Scene floor_over_hidden_box() {
+  Scene scene;
+  scene.meshes = {make_quad(40.0), make_box(dvec3(-1.0, -3.0, -1.0), dvec3(1.0, -1.0, 1.0))};
+  Object floor, box;
+  floor.name = "floor";
+  floor.mesh = 0;
+  box.name = "box";
+  box.mesh = 1;
+  scene.objects = {floor, box};
+  scene.lights.push_back(Light{});
+  scene.camera.position = dvec3(0.0, 5.0, 0.0);
+  scene.camera.target = dvec3(0.0);
+  scene.camera.up = dvec3(0.0, 0.0, -1.0);
+  scene.camera.width = 32;
+  scene.camera.height = 24;
+  return scene;
+}
+
+TEST(VisibleProbePoints, OnTheSeenSurfaceOnlyAndSeeded) {
+  const Scene scene = floor_over_hidden_box();
+  const SceneData host(scene, Memory::host);
+  const VisibleSurface view = visible_surface(Backend::cpu, host, scene.camera);
+  ASSERT_EQ(view.hit.size(), 32u * 24u);
+  for (uint8_t h : view.hit) EXPECT_EQ(h, 1);
+  const ProbePoints p = make_visible_probe_points(view, 100, 3);
+  ASSERT_EQ(p.points.size(), 100u);
+  for (size_t i = 0; i < p.points.size(); ++i) {
+    EXPECT_EQ(p.classes[i], ProbeClass::visible);
+    EXPECT_NEAR(p.points[i].y, 0.0, 1e-9)
+        << "probe " << i << " is off the floor (the box is hidden)";
+    EXPECT_NE(std::find(view.points.begin(), view.points.end(), p.points[i]), view.points.end());
+  }
+  std::vector<dvec3> distinct = p.points;
+  std::sort(distinct.begin(), distinct.end(), [](const dvec3& a, const dvec3& b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  });
+  EXPECT_EQ(std::unique(distinct.begin(), distinct.end()), distinct.end()) << "drawn twice";
+  EXPECT_EQ(make_visible_probe_points(view, 100, 3).points, p.points);
+  EXPECT_NE(make_visible_probe_points(view, 100, 4).points, p.points);
+  // More points asked than pixels see a surface: each of them once.
+  EXPECT_EQ(make_visible_probe_points(view, 5000, 3).points.size(), 32u * 24u);
+  EXPECT_STREQ(to_string(ProbeClass::visible), "visible");
+}
+
+TEST(VisibleProbePoints, NoneWhereNoPixelSeesASurface) {
+  Scene scene = floor_over_hidden_box();
+  scene.camera.target = dvec3(0.0, 10.0, 0.0);  // looking up, away from everything
+  scene.camera.up = dvec3(0.0, 0.0, 1.0);
+  const SceneData host(scene, Memory::host);
+  const VisibleSurface view = visible_surface(Backend::cpu, host, scene.camera);
+  EXPECT_TRUE(make_visible_probe_points(view, 50, 1).points.empty());
+  const std::vector<double> depth = view_depths(view, scene.camera);
+  for (double d : depth) EXPECT_TRUE(std::isinf(d));
+  const DepthBins bins = depth_bins(depth, 4);
+  EXPECT_EQ(bins.pixels, (std::vector<size_t>{0, 0, 0, 32 * 24}));
+}
+
+TEST(ImageMetrics, ViewDepthIsTheDistanceAlongTheViewingDirection) {
+  const Scene scene = floor_over_hidden_box();
+  const SceneData host(scene, Memory::host);
+  const VisibleSurface view = visible_surface(Backend::cpu, host, scene.camera);
+  for (double d : view_depths(view, scene.camera)) EXPECT_NEAR(d, 5.0, 1e-9);
+}
+
+// The camera's sight lines up with the rendered image: on a scene without media, the pixels
+// that see no surface show the background and the others do not.
+TEST(ImageMetrics, SightMatchesTheRenderedImage) {
+  Scene scene = load_scene(test::source_dir() + "/experiments/scenes/translucent-boxes.json");
+  scene.camera.width = 60;
+  scene.camera.height = 40;
+  const SceneData host(scene, Memory::host);
+  const VisibleSurface view = visible_surface(Backend::cpu, host, scene.camera);
+  auto oracle = shadow_registry().create("reference");
+  const Image image =
+      render_raster(Backend::cpu, host, scene.camera, *oracle, scene.background).render.image;
+  int seen = 0, background = 0, mismatched = 0;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 60; ++x) {
+      const bool shows_background = glm::length(image.at(x, y) - scene.background) < 1e-6;
+      const bool hit = view.hit[size_t(y) * 60 + x] != 0;
+      (hit ? seen : background)++;
+      mismatched += hit == shows_background;
+    }
+  EXPECT_GT(seen, 100);
+  EXPECT_GT(background, 100);
+  EXPECT_EQ(mismatched, 0);
+}
+
+TEST(ImageMetrics, DepthBinsCoverTheImageNearestFirst) {
+  const double inf = std::numeric_limits<double>::infinity();
+  // Pixels 0..7 of a 4x2 image; 2 and 6 see no surface.
+  const std::vector<double> depth = {5.0, 1.0, inf, 3.0, 2.0, 4.0, inf, 6.0};
+  const DepthBins b = depth_bins(depth, 4);
+  // Six surface pixels in runs of 2, 2, 1, 1 by depth; the background joins the last bin.
+  EXPECT_EQ(b.bin, (std::vector<int>{2, 0, 3, 1, 0, 1, 3, 3}));
+  EXPECT_EQ(b.pixels, (std::vector<size_t>{2, 2, 1, 3}));
+  EXPECT_EQ(b.edges, (std::vector<double>{1.0, 3.0, 5.0, 6.0, 6.0}));
+  // Fewer surface pixels than bins: the empty bins start where the next one does.
+  const DepthBins few = depth_bins({2.0, inf, 1.0}, 4);
+  EXPECT_EQ(few.bin, (std::vector<int>{1, 3, 0}));
+  EXPECT_EQ(few.pixels, (std::vector<size_t>{1, 1, 0, 1}));
+  EXPECT_EQ(few.edges, (std::vector<double>{1.0, 2.0, 2.0, 2.0, 2.0}));
+  EXPECT_THROW(depth_bins(depth, 0), InputError);
+
+  Image reference(4, 2), image(4, 2);
+  image.rgb[1 * 3] = 1.0f;      // pixel 1 (bin 0): one channel 0 -> 255
+  image.rgb[6 * 3 + 2] = 1.0f;  // pixel 6 (bin 3, background): one channel 0 -> 255
+  const std::vector<double> rmse = binned_rmse(image, reference, b);
+  ASSERT_EQ(rmse.size(), 4u);
+  EXPECT_NEAR(rmse[0], std::sqrt(1.0 / 6.0), 1e-12);
+  EXPECT_EQ(rmse[1], 0.0);
+  EXPECT_EQ(rmse[2], 0.0);
+  EXPECT_NEAR(rmse[3], std::sqrt(1.0 / 9.0), 1e-12);
+  // The bins split the image's squared error: their pixel-weighted mean square is the image's.
+  double total = 0.0;
+  for (size_t k = 0; k < 4; ++k) total += double(b.pixels[k]) * rmse[k] * rmse[k];
+  EXPECT_NEAR(std::sqrt(total / 8.0), image_error(image, reference).rmse, 1e-12);
+  EXPECT_THROW(binned_rmse(image, reference, few), InputError);
+}
+
 TEST(ErrorSummary, MaxMeanAndNearestRankP99) {
   std::vector<double> errors;
   for (int i = 1; i <= 200; ++i) errors.push_back(i * 0.01);
@@ -76,6 +205,22 @@ TEST(ErrorSummary, MaxMeanAndNearestRankP99) {
   EXPECT_DOUBLE_EQ(s.max, 2.0);
   EXPECT_NEAR(s.mean, 1.005, 1e-12);
   EXPECT_DOUBLE_EQ(s.p99, 1.98);  // rank ceil(0.99 * 200) = 198
+  EXPECT_DOUBLE_EQ(s.p50, 1.00);  // rank 100
+  EXPECT_DOUBLE_EQ(s.p90, 1.80);  // rank 180
+  EXPECT_DOUBLE_EQ(s.p95, 1.90);  // rank 190
+  // Five errors, unsorted: ranks ceil(2.5) = 3, ceil(4.5) = 5, ceil(4.75) = 5.
+  const ErrorSummary five = summarize_errors({0.3, 0.1, 0.5, 0.2, 0.4});
+  EXPECT_DOUBLE_EQ(five.p50, 0.3);
+  EXPECT_DOUBLE_EQ(five.p90, 0.5);
+  EXPECT_DOUBLE_EQ(five.p95, 0.5);
+  EXPECT_DOUBLE_EQ(five.p99, 0.5);
+  // A saturated tail: max and p99 at 1 say nothing the lower quantiles do not tell apart.
+  std::vector<double> saturated(100, 0.01);
+  for (int i = 0; i < 6; ++i) saturated[size_t(i)] = 1.0;
+  const ErrorSummary sat = summarize_errors(saturated);
+  EXPECT_EQ(sat.p99, 1.0);
+  EXPECT_EQ(sat.p95, 1.0);
+  EXPECT_EQ(sat.p90, 0.01);
   EXPECT_DOUBLE_EQ(summarize_errors({0.5}).p99, 0.5);
   EXPECT_EQ(summarize_errors({}).count, 0u);
 }

@@ -254,6 +254,37 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
   EXPECT_LT(md.find("| strategy | params |"), md.find("Paper: **Tiny"));
 }
 
+TEST_F(PaperFindings, PaperRatesShownInMillisecondsBesideOurTimes) {
+  write("fps-table.json", R"({"source": "Rate 2006, Table 1", "caption": "c", "machine": "m",
+    "units": {"*": "fps"}, "columns": ["[fps]", "32x32"],
+    "rows": [["range", [2, 4]], ["single", 5]], "notes": "n"})");
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
+  const std::string experiment = R"({"suite": "rates", "repeat": 1,
+    "experiments": [{"name": "dsm", "kind": "shadow", "scene": ")" +
+                                 scene + R"(",
+      "strategy": [{"name": "dsm", "params": {"res": 32}}],
+      "settings": {"width": 32, "height": 24, "probe_points": 10, "images": 0},
+      "paper": [{"table": "fps-table.json", "where": "strategy=dsm", "paper_as": "AS",
+                 "rows": [["", "generate_ms:median"], ["", "generate_ms:median"]],
+                 "columns": ["res=32"]}]}]})";
+  auto with = [&](const std::string& as) {
+    std::string text = experiment;
+    return text.replace(text.find("AS"), 2, as);
+  };
+  const SuiteOutcome r = run(write("rates.json", with("ms_from_fps")), false);
+  ASSERT_EQ(r.exit_code, 0);
+  const std::string md = read(fs::path(r.folder) / "report.md");
+  EXPECT_NE(md.find("- the paper's rates converted: `fps = ms` with ms = 1000 / fps"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| range [ours: generate_ms:median] | 2–4 fps = 250–500 ms / "),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| single [ours: generate_ms:median] | 5 fps = 200 ms / "), std::string::npos)
+      << md;
+  EXPECT_THROW(parse_suite(with("ms_from_hz"), (dir_ / "bad.json").string()), InputError);
+}
+
 TEST_F(PaperFindings, SmokeFormMergesOverridesAndIsCheckedStrictly) {
   const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
   const std::string head = R"({"suite": "s", "experiments": [{"name": "e", "kind": "shadow",

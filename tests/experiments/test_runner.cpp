@@ -78,7 +78,20 @@ TEST_F(Runner, TinySuiteWritesEveryFileAndTheOracleMatchesItself) {
   EXPECT_EQ(value_of(rows, 0, "image_rmse", "value"), 0.0);
   EXPECT_EQ(value_of(rows, 0, "probe_error_surface", "count"), 20.0);
   EXPECT_EQ(value_of(rows, 0, "probe_error_medium", "count"), 20.0);
-  EXPECT_GT(value_of(rows, 1, "bytes", "value"), 0.0);  // shadowmap depth maps
+  // The camera-visible probes (visible_points defaults to probe_points) and the depth bins: the
+  // oracle has no error there either, and the bins' pixels are the image's.
+  EXPECT_EQ(value_of(rows, 0, "probe_error_visible", "count"), 40.0);
+  EXPECT_EQ(value_of(rows, 0, "probe_error_visible", "max"), 0.0);
+  double binned_pixels = 0.0;
+  for (const char* bin : {"depth0", "depth1", "depth2", "depth3"}) {
+    EXPECT_EQ(value_of(rows, 0, std::string("image_rmse_") + bin, "value"), 0.0) << bin;
+    binned_pixels += value_of(rows, 0, std::string("image_pixels_") + bin, "value");
+  }
+  EXPECT_EQ(binned_pixels, 48.0 * 32.0);
+  EXPECT_LE(value_of(rows, 0, "image_depth_edge0", "value"),
+            value_of(rows, 0, "image_depth_edge4", "value"));
+  EXPECT_GT(value_of(rows, 2, "probe_error_visible", "p50"), -1.0);  // every quantile is written
+  EXPECT_GT(value_of(rows, 1, "bytes", "value"), 0.0);               // shadowmap depth maps
   EXPECT_GT(value_of(rows, 2, "probe_error_all", "max"), 0.0);
   EXPECT_EQ(value_of(rows, 2, "generate_ms", "repetitions"), 1.0);
   // The exact voxelizer against exact: nothing missing or extra; sat misses nothing outside the
@@ -93,10 +106,14 @@ TEST_F(Runner, TinySuiteWritesEveryFileAndTheOracleMatchesItself) {
   const Json meta = parse_json_file((folder / "meta.json").string());
   EXPECT_EQ(meta["run"]["backend"], "cpu");
   EXPECT_FALSE(meta["run"]["cpu_model"].get<std::string>().empty());
+  EXPECT_TRUE(meta["run"]["machine"].contains("nvidia_driver"));  // "unknown" without a GPU
+  EXPECT_TRUE(meta["run"]["machine"].contains("os"));
   EXPECT_EQ(meta["interrupted"], false);
   std::ifstream report(folder / "report.md");
   const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
   EXPECT_NE(md.find("## methods (shadow)"), std::string::npos);
+  EXPECT_NE(md.find("- GPU: NVIDIA driver "), std::string::npos);
+  EXPECT_NE(md.find("- OS: "), std::string::npos);
   EXPECT_NE(md.find("## voxels (voxelize)"), std::string::npos);
   EXPECT_NE(md.find("ran 8 of 8 experiments"), std::string::npos);
   EXPECT_NE(md.find("![](images/0_reference.png)"), std::string::npos);
