@@ -325,6 +325,8 @@ TEST_F(OldFolders, ReportWithoutSamplesStillBuilds) {
       samples["probe_errors"]["surface"].size() + samples["probe_errors"]["medium"].size();
   EXPECT_GT(probes, 0u);
   EXPECT_EQ(probes % 20, 0u);  // 20 points, each per light
+  // probe_error_all pools the world-uniform classes; the findings' "all" takes the same ones.
+  EXPECT_EQ(samples["probe_all"], nlohmann::json({"surface", "medium"}));
   auto report = [&] {
     build_report(dir.string());
     std::ifstream in(dir / "report.md");
