@@ -1,8 +1,10 @@
 // `deepvox suite NAME_OR_FILE [--backend cpu|cuda] [--out DIR] [--repeat K] [--shard I/N]
 //  [--only PATTERN] [--smoke] [--costs DIR|estimate] [--resume [DIR] [--force]] [--gpus N|all]
+//  [--runs N]
 //  [--slurm [--partition P] [--time T] [--submit] [--dry-run]]` and `deepvox suite --list`: runs
 // an experiment suite through the harness (experiments/harness/runner.h), continues a killed run
-// (--resume), runs it as worker processes on this node (workers.h) or as SLURM jobs (slurm.h),
+// (--resume), runs it as worker processes on this node (workers.h), as N independent process
+// runs for the findings' intervals (--runs, workers.h) or as SLURM jobs (slurm.h),
 // and prints where the report is.
 #include <cstdio>
 
@@ -20,6 +22,7 @@ Runner add_suite(CLI::App& app) {
   auto slurm = std::make_shared<SlurmOptions>();
   auto use_slurm = std::make_shared<bool>(false);
   auto gpus = std::make_shared<std::string>();
+  auto runs = std::make_shared<int>(0);
   CLI::App* cmd = app.add_subcommand(
       "suite", "run an experiment suite (built-in name or suite file, docs/suite-format.md)");
   cmd->add_option("suite", opt->suite, "built-in suite name (see --list) or suite file");
@@ -58,10 +61,14 @@ Runner add_suite(CLI::App& app) {
   cmd->add_flag("--force", opt->force,
                 "with --resume: continue although the suite file or the deepvox commit differ "
                 "from the folder's (meta.json and the report say the run is mixed)");
+  cmd->add_option("--runs", *runs,
+                  "N independent process runs, one after another (at least 3 for intervals "
+                  "that hold drift between runs); the report pools them")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--smoke", opt->smoke,
                 "run each experiment's `smoke` form: tiny scenes and sweeps, a CPU correctness "
                 "check in seconds, not a measurement");
-  return [opt, list, slurm, use_slurm, gpus, resume] {
+  return [opt, list, slurm, use_slurm, gpus, resume, runs] {
     if (*list) {
       std::fputs(list_suites().c_str(), stdout);
       return 0;
@@ -74,6 +81,10 @@ Runner add_suite(CLI::App& app) {
                        "--resume DIR), SLURM tasks resume by themselves");
     if (opt->suite.empty() && !(opt->resume && !opt->resume_dir.empty()))
       throw InputError("suite", "give a suite name or file (or --list)");
+    if (*runs > 0 && (opt->resume || *use_slurm || !gpus->empty() || !opt->shard.empty()))
+      throw InputError("--runs",
+                       "runs the whole suite in one process per run; leave out "
+                       "--resume, --slurm, --gpus and --shard");
     if (*use_slurm) {
       if (*gpus == "all") throw InputError("--gpus all", "with --slurm give the number of tasks");
       slurm->tasks = gpus->empty() ? 1 : worker_count(*gpus, "cpu");
@@ -83,8 +94,9 @@ Runner add_suite(CLI::App& app) {
       throw InputError("--submit/--dry-run/--partition/--time", "only with --slurm");
     if (!gpus->empty() && !opt->shard.empty())
       throw InputError("--gpus", "workers choose their shards; leave out --shard");
-    const SuiteOutcome r =
-        gpus->empty() ? run_suite(*opt) : run_workers(*opt, worker_count(*gpus, opt->backend));
+    const SuiteOutcome r = *runs > 0       ? run_rounds(*opt, *runs)
+                           : gpus->empty() ? run_suite(*opt)
+                                           : run_workers(*opt, worker_count(*gpus, opt->backend));
     if (opt->resume)
       std::printf("deepvox suite: resumed %s: %d more ran\n", r.folder.c_str(), r.ran_now);
     std::printf("deepvox suite: %s%d of %d experiments, %d failed, %d skipped; %s: %s%s\n",

@@ -38,7 +38,9 @@ struct RunContext {
   SceneCache* scenes = nullptr;
 };
 
-// Adds rows for one item (item, experiment, scene, strategy, params filled in).
+// Adds rows for one item (item, experiment, scene, strategy, params filled in), and its
+// per-sample data: every timing repetition and every probe's signed error, which the runner
+// writes to samples/<item>.json for the findings' intervals (docs/suite-format.md).
 class RowSink {
  public:
   RowSink(const std::string& suite, const RunItem& item, std::vector<Row>& rows)
@@ -46,12 +48,16 @@ class RowSink {
   void add(const std::string& metric, const std::string& stat, double value,
            const std::string& unit, const std::string& note = "");
   size_t count() const { return added_; }
+  // {"timings": {metric: [ms per repetition]}, "probe_errors": {class: [signed error per probe
+  // and light]}}; null when the driver adds none.
+  nlohmann::json& samples() { return samples_; }
 
  private:
   const std::string& suite_;
   const RunItem& item_;
   std::vector<Row>& rows_;
   size_t added_ = 0;
+  nlohmann::json samples_;
 };
 
 class Driver {

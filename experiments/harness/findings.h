@@ -1,15 +1,31 @@
-// Findings: a paper's claims checked against our rows by a declared comparison. A finding is
-// {"claim": text, "lower": [selector, column], "than": [selector, column], "why": text,
-// "why_not": text}: the claim holds (confirmed) when the mean of `column` over the items
-// matching the first selector is below the mean over the items matching the second. A selector
-// is space-separated `key=value` terms that all must hold: `strategy=NAME`, `scene=SUBSTRING`,
-// or a parameter (`storage=chunked`); an empty selector matches every item. No match on a side:
-// undecided. The explanation is built from the data: the difference and ratio of the two means,
-// whether the difference is within the repetitions' spread (a median column: half the mean
-// max - min of the two sides), and, for a time column `X_ms`, which of its timed passes
-// (`X.*_ms`, the deepest level the rows have) carries the difference and how much lies outside
-// them; then the suite's `why` (the mechanism it reads, printed when confirmed) or `why_not`
-// (when not confirmed), else "not explained".
+// Findings: a paper's claims checked against our rows with an effect size and its 95 % interval
+// (effect_interval.h). Two forms (docs/suite-format.md, "Findings"):
+// - a comparison {"claim", "lower": [selector, column], "than": [selector, column], "why",
+//   "why_not"}: the first side's items measure lower than the second's. The effect: for probe
+//   error columns (probe_error_<class>:mean|max|p99) the difference of the sides' means, with a
+//   paired bootstrap over the probe points (samples/<item>.json of the first run); for every
+//   other column the ratio of the sides' means (first / second), with a cluster bootstrap over
+//   the runs and, within a run, its repetitions (timings from samples/<item>.json; other values
+//   one per run, from rows.csv).
+// - a trend {"claim", "trend": "increasing"|"decreasing"|"plateau", "over": KEY, "selector",
+//   "column", "levels" (optional), "from" (plateau), "why", "why_not"}: the items matching
+//   `selector` grouped by the value of KEY (a parameter, or "scene" with `levels` naming
+//   substrings of the scene paths, in order); every consecutive step is a comparison of level
+//   k+1 against level k. Increasing / decreasing: every step's interval above / below "no
+//   effect"; plateau: every step from the level `from` on (default: the second level) contains
+//   "no effect".
+// Verdicts: "confirmed" (the interval entirely on the claimed side; every step for a monotone
+// trend), "refuted" (entirely on the other side; a step of a trend against it, or a plateau step
+// that moves), "tie" (the interval contains "no effect", whatever the claim: a plateau whose
+// every step holds no effect is a tie, as it claims, never "confirmed"), "not comparable (...)"
+// (a side without items, units that differ, no samples to build an interval: a folder from
+// before samples/), "defect (...)" (an item of a side has a row whose metric names an
+// "overflow" or "dropped" count above 0: its measurement lost data). A selector is
+// space-separated `key=value` terms that all must hold: `strategy=NAME`, `scene=SUBSTRING`,
+// `experiment=NAME`, or a parameter (`storage=chunked`); an empty selector matches every item. The
+// explanation is built from the data (difference and ratio of the means and, for a time column
+// `X_ms`, which of its timed passes `X.*_ms` carries the difference), then the suite's `why`
+// (confirmed) or `why_not`.
 #pragma once
 
 #include <map>
@@ -18,17 +34,46 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiments/harness/effect_interval.h"
 #include "experiments/harness/rows.h"
 
 namespace dv {
 
+// One independent process run of a suite, as the findings read it: rows per item and the
+// item's samples (samples/<item>.json; absent for items, or whole folders, without them).
+struct RunView {
+  std::map<int, std::vector<const Row*>> items;
+  std::map<int, nlohmann::json> samples;
+};
+
+// One comparison of two selections of items.
+struct Comparison {
+  std::string verdict;  // "confirmed" (first below second), "refuted", "tie", "not comparable
+                        // (...)", "defect (...)"
+  // Means over the items: of every sample of every run where the interval rests on samples,
+  // else of the first run's rows.
+  double first = 0.0, second = 0.0;
+  int first_items = 0, second_items = 0;
+  bool has_interval = false;
+  EffectInterval interval;
+  std::string basis;  // what the interval rests on: runs, repetitions, probe points, items
+};
+
+struct TrendStep {
+  std::string from, to;   // levels
+  Comparison comparison;  // `to` against `from`
+};
+
 struct FindingResult {
   std::string claim, why;
-  std::string lower_text, than_text;  // "selector: column"
-  double lower = 0.0, than = 0.0;     // means over the matching items
+  std::string lower_text, than_text;  // "selector: column"; a trend: "selector: column over KEY"
+  double lower = 0.0, than = 0.0;     // means over the matching items (comparisons)
   int lower_items = 0, than_items = 0;
-  std::string verdict;      // "confirmed", "not confirmed" or "undecided (...)"
-  std::string explanation;  // from the data, then the suite's reading (see above)
+  std::string verdict;
+  std::string effect;  // "0.61x [0.58, 0.64]" or the trend's steps
+  std::string basis;
+  std::vector<TrendStep> steps;  // trends
+  std::string explanation;       // from the data, then the suite's reading
 };
 
 // Whether an item's rows match a selector (see above).
@@ -42,8 +87,19 @@ struct SelectionMean {
 SelectionMean selection_mean(const std::string& selector, const Column& column,
                              const std::map<int, std::vector<const Row*>>& items);
 
-// `findings` as validated by the suite loader; `items` the experiment's rows per item.
+// The first selection against the second on `runs` (runs[0]: the folder reported; at least
+// one run); `seed` makes the bootstrap reproducible.
+// `difference`: the effect is the difference of the means, not their ratio.
+Comparison compare_selections(const std::string& first_selector, const Column& first_column,
+                              const std::string& second_selector, const Column& second_column,
+                              const std::vector<RunView>& runs, uint64_t seed,
+                              bool difference = false);
+
+// `findings` as validated by the suite loader.
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
-                                             const std::map<int, std::vector<const Row*>>& items);
+                                             const std::vector<RunView>& runs);
+
+// "0.61x [0.58, 0.64]" or "+0.012 [+0.010, +0.015]".
+std::string interval_text(const EffectInterval& interval);
 
 }  // namespace dv

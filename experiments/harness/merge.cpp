@@ -169,9 +169,10 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
         write_file_atomically(tmp / "suite.json",
                               read_file_text(by_index.begin()->second.dir / "suite.json"));
         for (const auto& [index, state] : by_index)
-          if (fs::is_directory(state.dir / "images"))
-            fs::copy(state.dir / "images", tmp / "images",
-                     fs::copy_options::recursive | fs::copy_options::skip_existing);
+          for (const char* sub : {"images", "samples"})
+            if (fs::is_directory(state.dir / sub))
+              fs::copy(state.dir / sub, tmp / sub,
+                       fs::copy_options::recursive | fs::copy_options::skip_existing);
       });
   build_report(dir.string());
   return dir.string();

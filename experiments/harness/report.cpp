@@ -105,21 +105,117 @@ void write_table(std::ostream& md, const std::vector<std::string>& header,
   md << "\n";
 }
 
-// Ours for one value cell of a mapped paper table: the mean of the row's column over the items
-// matching the map's `where`, the row's and the column's selectors; empty when unmapped or
-// nothing matches.
-std::string our_cell(const Json& map, size_t row, size_t column,
-                     const std::map<int, std::vector<const Row*>>& items) {
+// The selection behind one value cell of a mapped paper table: the map's `where`, the row's and
+// the column's selectors, and the row's column (or the column's own); false when unmapped.
+bool cell_selection(const Json& map, size_t row, size_t column, std::string& selector,
+                    Column& metric) {
   const Json& r = map["rows"][row];
   const Json& c = map["columns"][column];
-  if (r.is_null() || c.is_null()) return "";
+  if (r.is_null() || c.is_null()) return false;
   const std::string column_selector =
       c.is_string() ? c.get<std::string>() : c[0].get<std::string>();
-  const std::string metric = c.is_array() ? c[1].get<std::string>() : r[1].get<std::string>();
-  const std::string selector =
-      map.value("where", "") + " " + r[0].get<std::string>() + " " + column_selector;
-  const SelectionMean m = selection_mean(selector, parse_column(metric), items);
+  metric = parse_column(c.is_array() ? c[1].get<std::string>() : r[1].get<std::string>());
+  selector = map.value("where", "") + " " + r[0].get<std::string>() + " " + column_selector;
+  return true;
+}
+
+// Ours for one value cell of a mapped paper table: the mean of the cell's column over the items
+// of its selection; empty when unmapped or nothing matches.
+std::string our_cell(const Json& map, size_t row, size_t column,
+                     const std::map<int, std::vector<const Row*>>& items) {
+  std::string selector;
+  Column metric;
+  if (!cell_selection(map, row, column, selector, metric)) return "";
+  const SelectionMean m = selection_mean(selector, metric, items);
   return m.items ? format_value(m.mean) : "";
+}
+
+// The paper's number in a cell, NaN for a range, text or null.
+double paper_number(const Json& v) {
+  return v.is_number() ? v.get<double>() : std::nan("");
+}
+
+// The shape table of a mapped paper table with a "shape" entry (suite-format.md): the paper's
+// ratios beside ours with our intervals (between two value columns of a row: across the sweep;
+// between two rows of a column: within the table) and the overhead above the no-shadow frame,
+// then the suite's sentence on what the machine change predicts. `runs`: every experiment's
+// items, so that a baseline in another experiment can be selected (`experiment=NAME`).
+void write_shape_table(std::ostream& md, const Json& t, const Json& map,
+                       const std::string& experiment, const std::vector<RunView>& runs) {
+  const Json& shape = map["shape"];
+  const size_t labels = size_t(t.value("label_columns", 1));
+  const Json& rows = t["rows"];
+  const Json& columns = t["columns"];
+  const auto row_name = [&](size_t r) {
+    return labels > 0 ? cell(rows[r][labels - 1]) : "row " + std::to_string(r + 1);
+  };
+  const auto column_name = [&](size_t c) { return cell(columns[labels + c]); };
+  std::vector<std::vector<std::string>> body;
+  // One line: a paper number beside our comparison of two selections.
+  const auto line = [&](const std::string& what, double paper, const std::string& first_selector,
+                        const Column& first, const std::string& second_selector,
+                        const Column& second, bool difference) {
+    const Comparison c =
+        compare_selections("experiment=" + experiment + " " + first_selector, first,
+                           second_selector, second, runs, seed_of(experiment + what), difference);
+    // Without an interval: our point value where both sides were measured, and why.
+    std::string ours = c.verdict;
+    if (c.has_interval)
+      ours = interval_text(c.interval);
+    else if (c.first_items && c.second_items && (difference || c.second != 0.0))
+      ours =
+          (difference ? format_value(c.first - c.second) : format_value(c.first / c.second) + "x") +
+          ", " + c.verdict;
+    body.push_back({what, std::isnan(paper) ? "–" : format_value(paper) + (difference ? "" : "x"),
+                    ours, c.basis.empty() ? "-" : c.basis});
+  };
+  const auto pairs = [&](const char* key, bool of_rows) {
+    for (const Json& pair : shape.value(key, Json::array())) {
+      const size_t a = pair[0].get<size_t>(), b = pair[1].get<size_t>();
+      const size_t lines = of_rows ? columns.size() - labels : rows.size();
+      for (size_t k = 0; k < lines; ++k) {
+        const size_t ra = of_rows ? a : k, rb = of_rows ? b : k;
+        const size_t ca = of_rows ? k : a, cb = of_rows ? k : b;
+        std::string sa, sb;
+        Column ma, mb;
+        if (!cell_selection(map, ra, ca, sa, ma) || !cell_selection(map, rb, cb, sb, mb)) continue;
+        const std::string what =
+            of_rows ? row_name(ra) + " / " + row_name(rb) + ", " + column_name(ca)
+                    : row_name(ra) + ", " + column_name(ca) + " / " + column_name(cb);
+        line(what, paper_number(rows[ra][labels + ca]) / paper_number(rows[rb][labels + cb]), sa,
+             ma, "experiment=" + experiment + " " + sb, mb, false);
+      }
+    }
+  };
+  pairs("column_pairs", false);
+  pairs("row_pairs", true);
+  if (shape.contains("baseline")) {
+    const Json& base = shape["baseline"];
+    const Column base_column = parse_column(base["column"].get<std::string>());
+    for (const Json& r : base["rows"]) {
+      const size_t row = r.get<size_t>();
+      for (size_t c = 0; c + labels < columns.size(); ++c) {
+        std::string selector;
+        Column metric;
+        if (!cell_selection(map, row, c, selector, metric)) continue;
+        line(row_name(row) + ", " + column_name(c) + " − the no-shadow frame",
+             paper_number(rows[row][labels + c]) - base["paper"].get<double>(), selector, metric,
+             base["selector"].get<std::string>(), base_column, true);
+      }
+    }
+  }
+  if (body.empty()) return;
+  md << "Shape (ratios within the table and across the sweep, paper beside ours with our 95 % "
+        "interval"
+     << (shape.contains("baseline")
+             ? "; overhead above the no-shadow frame: the paper's " +
+                   format_value(shape["baseline"]["paper"].get<double>()) + " ms (" +
+                   shape["baseline"].value("source", std::string("paper")) + ") against ours, `" +
+                   shape["baseline"]["selector"].get<std::string>() + "`"
+             : std::string())
+     << "):\n\n";
+  write_table(md, {"ratio", "paper", "ours [95 % interval]", "interval rests on"}, body);
+  if (shape.contains("machine")) md << "Machine change: " << cell(shape["machine"]) << "\n\n";
 }
 
 // A paper rate (a number or a [low, high] range in fps) as milliseconds, 1000 / fps: a range's
@@ -133,7 +229,8 @@ Json milliseconds_from_fps(const Json& v) {
 // (suite-format.md) every mapped value cell shows "paper / ours", the paper's rate also in ms
 // where the map says "paper_as": "ms_from_fps".
 void write_paper_table(std::ostream& md, const std::string& file, const std::string& our_machine,
-                       const Json& map, const std::map<int, std::vector<const Row*>>& items) {
+                       const Json& map, const std::map<int, std::vector<const Row*>>& items,
+                       const std::string& experiment, const std::vector<RunView>& all_runs) {
   Json t;
   try {
     t = parse_json_file(file);
@@ -198,23 +295,28 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
     body.push_back(std::move(line));
   }
   if (!header.empty()) write_table(md, header, body);
+  if (beside && map.contains("shape")) write_shape_table(md, t, map, experiment, all_runs);
   if (t.contains("notes"))
     md << "<details><summary>paper table notes (setup mapping, formulas, ambiguities)</summary>\n\n"
        << cell(t["notes"]) << "\n\n</details>\n\n";
 }
 
-void write_findings(std::ostream& md, const ExperimentSpec& e,
-                    const std::map<int, std::vector<const Row*>>& items) {
-  const std::vector<FindingResult> results = evaluate_findings(e.findings, items);
+void write_findings(std::ostream& md, const ExperimentSpec& e, const std::vector<RunView>& runs) {
+  const std::vector<FindingResult> results = evaluate_findings(e.findings, runs);
   if (results.empty()) return;
-  md << "\nFindings (mean of the first side's items below the second's = confirmed):\n\n";
+  md << "\nFindings (effect: first side / second side, or their difference for probe errors, "
+        "with its 95 % bootstrap interval; confirmed: the interval entirely on the claimed "
+        "side, refuted: entirely on the other, tie: it holds no effect; a trend tests every "
+        "step of its sweep):\n\n";
   std::vector<std::vector<std::string>> body;
   for (const FindingResult& f : results)
-    body.push_back({f.claim, f.lower_text, f.lower_items ? format_value(f.lower) : "-", f.than_text,
-                    f.than_items ? format_value(f.than) : "-", f.verdict, f.explanation});
+    body.push_back({f.claim, f.lower_text, f.lower_items ? format_value(f.lower) : "-",
+                    f.than_text.empty() ? "-" : f.than_text,
+                    f.than_items ? format_value(f.than) : "-", f.effect.empty() ? "-" : f.effect,
+                    f.basis.empty() ? "-" : f.basis, f.verdict, f.explanation});
   write_table(md,
-              {"claim", "ours (lower?)", "value", "than", "value", "verdict",
-               "why (from the data, then the suite's reading)"},
+              {"claim", "ours (lower?)", "value", "than", "value", "effect [95 % interval]",
+               "interval rests on", "verdict", "why (from the data, then the suite's reading)"},
               body);
 }
 
@@ -285,8 +387,9 @@ void write_plots(std::ostream& md, const fs::path& dir, const std::string& exper
 }
 
 void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpec& e,
-                      const std::map<int, std::vector<const Row*>>& items,
+                      const std::vector<RunView>& runs, const std::vector<RunView>& all_runs,
                       const std::string& our_machine) {
+  const std::map<int, std::vector<const Row*>>& items = runs[0].items;
   md << "## " << e.name << " (" << e.kind << ")\n\n";
   if (!e.description.empty()) md << e.description << "\n\n";
   if (items.empty()) {
@@ -343,8 +446,8 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
   }
   for (size_t p = 0; p < e.paper_files.size(); ++p)
     write_paper_table(md, e.paper_files[p], our_machine,
-                      p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items);
-  write_findings(md, e, items);
+                      p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items, e.name, all_runs);
+  write_findings(md, e, runs);
   write_pareto(md, e, items);
   // Image strip: the reference, then each render with its difference below.
   std::string reference;
@@ -478,7 +581,58 @@ std::string missing_list(const RunState& state, const Suite& suite) {
   return md.str();
 }
 
+// An item's samples/<item>.json, null when the folder has none (written before samples/, or a
+// driver without samples).
+Json read_samples(const fs::path& dir, int item) {
+  const fs::path file = dir / "samples" / (std::to_string(item) + ".json");
+  if (!fs::is_regular_file(file)) return Json();
+  return parse_json_file(file.string());
+}
+
+// InputError naming `other` when it is no run of the suite file `dir` ran.
+void check_same_suite(const fs::path& other, const fs::path& dir, const std::string& suite,
+                      const std::string& suite_hash) {
+  const Json meta = read_run_state(other).meta;
+  if (meta.value("suite", "") != suite || meta.value("suite_hash", "") != suite_hash)
+    throw InputError(other.string(), "not a run of the same suite file as " + dir.string() +
+                                         " (suite " + meta.value("suite", "") + ", hash " +
+                                         meta.value("suite_hash", "") + ")");
+}
+
+// The folders runs.json names (paths relative to `dir`), each checked to be a run of the same
+// suite file.
+std::vector<fs::path> other_runs(const fs::path& dir, const std::string& suite,
+                                 const std::string& suite_hash) {
+  const fs::path file = dir / "runs.json";
+  if (!fs::is_regular_file(file)) return {};
+  const Json runs = parse_json_file(file.string());
+  if (!runs.contains("runs") || !runs["runs"].is_array())
+    throw InputError(file.string(), "expected {\"runs\": [folder, ...]}");
+  std::vector<fs::path> out;
+  for (const Json& r : runs["runs"]) {
+    if (!r.is_string()) throw InputError(file.string(), "runs: expected folder names");
+    out.push_back(dir / r.get<std::string>());
+    check_same_suite(out.back(), dir, suite, suite_hash);
+  }
+  return out;
+}
+
 }  // namespace
+
+void record_runs(const std::string& folder, const std::vector<std::string>& others) {
+  fs::path dir = fs::absolute(folder).lexically_normal();
+  if (!dir.has_filename()) dir = dir.parent_path();  // "DIR/" names DIR
+  Json runs = Json::array();
+  for (const std::string& o : others) {
+    if (!fs::is_directory(o)) throw InputError(o, "no such result folder");
+    runs.push_back(fs::relative(fs::absolute(o), dir).string());
+  }
+  const Json meta = read_run_state(dir).meta;
+  for (const Json& r : runs)
+    check_same_suite(dir / r.get<std::string>(), dir, meta.value("suite", ""),
+                     meta.value("suite_hash", ""));
+  write_file_atomically(dir / "runs.json", Json{{"runs", runs}}.dump(1) + "\n");
+}
 
 void build_report(const std::string& folder) {
   const fs::path dir(folder);
@@ -491,11 +645,24 @@ void build_report(const std::string& folder) {
   for (ExperimentSpec& e : suite.experiments)
     for (std::string& paper : e.paper_files)
       if (!fs::exists(paper)) paper = resolve_data_file(paper, meta.value("suite_file", ""));
-  const std::vector<Row>& rows = state.rows;
-  std::vector<std::map<int, std::vector<const Row*>>> by_experiment(suite.experiments.size());
-  for (const Row& r : rows)
-    for (size_t e = 0; e < suite.experiments.size(); ++e)
-      if (suite.experiments[e].name == r.experiment) by_experiment[e][r.item].push_back(&r);
+  // The runs the findings' intervals rest on: this folder, then those runs.json names.
+  std::vector<RunState> states{state};
+  for (const fs::path& other : other_runs(dir, suite.name, meta.value("suite_hash", "")))
+    states.push_back(read_run_state(other));
+  std::vector<std::vector<RunView>> by_experiment(suite.experiments.size(),
+                                                  std::vector<RunView>(states.size()));
+  std::vector<RunView> all_runs(states.size());
+  for (size_t run = 0; run < states.size(); ++run)
+    for (const Row& r : states[run].rows) {
+      RunView& all = all_runs[run];
+      all.items[r.item].push_back(&r);
+      if (!all.samples.count(r.item)) all.samples[r.item] = read_samples(states[run].dir, r.item);
+      for (size_t e = 0; e < suite.experiments.size(); ++e)
+        if (suite.experiments[e].name == r.experiment) {
+          by_experiment[e][run].items[r.item].push_back(&r);
+          by_experiment[e][run].samples[r.item] = all.samples[r.item];
+        }
+    }
 
   bool plots_asked = false;
   for (const ExperimentSpec& e : suite.experiments)
@@ -518,12 +685,18 @@ void build_report(const std::string& folder) {
     md << "- size: SMOKE (each experiment's `smoke` overrides: a correctness run, not a "
           "measurement)\n";
   md << "- timings: one warm-up, then " << cell(meta["repeat"])
-     << " repetitions, median (min, max in rows.csv)\n";
+     << " repetitions, median (min, max in rows.csv; every repetition in samples/)\n";
+  md << "- findings' intervals rest on " << states.size() << " independent process run"
+     << (states.size() == 1 ? " (this folder)" : "s (this folder and those runs.json names)")
+     << (states.size() < 3 ? "; fewer than 3: drift between runs is not in the timing intervals"
+                           : "")
+     << "\n";
   md << status_lines(state, dir);
   if (meta.contains("scale_out")) md << scale_out_line(meta);
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)
-     << "\n- files: rows.csv (one row per measurement), params.json (echoed parameters), "
-        "meta.json, command.txt\n\n";
+     << "\n- files: rows.csv (one row per measurement), samples/ (every repetition and probe "
+        "error), params.json (echoed parameters), meta.json, command.txt, runs.json (further "
+        "runs, when there are)\n\n";
   md << missing_list(state, suite);
   std::ifstream command_in(dir / "command.txt");
   std::stringstream command;
@@ -531,7 +704,7 @@ void build_report(const std::string& folder) {
   md << "Command (command.txt; a merged folder lists its shards' too):\n\n```\n"
      << command.str() << "```\n\n";
   for (size_t e = 0; e < suite.experiments.size(); ++e)
-    write_experiment(md, dir, suite.experiments[e], by_experiment[e], our_machine);
+    write_experiment(md, dir, suite.experiments[e], by_experiment[e], all_runs, our_machine);
   try {
     write_file_atomically(dir / "report.md", md.str());
   } catch (const ResultWriteError& e) {

@@ -277,6 +277,13 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
         std::fprintf(stderr, "deepvox suite: %s failed: %s\n", item.describe().c_str(),
                      echoed["error"].get<std::string>().c_str());
       }
+      if (!sink.samples().is_null()) {
+        std::error_code ec;
+        fs::create_directories(dir / "samples", ec);
+        if (ec) throw ResultWriteError((dir / "samples").string(), ec.message());
+        write_file_atomically(dir / "samples" / (std::to_string(item.index) + ".json"),
+                              sink.samples().dump() + "\n");
+      }
       p.journal.record(item.index, p.attempt, rows, result, echoed);  // synced: survives a kill
       params.push_back(std::move(echoed));
       ++outcome.done;

@@ -4,8 +4,9 @@
 // render (raster renderer at the setting's size) timed the same way; bytes; the transmittance
 // at the run's probe points against the exact oracle (|T' - T| max, mean, p50/p90/p95/p99,
 // split into world-uniform surface and medium points, and the camera-visible points that
-// weight the error as the image does); image error against the reference render, over the
-// image and per view-depth bin (nearest quarter of the surface pixels first), and PNGs (the
+// weight the error as the image does; every probe's signed error goes to the item's samples,
+// per class by name); image error against the reference render, over the image and per
+// view-depth bin (nearest quarter of the surface pixels first), and PNGs (the
 // render and its difference) for the report's image strip. `frame_ms` (median generation plus
 // median render) is the one time a Pareto front of error against time takes. The timed
 // generation and frame are shadow_measure.h's, which bench_dsm and bench_renderer call too.
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "experiments/harness/driver.h"
@@ -95,7 +97,9 @@ void collect_stats(const nlohmann::json& j, const std::string& path, PassTimes* 
   }
 }
 
+// The summary rows of |error| over signed errors T' - T.
 void emit_errors(RowSink& rows, const std::string& metric, std::vector<double> errors) {
+  for (double& e : errors) e = std::abs(e);
   const ErrorSummary e = summarize_errors(std::move(errors));
   rows.add(metric, "count", double(e.count), "count");
   if (e.count == 0) return;
@@ -107,13 +111,13 @@ void emit_errors(RowSink& rows, const std::string& metric, std::vector<double> e
   rows.add(metric, "p99", e.p99, "T");
 }
 
-// |T' - T| per point-light pair of `probes`, into the vector of the point's class; counts the
-// pairs the method or the oracle flagged.
+// The signed error T' - T per point-light pair of `probes`, into the vector of the point's
+// class; counts the pairs the method or the oracle flagged.
 void class_errors(const ProbeResults& r, const ProbeSet& probes,
                   std::map<ProbeClass, std::vector<double>>& errors, size_t& flagged) {
   for (size_t i = 0; i < r.transmittance.size(); ++i) {
-    errors[probes.points.classes[i / size_t(r.light_count)]].push_back(
-        std::abs(r.transmittance[i] - probes.exact[i]));
+    errors[probes.points.classes[i / size_t(r.light_count)]].push_back(r.transmittance[i] -
+                                                                       probes.exact[i]);
     flagged += r.flags[i] != 0 || probes.exact_flags[i] != 0;
   }
 }
@@ -174,6 +178,10 @@ class ShadowDriver : public Driver {
     render.emit(rows, "");
     rows.add("frame_ms", "value",
              spread_of(generate_samples).median + spread_of(render_samples).median, "ms");
+    std::vector<double> frame_samples;
+    for (size_t k = 0; k < generate_samples.size(); ++k)
+      frame_samples.push_back(generate_samples[k] + render_samples[k]);
+    rows.samples()["timings"]["frame_ms"] = frame_samples;
     rows.add("render_flagged_pixels", "value",
              double(last.render.counters.overflow_pixels + last.render.counters.oracle_flag_pixels),
              "count");
@@ -200,6 +208,7 @@ class ShadowDriver : public Driver {
       emit_errors(rows, "probe_error_surface", errors[ProbeClass::surface]);
       emit_errors(rows, "probe_error_medium", errors[ProbeClass::medium]);
       emit_errors(rows, "probe_error_all", std::move(all));
+      rows.samples()["probe_all"] = {to_string(ProbeClass::surface), to_string(ProbeClass::medium)};
     }
     if (s.visible_points > 0) {
       const ProbeSet& probes =
@@ -211,6 +220,8 @@ class ShadowDriver : public Driver {
     }
     if (s.probe_points > 0 || s.visible_points > 0)
       rows.add("probe_flagged", "value", double(flagged), "count");
+    // The signed errors per class, in point order, for the findings' paired bootstrap.
+    for (const auto& [c, e] : errors) rows.samples()["probe_errors"][to_string(c)] = e;
   }
 
   static void image_errors(const RunItem& item, RunContext& ctx, const ShadowSettings& s,

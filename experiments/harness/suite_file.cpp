@@ -77,20 +77,78 @@ void check_finding_side(JsonReader& r, const Json& side, const std::string& key)
     r.fail(key, "expected [\"selector\", \"metric:stat\"]");
 }
 
+// A comparison {claim, lower, than, why, why_not} or a trend {claim, trend, over, selector,
+// column, levels, from, why, why_not} (findings.h).
 void check_findings(JsonReader& r, const Json& findings) {
   if (!findings.is_array()) r.fail("findings", "expected an array of claims");
   for (size_t i = 0; i < findings.size(); ++i) {
     const std::string at = "findings/" + std::to_string(i);
     const Json& f = findings[i];
-    if (!f.is_object() || !f.contains("claim") || !f["claim"].is_string() || !f.contains("lower") ||
-        !f.contains("than"))
-      r.fail(at, "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]}");
+    if (!f.is_object() || !f.contains("claim") || !f["claim"].is_string())
+      r.fail(at,
+             "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]} or {\"claim\": "
+             "..., \"trend\": ..., \"over\": ..., \"selector\": ..., \"column\": ...}");
+    const bool trend = f.contains("trend");
+    const std::vector<std::string> known =
+        trend ? std::vector<std::string>{"claim",  "trend", "over", "selector", "column",
+                                         "levels", "from",  "why",  "why_not"}
+              : std::vector<std::string>{"claim", "lower", "than", "why", "why_not"};
     for (const auto& [key, v] : f.items())
-      if (key != "claim" && key != "lower" && key != "than" && key != "why" && key != "why_not")
-        r.fail(at + "/" + key, "unknown key (known: claim, lower, than, why, why_not)");
-    check_finding_side(r, f["lower"], at + "/lower");
-    check_finding_side(r, f["than"], at + "/than");
+      if (std::find(known.begin(), known.end(), key) == known.end()) {
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        r.fail(at + "/" + key, "unknown key (known: " + list + ")");
+      }
+    if (!trend) {
+      if (!f.contains("lower") || !f.contains("than"))
+        r.fail(at, "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]}");
+      check_finding_side(r, f["lower"], at + "/lower");
+      check_finding_side(r, f["than"], at + "/than");
+      continue;
+    }
+    const Json& t = f["trend"];
+    if (!t.is_string() || (t != "increasing" && t != "decreasing" && t != "plateau"))
+      r.fail(at + "/trend", "expected \"increasing\", \"decreasing\" or \"plateau\"");
+    for (const char* key : {"over", "selector", "column"})
+      if (!f.contains(key) || !f[key].is_string()) r.fail(at + "/" + key, "expected a string");
+    if (f.contains("levels") && (!f["levels"].is_array() || f["levels"].size() < 2))
+      r.fail(at + "/levels", "expected an array of at least two levels");
+    if (f.contains("from") && t != "plateau") r.fail(at + "/from", "only for a plateau");
   }
+}
+
+// A paper map's "shape" (report.cpp's shape table): {"machine": text, "column_pairs": [[a, b],
+// ...], "row_pairs": [[a, b], ...], "baseline": {"selector", "column", "paper", "source",
+// "rows"}}, indices into the map's rows and value columns.
+void check_shape(JsonReader& r, const Json& shape, size_t rows, size_t columns) {
+  if (!shape.is_object()) r.fail("shape", "expected an object");
+  const auto index_pairs = [&](const char* key, size_t limit) {
+    const Json& pairs = shape.value(key, Json::array());
+    if (!pairs.is_array()) r.fail(std::string("shape/") + key, "expected [[a, b], ...]");
+    for (const Json& p : pairs)
+      if (!p.is_array() || p.size() != 2 || !p[0].is_number_unsigned() ||
+          !p[1].is_number_unsigned() || p[0].get<size_t>() >= limit || p[1].get<size_t>() >= limit)
+        r.fail(std::string("shape/") + key,
+               "expected pairs of indices below " + std::to_string(limit));
+  };
+  for (const auto& [key, v] : shape.items())
+    if (key != "machine" && key != "column_pairs" && key != "row_pairs" && key != "baseline")
+      r.fail("shape/" + key, "unknown key (known: machine, column_pairs, row_pairs, baseline)");
+  if (shape.contains("machine") && !shape["machine"].is_string())
+    r.fail("shape/machine", "expected a sentence");
+  index_pairs("column_pairs", columns);
+  index_pairs("row_pairs", rows);
+  if (!shape.contains("baseline")) return;
+  const Json& b = shape["baseline"];
+  if (!b.is_object() || !b.contains("selector") || !b["selector"].is_string() ||
+      !b.contains("column") || !b["column"].is_string() || !b.contains("paper") ||
+      !b["paper"].is_number() || !b.contains("rows") || !b["rows"].is_array() ||
+      (b.contains("source") && !b["source"].is_string()))
+    r.fail("shape/baseline",
+           "expected {\"selector\", \"column\", \"paper\": number, \"source\", \"rows\": [...]}");
+  for (const Json& i : b["rows"])
+    if (!i.is_number_unsigned() || i.get<size_t>() >= rows)
+      r.fail("shape/baseline/rows", "expected row indices below " + std::to_string(rows));
 }
 
 // A paper table's mapping to our rows: {"table": FILE, "where": SELECTOR, "rows": [one
@@ -105,6 +163,8 @@ Json check_paper_map(JsonReader& r, const Json& map, const std::string& table_fi
     r.fail("paper_as", "expected \"ms_from_fps\" (or nothing)");
   const Json& rows = r.raw("rows");
   const Json& columns = r.raw("columns");
+  if (r.has("shape") && rows.is_array() && columns.is_array())
+    check_shape(r, r.raw("shape"), rows.size(), columns.size());
   if (!rows.is_array()) r.fail("rows", "expected one [selector, column] or null per paper row");
   for (size_t i = 0; i < rows.size(); ++i)
     if (!rows[i].is_null()) check_finding_side(r, rows[i], "rows/" + std::to_string(i));

@@ -1,4 +1,4 @@
-// Median, min and max of repeated pass timings (timing.h).
+// Median, min and max of repeated pass timings, and the repetitions themselves (timing.h).
 #include "experiments/harness/timing.h"
 
 #include <algorithm>
@@ -28,6 +28,7 @@ void PassTimes::emit(RowSink& rows, const std::string& prefix) const {
     rows.add(metric, "min", s.min, "ms");
     rows.add(metric, "max", s.max, "ms");
     rows.add(metric, "repetitions", double(samples.size()), "count");
+    rows.samples()["timings"][metric] = samples;
   }
 }
 

@@ -20,7 +20,8 @@ Spread spread_of(std::vector<double> samples);
 class PassTimes {
  public:
   void add(const std::string& pass, double milliseconds);
-  // Rows "<prefix><pass>_ms" with stats median, min, max (unit ms) and one "repetitions" row.
+  // Rows "<prefix><pass>_ms" with stats median, min, max (unit ms) and one "repetitions" row;
+  // every repetition goes to the sink's samples (driver.h) under the same metric.
   void emit(RowSink& rows, const std::string& prefix) const;
   bool empty() const { return passes_.empty(); }
 

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +23,7 @@
 #include "experiments/harness/interrupt.h"
 #include "experiments/harness/merge.h"
 #include "experiments/harness/progress.h"
+#include "experiments/harness/report.h"
 #include "experiments/harness/run_folder.h"
 #include "experiments/harness/run_metadata.h"
 #include "experiments/harness/shard_plan.h"
@@ -205,6 +207,60 @@ SuiteOutcome run_workers(const SuiteOptions& o, int count) {
         std::max(outcome.exit_code,
                  w.exit_code == 0 || w.exit_code == 3 || w.exit_code == 130 ? w.exit_code : 3);
   if (meta.contains("missing_shards")) outcome.exit_code = std::max(outcome.exit_code, 3);
+  return outcome;
+}
+
+SuiteOutcome run_rounds(const SuiteOptions& o, int runs) {
+  if (runs < 1) throw InputError("--runs", "expected a positive count");
+  const std::string suite_path = fs::absolute(resolve_suite_path(o.suite)).string();
+  const Suite suite = load_suite(suite_path);
+  const fs::path session =
+      make_run_folder(o.out, suite.name, build_git_sha(), std::to_string(runs) + "runs");
+  const std::string exe = fs::read_symlink("/proc/self/exe").string();
+  const InterruptScope ctrl_c;  // a Ctrl-C stops the round after its current experiment
+  std::vector<std::string> folders;
+  SuiteOutcome outcome;
+  for (int k = 1; k <= runs && !interrupt_requested(); ++k) {
+    std::vector<std::string> args = {exe,     "suite",          suite_path,
+                                     "--out", session.string(), "--no-report"};
+    if (!o.backend.empty()) args.insert(args.end(), {"--backend", o.backend});
+    if (o.repeat > 0) args.insert(args.end(), {"--repeat", std::to_string(o.repeat)});
+    if (!o.only.empty()) args.insert(args.end(), {"--only", o.only});
+    if (o.smoke) args.push_back("--smoke");
+    const fs::path log = session / ("run" + std::to_string(k) + ".log");
+    std::fprintf(stderr, "deepvox suite: run %d of %d (log: %s)\n", k, runs, log.c_str());
+    const pid_t pid = spawn(args, {}, log);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    // The round's folder: the one under the session that is not yet known.
+    const fs::path root = session / suite.name;
+    std::vector<std::string> now;
+    if (fs::is_directory(root))
+      for (const auto& entry : fs::directory_iterator(root))
+        if (std::find(folders.begin(), folders.end(), entry.path().string()) == folders.end())
+          now.push_back(entry.path().string());
+    if (now.size() != 1)
+      throw Error("run " + std::to_string(k) + " of " + std::to_string(runs) + " exited " +
+                  std::to_string(code) + " without one result folder (log: " + log.string() + ")");
+    folders.push_back(now.front());
+    outcome.exit_code = std::max(outcome.exit_code, code == 0 || code == 3 ? code : 3);
+    if (code == 130) {
+      outcome.exit_code = 130;
+      outcome.interrupted = true;
+      break;
+    }
+  }
+  if (folders.empty()) throw Error("no run of " + std::to_string(runs) + " started");
+  outcome.folder = folders.front();
+  record_runs(outcome.folder, std::vector<std::string>(folders.begin() + 1, folders.end()));
+  if (o.report) build_report(outcome.folder);
+  const Json meta = parse_json_file((fs::path(outcome.folder) / "meta.json").string());
+  outcome.done = meta.value("done", 0);
+  outcome.total = meta.value("items", 0);
+  outcome.failed = meta.value("failed", 0);
+  outcome.skipped = meta.value("skipped", 0);
   return outcome;
 }
 

@@ -30,4 +30,12 @@ std::string fixed_cost_source(const SuiteOptions& o, const Suite& suite);
 // worst worker (0, 3 some failed, 130 interrupted); the outcome's folder is the merged one.
 SuiteOutcome run_workers(const SuiteOptions& o, int count);
 
+// `deepvox suite NAME --runs N`: N independent process runs of the suite, one after another
+// (each a fresh `deepvox suite ... --no-report` child running every item in suite order, so the
+// items of a comparison alternate within each round and drift between rounds lands between
+// runs). The rounds go to OUT/<suite>/<date>_<sha>-Nruns/<suite>/<date>_<sha>[-k]/ with their
+// logs run<k>.log beside; the first round's folder gets runs.json naming the others and the
+// report, whose findings' intervals pool the rounds. A round that is interrupted stops the rest.
+SuiteOutcome run_rounds(const SuiteOptions& o, int runs);
+
 }  // namespace dv

@@ -1,8 +1,9 @@
 // The seeds and accuracy machinery: Pareto fronts on a known set, findings decided by their
-// declared comparison, a tiny suite whose report prints a tiny paper table beside ours with
-// both machines and the findings' verdicts and a Pareto table, the `smoke` form of a suite
-// (overrides merged, strictly checked), and the built-in seeds and accuracy suites run in their
-// smoke form on the CPU end to end (seconds), every experiment without a failed row.
+// declared comparison (the verdicts' interval logic: test_verdicts.cpp), a tiny suite whose report
+// prints a tiny paper table beside ours with both machines and the findings' verdicts and a Pareto
+// table, the `smoke` form of a suite (overrides merged, strictly checked), and the built-in seeds
+// and accuracy suites run in their smoke form on the CPU end to end (seconds), every experiment
+// without a failed row.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -60,13 +61,24 @@ Row row(int item, const std::string& strategy, const std::string& params, const 
   return r;
 }
 
+// One run of `rows` whose timings (median rows) have three repetitions each: the median and
+// +-1 % around it.
+std::vector<RunView> one_run(const std::vector<Row>& rows) {
+  std::vector<RunView> runs(1);
+  for (const Row& r : rows) {
+    runs[0].items[r.item].push_back(&r);
+    if (r.stat == "median")
+      runs[0].samples[r.item]["timings"][r.metric] = {r.value * 0.99, r.value, r.value * 1.01};
+  }
+  return runs;
+}
+
 TEST(Findings, MeansOfTheSelectedItemsDecide) {
   const std::vector<Row> rows{row(0, "dsm", "res=256 storage=chunked", "generate_ms", 2.0),
                               row(1, "dsm", "res=512 storage=chunked", "generate_ms", 4.0),
                               row(2, "dsm", "res=256 storage=texture3d", "generate_ms", 5.0),
                               row(3, "shadowmap", "res=256", "generate_ms", 1.0)};
-  std::map<int, std::vector<const Row*>> items;
-  for (const Row& r : rows) items[r.item].push_back(&r);
+  const std::vector<RunView> runs = one_run(rows);
   const auto findings = nlohmann::json::parse(R"([
     {"claim": "chunked faster", "lower": ["storage=chunked", "generate_ms:median"],
      "than": ["storage=texture3d", "generate_ms"]},
@@ -74,15 +86,17 @@ TEST(Findings, MeansOfTheSelectedItemsDecide) {
      "than": ["strategy=shadowmap scene=a.json", "generate_ms"], "why": "it is not"},
     {"claim": "no such storage", "lower": ["storage=blocked", "generate_ms"],
      "than": ["", "generate_ms"]}])");
-  const std::vector<FindingResult> r = evaluate_findings(findings, items);
+  const std::vector<FindingResult> r = evaluate_findings(findings, runs);
   ASSERT_EQ(r.size(), 3u);
   EXPECT_EQ(r[0].verdict, "confirmed");
   EXPECT_DOUBLE_EQ(r[0].lower, 3.0);  // mean of 2 and 4
   EXPECT_EQ(r[0].lower_items, 2);
   EXPECT_DOUBLE_EQ(r[0].than, 5.0);
-  EXPECT_EQ(r[1].verdict, "not confirmed");
+  // New semantics: a claim whose interval lies entirely on the other side is refuted (it was
+  // "not confirmed"); a side without items is not comparable (it was "undecided").
+  EXPECT_EQ(r[1].verdict, "refuted");
   EXPECT_EQ(r[1].why, "it is not");
-  EXPECT_EQ(r[2].verdict.rfind("undecided", 0), 0u) << r[2].verdict;
+  EXPECT_EQ(r[2].verdict, "not comparable (no measured item matches the first side)");
   EXPECT_EQ(r[2].than_items, 4);  // the empty selector matches every item
   // The explanation: the data first; the suite's `why` only for a confirmed claim.
   EXPECT_EQ(r[0].explanation, "first side lower by 2 (0.6x)");
@@ -105,17 +119,16 @@ TEST(Findings, ExplanationNamesThePassAndTheTimeOutsideThePasses) {
   add(1, "storage=texture3d", "generate.generation_ms", 2.0);
   add(1, "storage=texture3d", "generate.passes.raster_ms", 1.0);
   add(1, "storage=texture3d", "generate.passes.write_ms", 1.0);
-  std::map<int, std::vector<const Row*>> items;
-  for (const Row& r : rows) items[r.item].push_back(&r);
+  const std::vector<RunView> runs = one_run(rows);
   const auto findings = nlohmann::json::parse(R"([
     {"claim": "chunked faster", "lower": ["storage=chunked", "generate_ms"],
      "than": ["storage=texture3d", "generate_ms"], "why": "fewer layers",
      "why_not": "the thesis pool is reserved first"},
     {"claim": "texture3d faster", "lower": ["storage=texture3d", "generate_ms"],
      "than": ["storage=chunked", "generate_ms"], "why": "contiguous layers"}])");
-  const std::vector<FindingResult> r = evaluate_findings(findings, items);
+  const std::vector<FindingResult> r = evaluate_findings(findings, runs);
   ASSERT_EQ(r.size(), 2u);
-  EXPECT_EQ(r[0].verdict, "not confirmed");
+  EXPECT_EQ(r[0].verdict, "refuted");  // new semantics: was "not confirmed"
   EXPECT_EQ(r[0].explanation,
             "first side higher by 5 (2.25x); largest pass difference generate.passes.write_ms "
             "+1 ms; +4 ms lies outside the timed passes (allocation, host work, "
@@ -127,7 +140,8 @@ TEST(Findings, ExplanationNamesThePassAndTheTimeOutsideThePasses) {
             "synchronisation); reading: contiguous layers");
 }
 
-// A difference smaller than the repetitions' spread is called a tie, whatever the verdict.
+// A difference smaller than the repetitions' spread is a tie: the verdict itself says so now
+// (the old rule said "confirmed" and only the explanation called it a tie).
 TEST(Findings, DifferenceWithinTheSpreadIsATie) {
   std::vector<Row> rows;
   auto add = [&](int item, const std::string& params, const std::string& stat, double v) {
@@ -141,17 +155,19 @@ TEST(Findings, DifferenceWithinTheSpreadIsATie) {
   add(1, "storage=texture3d", "median", 3.01);
   add(1, "storage=texture3d", "min", 2.9);
   add(1, "storage=texture3d", "max", 3.1);
-  std::map<int, std::vector<const Row*>> items;
-  for (const Row& r : rows) items[r.item].push_back(&r);
+  std::vector<RunView> runs(1);
+  for (const Row& r : rows) runs[0].items[r.item].push_back(&r);
+  runs[0].samples[0]["timings"]["render_ms"] = {2.9, 3.0, 3.1};
+  runs[0].samples[1]["timings"]["render_ms"] = {2.9, 3.01, 3.1};
   const auto findings = nlohmann::json::parse(R"([
     {"claim": "chunked renders faster", "lower": ["storage=chunked", "render_ms:median"],
      "than": ["storage=texture3d", "render_ms:median"]}])");
-  const std::vector<FindingResult> r = evaluate_findings(findings, items);
+  const std::vector<FindingResult> r = evaluate_findings(findings, runs);
   ASSERT_EQ(r.size(), 1u);
-  EXPECT_EQ(r[0].verdict, "confirmed");
-  EXPECT_NE(r[0].explanation.find("within the repetitions' spread (+-0.1): a tie"),
-            std::string::npos)
-      << r[0].explanation;
+  EXPECT_EQ(r[0].verdict, "tie");
+  EXPECT_EQ(r[0].basis,
+            "1 run x 3 repetitions, 1 vs 1 items (fewer than 3 runs: drift between "
+            "runs not in it)");
 }
 
 class PaperFindings : public test::HarnessTest {
@@ -203,8 +219,9 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
   EXPECT_NE(md.find("| none | – |"), std::string::npos) << md;
   EXPECT_NE(md.find("| digits | 160.533 |"), std::string::npos) << md;  // not rounded
   EXPECT_NE(md.find("| no shadows are cheaper than a DSM |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| confirmed |"), std::string::npos) << md;      // 0 bytes < the DSM's
-  EXPECT_NE(md.find("| not confirmed |"), std::string::npos) << md;  // none errs more
+  EXPECT_NE(md.find("| confirmed |"), std::string::npos) << md;  // 0 bytes < the DSM's
+  // New semantics: "refuted" where the old rule said "not confirmed" (none errs more).
+  EXPECT_NE(md.find("| refuted |"), std::string::npos) << md;
   EXPECT_NE(md.find("Pareto front on `"), std::string::npos) << md;
   EXPECT_NE(md.find("probe_error_all:mean vs bytes (2 of 2 points)"), std::string::npos) << md;
   // The mapped copy shows ours beside each mapped paper value: the DSM's bytes and max layers.

@@ -1,6 +1,6 @@
 // `deepvox suite | merge | report` as commands: the suite list, exit code 2 naming the file for
-// a bad suite file, and Ctrl-C sent to a running suite (exit 130, rows and a report of what was
-// done).
+// a bad suite file, Ctrl-C sent to a running suite (exit 130, rows and a report of what was
+// done), and `--runs N` (N child processes, one report whose intervals pool them).
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -10,7 +10,10 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
+
+#include <nlohmann/json.hpp>
 
 #include "experiments/source_paths.h"
 #include "tests/support/scratch_dir.h"
@@ -101,6 +104,41 @@ TEST(SuiteCli, SigintStopsARunningSuiteWithRowsAndAReport) {
   EXPECT_NE(md.find("interrupted after "), std::string::npos) << md;
   EXPECT_EQ(md.find("of 40 experiments") == std::string::npos, false) << md;
   EXPECT_EQ(md.find("after 40 of 40"), std::string::npos) << md;
+}
+
+TEST(SuiteCli, RunsMakesIndependentProcessRunsPooledInOneReport) {
+  const fs::path dir = temp_dir("cli_runs");
+  const fs::path suite = dir / "runs.json";
+  std::ofstream(suite) << R"({"suite": "runs", "repeat": 2, "experiments": [{"name": "a",
+    "kind": "shadow", "scene": ")"
+                       << test::source_dir() << R"(/experiments/scenes/demo.json",
+    "strategy": ["none", {"name": "dsm", "params": {"res": 16}}],
+    "settings": {"width": 16, "height": 12, "probe_points": 10, "images": 0},
+    "findings": [{"claim": "none generates faster", "lower": ["strategy=none", "generate_ms"],
+                  "than": ["strategy=dsm", "generate_ms"]}]}]})";
+  const std::string out = (dir / "out").string();
+  const CommandResult r = run("suite " + suite.string() + " --backend cpu --runs 3 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("run 3 of 3"), std::string::npos) << r.output;
+  const size_t at = r.output.find("report: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string report =
+      r.output.substr(at + 8, r.output.find('\n', at) - at - 8);  // FOLDER/report.md
+  const fs::path folder = fs::path(report).parent_path();
+  std::ifstream runs_in(folder / "runs.json");
+  std::stringstream runs;
+  runs << runs_in.rdbuf();
+  EXPECT_EQ(nlohmann::json::parse(runs.str())["runs"].size(), 2u) << runs.str();
+  std::ifstream md_in(report);
+  std::stringstream md;
+  md << md_in.rdbuf();
+  EXPECT_NE(md.str().find("rest on 3 independent process runs"), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("3 runs x 2 repetitions, 1 vs 1 items"), std::string::npos) << md.str();
+  // Rounds are whole suites in fresh processes: no shards, workers or resume.
+  const CommandResult sharded =
+      run("suite " + suite.string() + " --backend cpu --runs 3 --shard 1/2 --out " + out);
+  EXPECT_EQ(sharded.exit_code, 2) << sharded.output;
+  EXPECT_NE(sharded.output.find("--runs"), std::string::npos) << sharded.output;
 }
 
 }  // namespace

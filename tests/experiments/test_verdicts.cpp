@@ -1,0 +1,420 @@
+// The findings' verdicts from effect sizes with 95 % intervals (findings.h, effect_interval.h),
+// on synthetic samples: a confirmation, a refutation, a tie (also one that only drift between
+// runs makes a tie), paired probe errors, a monotone trend and a plateau, a defect, claims that
+// are not comparable, a reproducible bootstrap; a report over a result folder from before
+// samples/ (it still builds, its timing claims say the interval is unavailable) and over three
+// recorded runs; a shape table (the paper's ratios beside ours with intervals).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "experiments/harness/effect_interval.h"
+#include "experiments/harness/findings.h"
+#include "experiments/harness/report.h"
+#include "experiments/harness/rows.h"
+#include "experiments/harness/runner.h"
+#include "experiments/source_paths.h"
+#include "tests/experiments/harness_test.h"
+
+namespace dv {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Synthetic runs: items with params and, per run, rows and timing samples.
+class Runs {
+ public:
+  explicit Runs(int count) : views_(size_t(count)), rows_(size_t(count)) {}
+  // A timed item: `samples[run]` its repetitions in each run; the rows carry their median.
+  void timed(int item, const std::string& params, const std::string& metric,
+             const std::vector<std::vector<double>>& samples) {
+    for (size_t run = 0; run < samples.size(); ++run) {
+      std::vector<double> s = samples[run];
+      std::sort(s.begin(), s.end());
+      add(run, item, params, metric, "median", s[s.size() / 2], "ms");
+      views_[run].samples[item]["timings"][metric] = samples[run];
+    }
+  }
+  // A value row in every run.
+  void value(int item, const std::string& params, const std::string& metric, double v,
+             const std::string& unit = "count") {
+    for (size_t run = 0; run < views_.size(); ++run)
+      add(run, item, params, metric, "value", v, unit);
+  }
+  // Signed probe errors of one class (first run's samples) and the rows' mean of |error|.
+  void errors(int item, const std::string& params, const std::string& name,
+              const std::vector<double>& errors) {
+    double sum = 0.0;
+    for (double e : errors) sum += std::abs(e);
+    for (size_t run = 0; run < views_.size(); ++run)
+      for (const std::string& c : {name, std::string("all")})
+        add(run, item, params, "probe_error_" + c, "mean", sum / double(errors.size()), "T");
+    views_[0].samples[item]["probe_errors"][name] = errors;
+  }
+  std::vector<RunView> views() {
+    for (size_t run = 0; run < views_.size(); ++run) {
+      views_[run].items.clear();
+      for (const Row& r : rows_[run]) views_[run].items[r.item].push_back(&r);
+    }
+    return views_;
+  }
+  void drop_samples() {
+    for (RunView& v : views_) v.samples.clear();
+  }
+
+ private:
+  void add(size_t run, int item, const std::string& params, const std::string& metric,
+           const std::string& stat, double value, const std::string& unit) {
+    Row r;
+    r.item = item;
+    r.strategy = "dsm";
+    r.scene = "scenes/a.json";
+    r.params = params;
+    r.metric = metric;
+    r.stat = stat;
+    r.value = value;
+    r.unit = unit;
+    rows_[run].push_back(r);
+  }
+  std::vector<RunView> views_;
+  std::vector<std::vector<Row>> rows_;  // stable: views are rebuilt from them
+};
+
+// Five repetitions around `centre` (+-2 %).
+std::vector<double> reps(double centre) {
+  return {centre * 0.98, centre * 0.99, centre, centre * 1.01, centre * 1.02};
+}
+
+FindingResult one(const std::string& json, std::vector<RunView> views) {
+  const std::vector<FindingResult> r = evaluate_findings(nlohmann::json::parse(json), views);
+  EXPECT_EQ(r.size(), 1u);
+  return r.empty() ? FindingResult{} : r[0];
+}
+
+const char* kChunkedFaster = R"([{"claim": "chunked faster",
+  "lower": ["storage=chunked", "generate_ms:median"],
+  "than": ["storage=texture3d", "generate_ms:median"], "why": "fewer layers",
+  "why_not": "pools first"}])";
+
+TEST(Verdicts, ClearlyLowerInEveryRunIsConfirmed) {
+  Runs runs(3);
+  runs.timed(0, "storage=chunked", "generate_ms", {reps(2.0), reps(2.1), reps(1.9)});
+  runs.timed(1, "storage=texture3d", "generate_ms", {reps(4.0), reps(4.2), reps(3.8)});
+  const FindingResult f = one(kChunkedFaster, runs.views());
+  EXPECT_EQ(f.verdict, "confirmed");
+  EXPECT_NE(f.effect.find("0.5x ["), std::string::npos) << f.effect;
+  EXPECT_EQ(f.basis, "3 runs x 5 repetitions, 1 vs 1 items");
+  EXPECT_NE(f.explanation.find("reading: fewer layers"), std::string::npos) << f.explanation;
+}
+
+TEST(Verdicts, ClearlyHigherIsRefuted) {
+  Runs runs(3);
+  runs.timed(0, "storage=chunked", "generate_ms", {reps(5.0), reps(5.1), reps(4.9)});
+  runs.timed(1, "storage=texture3d", "generate_ms", {reps(4.0), reps(4.1), reps(3.9)});
+  const FindingResult f = one(kChunkedFaster, runs.views());
+  EXPECT_EQ(f.verdict, "refuted");
+  EXPECT_NE(f.explanation.find("; pools first"), std::string::npos) << f.explanation;
+}
+
+TEST(Verdicts, OverlappingRepetitionsAreATieNotAConfirmation) {
+  // The old rule (mean below mean) called this confirmed: 2.99 against 3.00.
+  Runs runs(3);
+  runs.timed(0, "storage=chunked", "generate_ms", {reps(2.99), reps(3.0), reps(2.98)});
+  runs.timed(1, "storage=texture3d", "generate_ms", {reps(3.0), reps(3.01), reps(2.99)});
+  const FindingResult f = one(kChunkedFaster, runs.views());
+  EXPECT_EQ(f.verdict, "tie");
+  EXPECT_NE(f.explanation.find("; pools first"), std::string::npos) << f.explanation;
+}
+
+TEST(Verdicts, DriftBetweenRunsWidensTheInterval) {
+  // Within each run chunked looks 5 % faster or 5 % slower; one run alone would decide.
+  Runs drift(3);
+  drift.timed(0, "storage=chunked", "generate_ms", {reps(2.85), reps(3.15), reps(2.85)});
+  drift.timed(1, "storage=texture3d", "generate_ms", {reps(3.0), reps(3.0), reps(3.0)});
+  EXPECT_EQ(one(kChunkedFaster, drift.views()).verdict, "tie");
+  Runs single(1);
+  single.timed(0, "storage=chunked", "generate_ms", {reps(2.85)});
+  single.timed(1, "storage=texture3d", "generate_ms", {reps(3.0)});
+  const FindingResult f = one(kChunkedFaster, single.views());
+  EXPECT_EQ(f.verdict, "confirmed");
+  EXPECT_NE(f.basis.find("fewer than 3 runs"), std::string::npos) << f.basis;
+}
+
+TEST(Verdicts, ProbeErrorsArePairedOverThePoints) {
+  // The points differ wildly from one another, but at every point the first side errs 0.01
+  // less: an unpaired interval would hold 0, the paired one does not.
+  std::vector<double> a, b;
+  for (int k = 0; k < 200; ++k) {
+    const double base = 0.1 * double(k % 10);
+    a.push_back(k % 2 ? base : -base);
+    b.push_back(k % 2 ? base + 0.01 : -base - 0.01);
+  }
+  Runs runs(1);
+  runs.errors(0, "eps=0.01", "medium", a);
+  runs.errors(1, "eps=0.2", "medium", b);
+  const FindingResult f = one(R"([{"claim": "smaller eps errs less",
+    "lower": ["eps=0.01", "probe_error_medium:mean"],
+    "than": ["eps=0.2", "probe_error_medium:mean"]}])",
+                              runs.views());
+  EXPECT_EQ(f.verdict, "confirmed");
+  EXPECT_NE(f.effect.find("-0.01 [-0.01, -0.01]"), std::string::npos) << f.effect;
+  EXPECT_NE(f.basis.find("200 probe errors per item (paired"), std::string::npos) << f.basis;
+  // The "all" class pools every class of the samples.
+  const FindingResult all = one(R"([{"claim": "all", "lower": ["eps=0.01", "probe_error_all:mean"],
+    "than": ["eps=0.2", "probe_error_all:mean"]}])",
+                                runs.views());
+  EXPECT_EQ(all.verdict, "confirmed");
+  EXPECT_EQ(all.effect, f.effect);
+}
+
+const char* kLayersDecrease = R"([{"claim": "fewer layers at a larger eps",
+  "trend": "decreasing", "over": "eps", "selector": "clusters=4",
+  "column": "stats.storage.mean_layers_nonempty"}])";
+
+TEST(Verdicts, MonotoneTrendTestsEveryStep) {
+  Runs runs(1);
+  const std::vector<std::pair<std::string, double>> layers{
+      {"0.2", 3.0}, {"0.01", 4.0}, {"0.05", 3.6}, {"0.1", 3.3}};  // sorted by eps, not by order
+  for (size_t i = 0; i < layers.size(); ++i)
+    runs.value(int(i), "eps=" + layers[i].first + " clusters=4",
+               "stats.storage.mean_layers_nonempty", layers[i].second);
+  const FindingResult f = one(kLayersDecrease, runs.views());
+  EXPECT_EQ(f.verdict, "confirmed");
+  ASSERT_EQ(f.steps.size(), 3u);
+  EXPECT_EQ(f.steps[0].from, "0.01");
+  EXPECT_EQ(f.steps[2].to, "0.2");
+  EXPECT_NE(f.effect.find("0.01 → 0.05: 0.9x [0.9, 0.9]"), std::string::npos) << f.effect;
+  // One step up in the middle: the two endpoints still agree, the trend does not.
+  Runs bump(1);
+  const std::vector<std::pair<std::string, double>> bumped{
+      {"0.01", 4.0}, {"0.05", 3.3}, {"0.1", 3.6}, {"0.2", 3.0}};
+  for (size_t i = 0; i < bumped.size(); ++i)
+    bump.value(int(i), "eps=" + bumped[i].first + " clusters=4",
+               "stats.storage.mean_layers_nonempty", bumped[i].second);
+  EXPECT_EQ(one(kLayersDecrease, bump.views()).verdict, "refuted");
+}
+
+TEST(Verdicts, PlateauFromALevelOn) {
+  Runs runs(1);
+  const std::vector<std::pair<std::string, double>> max_layers{
+      {"0.01", 28}, {"0.05", 21}, {"0.1", 21}, {"0.2", 21}};
+  for (size_t i = 0; i < max_layers.size(); ++i)
+    runs.value(int(i), "eps=" + max_layers[i].first, "stats.storage.max_layers",
+               max_layers[i].second);
+  const char* plateau = R"([{"claim": "max layers plateau from eps 0.05", "trend": "plateau",
+    "over": "eps", "from": 0.05, "selector": "", "column": "stats.storage.max_layers"}])";
+  const FindingResult f = one(plateau, runs.views());
+  EXPECT_EQ(f.verdict, "tie");  // "no difference" holds: a tie, never "confirmed"
+  EXPECT_EQ(f.explanation.rfind("2 of 2 tested steps flat (from eps=0.05)", 0), 0u)
+      << f.explanation;
+  // From 0.01 on the first step moves: no plateau there.
+  const FindingResult early = one(R"([{"claim": "c", "trend": "plateau", "over": "eps",
+    "from": 0.01, "selector": "", "column": "stats.storage.max_layers"}])",
+                                  runs.views());
+  EXPECT_EQ(early.verdict, "refuted");
+  // Decreasing over the whole sweep: one step down, two flat steps: a tie, not a confirmation.
+  const FindingResult down = one(R"([{"claim": "c", "trend": "decreasing", "over": "eps",
+    "selector": "", "column": "stats.storage.max_layers"}])",
+                                 runs.views());
+  EXPECT_EQ(down.verdict, "tie");
+  // A level that the sweep lacks.
+  const FindingResult missing = one(R"([{"claim": "c", "trend": "plateau", "over": "eps",
+    "from": 0.3, "selector": "", "column": "stats.storage.max_layers"}])",
+                                    runs.views());
+  EXPECT_EQ(missing.verdict.rfind("not comparable (the plateau's level 0.3", 0), 0u)
+      << missing.verdict;
+}
+
+TEST(Verdicts, LossyRowsMakeADefect) {
+  Runs runs(3);
+  runs.timed(0, "storage=chunked", "generate_ms", {reps(2.0), reps(2.0), reps(2.0)});
+  runs.timed(1, "storage=texture3d", "generate_ms", {reps(4.0), reps(4.0), reps(4.0)});
+  runs.value(0, "storage=chunked", "stats.storage.overflowed_texels", 12);
+  runs.value(1, "storage=texture3d", "stats.tiles.dropped_tiles", 0);  // 0: no loss
+  const FindingResult f = one(kChunkedFaster, runs.views());
+  EXPECT_EQ(f.verdict,
+            "defect (item 0: stats.storage.overflowed_texels = 12; 1 of 2 items lossy: the "
+            "measurement lost data)");
+  EXPECT_EQ(f.effect, "-");
+}
+
+TEST(Verdicts, NotComparable) {
+  Runs runs(3);
+  runs.timed(0, "storage=chunked", "generate_ms", {reps(2.0), reps(2.0), reps(2.0)});
+  runs.timed(1, "storage=texture3d", "generate_ms", {reps(4.0), reps(4.0), reps(4.0)});
+  runs.value(0, "storage=chunked", "bytes", 10, "bytes");
+  EXPECT_EQ(one(R"([{"claim": "c", "lower": ["storage=blocked", "generate_ms:median"],
+    "than": ["", "generate_ms:median"]}])",
+                runs.views())
+                .verdict,
+            "not comparable (no measured item matches the first side)");
+  EXPECT_EQ(one(R"([{"claim": "c", "lower": ["storage=chunked", "bytes"],
+    "than": ["storage=texture3d", "generate_ms:median"]}])",
+                runs.views())
+                .verdict,
+            "not comparable (units differ: bytes vs ms)");
+  // A result folder from before samples/: rows alone give no interval for a timing.
+  runs.drop_samples();
+  const FindingResult old = one(kChunkedFaster, runs.views());
+  EXPECT_EQ(old.verdict.rfind("not comparable (2 items without per-repetition samples: interval "
+                              "unavailable",
+                              0),
+            0u)
+      << old.verdict;
+  EXPECT_EQ(old.lower, 2.0);  // the means are still shown
+}
+
+TEST(Verdicts, BootstrapIsReproducible) {
+  const std::vector<RunSamples> a{{reps(2.0), reps(2.3), reps(1.8)}, {reps(2.5), reps(2.4)}};
+  const std::vector<RunSamples> b{{reps(2.4), reps(2.2), reps(2.6)}};
+  const EffectInterval x = cluster_bootstrap(a, b, 7), y = cluster_bootstrap(a, b, 7);
+  EXPECT_EQ(x.effect, y.effect);
+  EXPECT_EQ(x.low, y.low);
+  EXPECT_EQ(x.high, y.high);
+  EXPECT_LT(x.low, x.effect);
+  EXPECT_GT(x.high, x.effect);
+  const EffectInterval z = cluster_bootstrap(a, b, 8);
+  EXPECT_EQ(z.effect, x.effect);
+  EXPECT_NE(std::make_pair(z.low, z.high), std::make_pair(x.low, x.high));
+  EXPECT_EQ(seed_of("claim"), seed_of("claim"));
+  EXPECT_NE(seed_of("claim"), seed_of("claim."));
+  // p99 and max of |error|, paired: the same draws on both sides.
+  const std::vector<double> e1{0.1, -0.2, 0.3, -0.4}, e2{0.2, -0.3, 0.4, -0.5};
+  const EffectInterval m = paired_bootstrap({{&e1, "s"}}, {{&e2, "s"}}, "max", 3);
+  EXPECT_FALSE(m.ratio);
+  EXPECT_DOUBLE_EQ(m.effect, -0.1);
+  EXPECT_DOUBLE_EQ(m.low, -0.1);
+  EXPECT_DOUBLE_EQ(m.high, -0.1);
+}
+
+class OldFolders : public test::HarnessTest {};
+
+// A folder written before samples/ (here: its samples removed) still reports; its timing claim
+// says why it has no interval, its byte claim (rows alone) still decides.
+TEST_F(OldFolders, ReportWithoutSamplesStillBuilds) {
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
+  const std::string suite = write("tiny.json", R"({"suite": "tiny-old", "repeat": 2,
+    "experiments": [{"name": "dsm", "kind": "shadow", "scene": ")" +
+                                                   scene + R"(",
+      "strategy": ["none", {"name": "dsm", "params": {"res": 32}}],
+      "settings": {"width": 32, "height": 24, "probe_points": 20, "images": 0},
+      "findings": [{"claim": "no shadows are cheaper", "lower": ["strategy=none", "bytes"],
+                    "than": ["strategy=dsm", "bytes"]},
+                   {"claim": "no shadows generate faster",
+                    "lower": ["strategy=none", "generate_ms:median"],
+                    "than": ["strategy=dsm", "generate_ms:median"]},
+                   {"claim": "no shadows err less", "lower": ["strategy=none", "probe_error_all:mean"],
+                    "than": ["strategy=dsm", "probe_error_all:mean"]}]}]})");
+  SuiteOptions o = cpu_options(suite);
+  const SuiteOutcome r = run_suite(o);
+  ASSERT_EQ(r.exit_code, 0);
+  const fs::path dir(r.folder);
+  ASSERT_TRUE(fs::is_regular_file(dir / "samples" / "0.json"));
+  const auto samples = nlohmann::json::parse(std::ifstream(dir / "samples" / "1.json"));
+  EXPECT_EQ(samples["timings"]["generate_ms"].size(), 2u);
+  EXPECT_EQ(samples["timings"]["frame_ms"].size(), 2u);
+  const size_t probes =
+      samples["probe_errors"]["surface"].size() + samples["probe_errors"]["medium"].size();
+  EXPECT_GT(probes, 0u);
+  EXPECT_EQ(probes % 20, 0u);  // 20 points, each per light
+  // probe_error_all pools the world-uniform classes; the findings' "all" takes the same ones.
+  EXPECT_EQ(samples["probe_all"], nlohmann::json({"surface", "medium"}));
+  auto report = [&] {
+    build_report(dir.string());
+    std::ifstream in(dir / "report.md");
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  std::string md = report();
+  EXPECT_NE(md.find("rest on 1 independent process run (this folder)"), std::string::npos) << md;
+  EXPECT_NE(md.find("1 run x 2 repetitions, 1 vs 1 items (fewer than 3 runs"), std::string::npos)
+      << md;
+  fs::remove_all(dir / "samples");
+  md = report();
+  EXPECT_NE(md.find("| no shadows are cheaper |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0x [0, 0] | 1 run x 1 value, 1 vs 1 items | confirmed |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("not comparable (2 items without per-repetition samples: interval "
+                    "unavailable (a result folder from before samples/))"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("not comparable (no probe samples for item 0: interval unavailable"),
+            std::string::npos)
+      << md;
+  // Two more runs recorded by name: the report pools three.
+  const SuiteOutcome r2 = run_suite(o), r3 = run_suite(o);
+  record_runs(dir.string(), {r2.folder, r3.folder});
+  md = report();
+  EXPECT_NE(md.find("rest on 3 independent process runs"), std::string::npos) << md;
+  EXPECT_THROW(record_runs(dir.string(), {(dir_ / "nowhere").string()}), InputError);
+}
+
+// A mapped paper table with a "shape": the paper's ratios beside ours with intervals, across the
+// sweep, within the table and above the no-shadow frame of another experiment.
+TEST_F(OldFolders, ShapeTablePutsThePapersRatiosBesideOurs) {
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
+  write("shape-table.json", R"({"source": "Tiny 2024, Table 2", "machine": "an abacus",
+    "units": {"*": "ms"}, "columns": ["", "16", "32"],
+    "rows": [["gen", 10, 20], ["render", 50, 55]]})");
+  const std::string suite = write("shape.json", R"({"suite": "tiny-shape", "repeat": 2,
+    "experiments": [
+     {"name": "base", "kind": "shadow", "scene": ")" +
+                                                    scene + R"(", "strategy": "none",
+      "settings": {"width": 32, "height": 24, "probe_points": 0, "images": 0}},
+     {"name": "dsm", "kind": "shadow", "scene": ")" +
+                                                    scene + R"(", "strategy": "dsm",
+      "sweep": {"res": [16, 32]},
+      "settings": {"width": 32, "height": 24, "probe_points": 0, "images": 0},
+      "paper": [{"table": "shape-table.json", "where": "",
+                 "rows": [["", "generate_ms:median"], ["", "render_ms:median"]],
+                 "columns": ["res=16", "res=32"],
+                 "shape": {"machine": "Abacus to silicon predicts nothing.",
+                           "column_pairs": [[1, 0]], "row_pairs": [[1, 0]],
+                           "baseline": {"selector": "experiment=base",
+                                        "column": "render_ms:median", "paper": 43,
+                                        "source": "Tiny's text", "rows": [1]}}}]}]})");
+  SuiteOptions o = cpu_options(suite);
+  const SuiteOutcome r = run_suite(o);
+  ASSERT_EQ(r.exit_code, 0);
+  std::ifstream in(fs::path(r.folder) / "report.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string md = text.str();
+  EXPECT_NE(md.find("overhead above the no-shadow frame: the paper's 43 ms (Tiny's text)"),
+            std::string::npos)
+      << md;
+  for (const char* line :
+       {"| gen, 32 / 16 | 2x | ", "| render, 32 / 16 | 1.1x | ", "| render / gen, 16 | 5x | ",
+        "| render / gen, 32 | 2.75x | ", "| render, 16 − the no-shadow frame | 7 | ",
+        "| render, 32 − the no-shadow frame | 12 | "}) {
+    const size_t at = md.find(line);
+    ASSERT_NE(at, std::string::npos) << line << "\n" << md;
+    const std::string rest = md.substr(at, md.find('\n', at) - at);
+    EXPECT_NE(rest.find(" ["), std::string::npos) << rest;  // ours with its interval
+    EXPECT_NE(rest.find("1 run x 2 repetitions"), std::string::npos) << rest;
+  }
+  EXPECT_NE(md.find("Machine change: Abacus to silicon predicts nothing."), std::string::npos)
+      << md;
+  // A shape that names a row the map lacks is rejected when the suite loads.
+  const std::string text_of_suite = [&] {
+    std::ifstream f(suite);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  }();
+  std::string broken = text_of_suite;
+  broken.replace(broken.find("\"rows\": [1]"), 12, "\"rows\": [5]");
+  EXPECT_THROW(run_suite(cpu_options(write("bad-shape.json", broken))), InputError);
+}
+
+}  // namespace
+}  // namespace dv
