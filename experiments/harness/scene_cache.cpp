@@ -32,12 +32,13 @@ const SceneData& SceneCache::data(const std::string& path) {
 }
 
 const ProbeSet& SceneCache::probes(const std::string& path, int count, double medium_fraction,
-                                   uint64_t seed) {
-  const auto key = std::make_tuple(path, count, medium_fraction, seed);
+                                   uint64_t seed, double isosurface) {
+  const auto key = std::make_tuple(path, count, medium_fraction, seed, isosurface);
   auto it = probes_.find(key);
   if (it != probes_.end()) return it->second;
   ProbeSet set;
-  set.points = make_probe_points(scene(path), host_data(path), count, medium_fraction, seed);
+  set.points =
+      make_probe_points(scene(path), host_data(path), count, medium_fraction, seed, isosurface);
   auto oracle = shadow_registry().create("reference");
   const ProbeResults r = probe_transmittance(backend_, data(path), *oracle, set.points.points);
   set.exact = r.transmittance;

@@ -31,14 +31,19 @@ struct ShadowSettings {
   int width, height, probe_points;
   double medium_fraction;
   uint64_t seed;
+  double isosurface;  // >= 0: surface probes also on the volumes' isosurface at this density
   bool images;
 };
 
 ShadowSettings read_settings(const RunItem& item, const Scene& scene) {
   const StrategyParams p(item.settings);
-  ShadowSettings s{p.integer("width", scene.camera.width), p.integer("height", scene.camera.height),
-                   p.integer("probe_points", 400),         p.number("medium_fraction", 0.5),
-                   uint64_t(p.integer("seed", 1)),         p.integer("images", 1) != 0};
+  ShadowSettings s{p.integer("width", scene.camera.width),
+                   p.integer("height", scene.camera.height),
+                   p.integer("probe_points", 400),
+                   p.number("medium_fraction", 0.5),
+                   uint64_t(p.integer("seed", 1)),
+                   p.number("isosurface", -1.0),
+                   p.integer("images", 1) != 0};
   p.finish("experiment '" + item.experiment_name + "' settings");
   if (s.width < 1 || s.height < 1 || s.probe_points < 0)
     throw InputError("experiment '" + item.experiment_name + "'",
@@ -94,7 +99,7 @@ void emit_errors(RowSink& rows, const std::string& metric, std::vector<double> e
 class ShadowDriver : public Driver {
  public:
   std::vector<std::string> settings() const override {
-    return {"width", "height", "probe_points", "medium_fraction", "seed", "images"};
+    return {"width", "height", "probe_points", "medium_fraction", "seed", "isosurface", "images"};
   }
   std::vector<std::string> default_columns() const override {
     return {
@@ -159,8 +164,8 @@ class ShadowDriver : public Driver {
   static void probe_errors(const RunItem& item, RunContext& ctx, const ShadowSettings& s,
                            ShadowMethod& method, RowSink& rows) {
     if (s.probe_points == 0) return;
-    const ProbeSet& probes =
-        ctx.scenes->probes(item.scene_path, s.probe_points, s.medium_fraction, s.seed);
+    const ProbeSet& probes = ctx.scenes->probes(item.scene_path, s.probe_points, s.medium_fraction,
+                                                s.seed, s.isosurface);
     const ProbeResults r = probe_transmittance(ctx.backend, ctx.scenes->data(item.scene_path),
                                                method, probes.points.points);
     rows.add("probe_ms", "value", r.milliseconds, "ms");
