@@ -1,5 +1,5 @@
-// The harness's measurements: probe points (deterministic, on surfaces or inside media as
-// classified), error summaries and image error against a reference.
+// The harness's measurements: probe points (deterministic, on surfaces, isosurfaces or inside
+// media as classified), error summaries and image error against a reference.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "engine/raster/fragment_walk.h"
+#include "engine/scene/volume_sampling.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/probe_points.h"
@@ -66,6 +67,33 @@ TEST(ProbePoints, SceneWithoutMediaGivesSurfacePointsOnly) {
   const ProbePoints p = make_probe_points(scene, host, 20, 0.5, 1);
   ASSERT_EQ(p.points.size(), 20u);
   for (ProbeClass c : p.classes) EXPECT_EQ(c, ProbeClass::surface);
+}
+
+// Isosurface probes (Hadwiger 2006's isosurface self-shadowing): the CT phantom of the hadwiger
+// experiment's smoke form has no visible mesh but its volume; with an isovalue its surface
+// probes lie on the volume's isosurface (trilinear density there equals the isovalue), without
+// one there are none.
+TEST(ProbePoints, IsosurfaceProbesLieOnTheIsosurface) {
+  const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/ct-phantom.json");
+  const SceneData host(scene, Memory::host);
+  const SceneView& view = host.view();
+  // Surface probes of `p` where some volume's density is the isovalue.
+  const auto on_isosurface = [&](const ProbePoints& p) {
+    int count = 0;
+    for (size_t i = 0; i < p.points.size(); ++i)
+      for (int32_t o = 0; o < int32_t(view.objects.size); ++o) {
+        const ObjectView& ov = view.objects[o];
+        if (p.classes[i] != ProbeClass::surface || ov.interior != InteriorKind::volume) continue;
+        const dvec3 g = world_to_grid(ov, p.points[i]);
+        count += std::abs(density_at_grid(view, view.volumes[ov.volume], g) - 0.175) < 1e-6;
+      }
+    return count;
+  };
+  const ProbePoints p = make_probe_points(scene, host, 60, 0.5, 3, 0.175);
+  ASSERT_EQ(p.points.size(), 60u);
+  EXPECT_GT(on_isosurface(p), 5);
+  EXPECT_EQ(make_probe_points(scene, host, 60, 0.5, 3, 0.175).points, p.points);
+  EXPECT_EQ(on_isosurface(make_probe_points(scene, host, 60, 0.5, 3)), 0);
 }
 
 TEST(ErrorSummary, MaxMeanAndNearestRankP99) {
