@@ -58,15 +58,17 @@ dvec3 surface_point(const SurfaceSampler& s, std::mt19937_64& rng) {
   return c[0] + (c[1] - c[0]) * u + (c[2] - c[0]) * v;
 }
 
+Aabb world_box(const Scene& scene, const Object& o) {
+  Aabb box;
+  for (const dvec3& p : scene.meshes[size_t(o.mesh)].positions)
+    box.extend(dvec3(o.transform * dvec4(p, 1.0)));
+  return box;
+}
+
 std::vector<Aabb> media_boxes(const Scene& scene) {
   std::vector<Aabb> boxes;
-  for (const Object& o : scene.objects) {
-    if (o.interior.kind == InteriorKind::none) continue;
-    Aabb box;
-    for (const dvec3& p : scene.meshes[size_t(o.mesh)].positions)
-      box.extend(dvec3(o.transform * dvec4(p, 1.0)));
-    boxes.push_back(box);
-  }
+  for (const Object& o : scene.objects)
+    if (o.interior.kind != InteriorKind::none) boxes.push_back(world_box(scene, o));
   return boxes;
 }
 
@@ -85,11 +87,8 @@ IsosurfaceSampler isosurface_sampler(const Scene& scene, double isovalue) {
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& o = scene.objects[i];
     if (o.interior.kind != InteriorKind::volume) continue;
-    Aabb box;
-    for (const dvec3& p : scene.meshes[size_t(o.mesh)].positions)
-      box.extend(dvec3(o.transform * dvec4(p, 1.0)));
     s.objects.push_back(int(i));
-    s.boxes.push_back(box);
+    s.boxes.push_back(world_box(scene, o));
   }
   return s;
 }
