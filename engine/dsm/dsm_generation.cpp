@@ -61,6 +61,7 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
   generator_.subrays = options.subrays;
   generator_.step_scale = options.step_scale;
   if (options.precompressed) {
+    PassTimer table_timer(backend);
     const PrecompressedTableData t =
         build_precompressed_tables(scene, options.table_bins, options.table_eps);
     table_steps_ = Buffer<PrecompressedStep>(memory, t.steps, "dsm precompressed steps");
@@ -68,6 +69,7 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
     table_domain_ = Buffer<dvec2>(memory, t.domain, "dsm precompressed domains");
     generator_.tables = {table_steps_.const_view(), object_table_.const_view(),
                          table_domain_.const_view(), options.table_bins};
+    table_ms_ = table_timer.stop();
   }
 }
 

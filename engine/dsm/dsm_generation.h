@@ -43,7 +43,8 @@ class DsmGeneration {
   View<const ShadowLight> lights() const { return lights_.const_view(); }
   Backend backend() const { return backend_; }
   double raster_milliseconds() const { return raster_ms_; }
-  int64_t fragments() const;  // tile-list entries over all faces
+  double table_milliseconds() const { return table_ms_; }  // pre-compressed tables' build
+  int64_t fragments() const;                               // tile-list entries over all faces
 
  private:
   Backend backend_;
@@ -59,6 +60,7 @@ class DsmGeneration {
   Buffer<dvec2> table_domain_;
   DsmGenerator generator_;
   double raster_ms_ = 0.0;
+  double table_ms_ = 0.0;
 };
 
 }  // namespace dv

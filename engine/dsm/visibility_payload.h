@@ -110,18 +110,33 @@ struct VisibilityPayload {
     return found;
   }
 
+  // One step with a pre-compressed table (precompressed_table.h): the table's nodes for the
+  // nearest density nodes, each moved to where the step's own linear density equals the table's
+  // density at it (kept as a fraction where the two ramps differ in direction or the table's is
+  // flat), and V there and at the step's end from the exact mean extinction of the ramp.
   DV_HD void tabled_step(int32_t object, double sigma_constant, double a, double b) {
     const ObjectView& o = s.objects[object];
     const VolumeView& v = s.volumes[o.volume];
+    const TransferPoint* tf = s.transfer.data + o.transfer_first;
     const double d0 = density_at_grid(s, v, world_to_grid(o, origin + dir * a));
     const double d1 = density_at_grid(s, v, world_to_grid(o, origin + dir * b));
-    const PrecompressedStep& step = tables.step(object, d0, d1);
+    const int i = tables.node(object, d0), j = tables.node(object, d1);
+    const double t0 = tables.node_density(object, i), t1 = tables.node_density(object, j);
+    const bool by_density = (t1 - t0) * (d1 - d0) > 0.0;
+    const PrecompressedStep& step = tables.step(object, i, j);
     const double dt = b - a, v0 = visibility;
-    for (int i = 0; i < step.count; ++i) {
-      const double z = a + double(step.s[i]) * dt;
-      target.push(float(z), float(v0 * exp(-dt * double(step.tau[i]) - sigma_constant * (z - a))));
+    double last = 0.0;
+    for (int k = 0; k < step.count; ++k) {
+      const double s_k = double(step.s[k]);
+      const double u = by_density ? (t0 + (t1 - t0) * s_k - d0) / (d1 - d0) : s_k;
+      if (!(u > last && u < 1.0)) continue;
+      last = u;
+      const double optical =
+          dt * u * transfer_sigma_mean(tf, o.transfer_count, d0, d0 + (d1 - d0) * u);
+      target.push(float(a + u * dt), float(v0 * exp(-optical - sigma_constant * u * dt)));
     }
-    visibility = v0 * exp(-dt * (double(step.tau_end) + sigma_constant));
+    const double mean = transfer_sigma_mean(tf, o.transfer_count, d0, d1);
+    visibility = v0 * exp(-dt * (mean + sigma_constant));
     target.push(float(b), float(visibility));
   }
 };

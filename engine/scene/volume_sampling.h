@@ -95,6 +95,31 @@ DV_HD inline TransferSample evaluate_transfer(const TransferPoint* p, int n, dou
   return {p[k].color * (1.0 - w) + p[k + 1].color * w, p[k].sigma * (1.0 - w) + p[k + 1].sigma * w};
 }
 
+// An antiderivative of the transfer function's extinction over density, exact for the
+// piecewise-linear function and its constant ends: integral of sigma from p[0].density to x.
+DV_HD inline double transfer_sigma_integral(const TransferPoint* p, int n, double x) {
+  if (x <= p[0].density) return (x - p[0].density) * p[0].sigma;
+  double total = 0.0;
+  for (int k = 0; k + 1 < n; ++k) {
+    const double lo = p[k].density, hi = p[k + 1].density;
+    if (x <= hi) {
+      const double w = hi > lo ? (x - lo) / (hi - lo) : 1.0;
+      const double sigma_x = p[k].sigma * (1.0 - w) + p[k + 1].sigma * w;
+      return total + 0.5 * (p[k].sigma + sigma_x) * (x - lo);
+    }
+    total += 0.5 * (p[k].sigma + p[k + 1].sigma) * (hi - lo);
+  }
+  return total + (x - p[n - 1].density) * p[n - 1].sigma;
+}
+
+// The mean extinction over the densities between x and y (pre-integration, Engel et al. 2001:
+// a step whose density runs linearly from x to y absorbs its length times this mean).
+DV_HD inline double transfer_sigma_mean(const TransferPoint* p, int n, double x, double y) {
+  if (fabs(y - x) <= 1e-7 * (fabs(x) + fabs(y) + 1e-30))
+    return evaluate_transfer(p, n, 0.5 * (x + y)).sigma;
+  return (transfer_sigma_integral(p, n, y) - transfer_sigma_integral(p, n, x)) / (y - x);
+}
+
 // An object's transfer function at a density.
 DV_HD inline TransferSample apply_transfer(const SceneView& s, const ObjectView& o,
                                            double density) {

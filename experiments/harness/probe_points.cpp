@@ -1,4 +1,4 @@
-// Probe point generation (probe_points.h).
+// Probe point generation (probe_points.h): mesh surfaces, isosurfaces of volumes, media.
 #include "experiments/harness/probe_points.h"
 
 #include <algorithm>
@@ -6,6 +6,7 @@
 #include <random>
 
 #include "engine/raster/fragment_walk.h"
+#include "engine/scene/volume_sampling.h"
 #include "strategies/voxelizer/triangle_soup.h"
 
 namespace dv {
@@ -57,16 +58,80 @@ dvec3 surface_point(const SurfaceSampler& s, std::mt19937_64& rng) {
   return c[0] + (c[1] - c[0]) * u + (c[2] - c[0]) * v;
 }
 
+Aabb world_box(const Scene& scene, const Object& o) {
+  Aabb box;
+  for (const dvec3& p : scene.meshes[size_t(o.mesh)].positions)
+    box.extend(dvec3(o.transform * dvec4(p, 1.0)));
+  return box;
+}
+
 std::vector<Aabb> media_boxes(const Scene& scene) {
   std::vector<Aabb> boxes;
-  for (const Object& o : scene.objects) {
-    if (o.interior.kind == InteriorKind::none) continue;
-    Aabb box;
-    for (const dvec3& p : scene.meshes[size_t(o.mesh)].positions)
-      box.extend(dvec3(o.transform * dvec4(p, 1.0)));
-    boxes.push_back(box);
-  }
+  for (const Object& o : scene.objects)
+    if (o.interior.kind != InteriorKind::none) boxes.push_back(world_box(scene, o));
   return boxes;
+}
+
+// Volume objects whose isosurface at `isovalue` holds surface probes: their indices and world
+// boxes.
+struct IsosurfaceSampler {
+  std::vector<int> objects;
+  std::vector<Aabb> boxes;
+  double isovalue = -1.0;
+};
+
+IsosurfaceSampler isosurface_sampler(const Scene& scene, double isovalue) {
+  IsosurfaceSampler s;
+  s.isovalue = isovalue;
+  if (isovalue < 0.0) return s;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& o = scene.objects[i];
+    if (o.interior.kind != InteriorKind::volume) continue;
+    s.objects.push_back(int(i));
+    s.boxes.push_back(world_box(scene, o));
+  }
+  return s;
+}
+
+// A point on the isosurface of one of s's volumes: from a uniform point of its box along a
+// uniform direction, the first crossing of the isovalue (trilinear density, 512 steps over the
+// box's diagonal, then bisection); tries again from another point when the line crosses none.
+// False after 200 tries.
+bool isosurface_point(const IsosurfaceSampler& s, const SceneData& host, std::mt19937_64& rng,
+                      dvec3& out) {
+  const SceneView& view = host.view();
+  const size_t k = pick(rng, s.objects.size());
+  const ObjectView& o = view.objects[s.objects[k]];
+  const Aabb& box = s.boxes[k];
+  const auto level = [&](const dvec3& x) {
+    return density_at_grid(view, view.volumes[o.volume], world_to_grid(o, x)) - s.isovalue;
+  };
+  const double diagonal = glm::length(box.extent());
+  for (int tries = 0; tries < 200; ++tries) {
+    const dvec3 e = box.extent();
+    const dvec3 p = box.lo + dvec3(uniform(rng) * e.x, uniform(rng) * e.y, uniform(rng) * e.z);
+    dvec3 d;
+    do d = dvec3(uniform(rng), uniform(rng), uniform(rng)) * 2.0 - 1.0;
+    while (glm::dot(d, d) > 1.0 || glm::dot(d, d) < 1e-6);
+    d = glm::normalize(d) * (diagonal / 512.0);
+    double f0 = level(p);
+    for (int i = 1; i <= 512; ++i) {
+      const dvec3 a = p + d * double(i - 1), b = p + d * double(i);
+      if (glm::any(glm::lessThan(b, box.lo)) || glm::any(glm::greaterThan(b, box.hi))) break;
+      const double f1 = level(b);
+      if ((f0 < 0.0) != (f1 < 0.0)) {
+        double lo = 0.0, hi = 1.0;
+        for (int n = 0; n < 50; ++n) {
+          const double mid = 0.5 * (lo + hi);
+          ((level(a + (b - a) * mid) < 0.0) == (f0 < 0.0) ? lo : hi) = mid;
+        }
+        out = a + (b - a) * (0.5 * (lo + hi));
+        return true;
+      }
+      f0 = f1;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -84,7 +149,7 @@ const char* to_string(ProbeClass c) {
 }
 
 ProbePoints make_probe_points(const Scene& scene, const SceneData& host, int count,
-                              double medium_fraction, uint64_t seed) {
+                              double medium_fraction, uint64_t seed, double isosurface) {
   std::mt19937_64 rng(seed);
   ProbePoints out;
   const std::vector<Aabb> boxes = media_boxes(scene);
@@ -100,8 +165,20 @@ ProbePoints make_probe_points(const Scene& scene, const SceneData& host, int cou
     out.classes.push_back(ProbeClass::medium);
   }
   const SurfaceSampler surfaces = surface_sampler(scene);
-  while (!surfaces.objects.empty() && int(out.points.size()) < count) {
-    out.points.push_back(surface_point(surfaces, rng));
+  const IsosurfaceSampler isosurfaces = isosurface_sampler(scene, isosurface);
+  const size_t kinds = surfaces.objects.size() + isosurfaces.objects.size();
+  for (int misses = 0; kinds > 0 && int(out.points.size()) < count && misses < count;) {
+    // Without isosurfaces no draw is spent on the choice: the mesh probes stay as they were.
+    const bool on_volume =
+        !isosurfaces.objects.empty() && pick(rng, kinds) >= surfaces.objects.size();
+    dvec3 p;
+    if (!on_volume)
+      p = surface_point(surfaces, rng);
+    else if (!isosurface_point(isosurfaces, host, rng, p)) {
+      ++misses;
+      continue;
+    }
+    out.points.push_back(p);
     out.classes.push_back(ProbeClass::surface);
   }
   return out;

@@ -33,12 +33,12 @@ const SceneData& SceneCache::data(const std::string& path) {
 }
 
 const ProbeSet& SceneCache::probes(const std::string& path, int count, double medium_fraction,
-                                   uint64_t seed) {
-  const auto key = std::make_tuple(path, count, medium_fraction, seed);
+                                   uint64_t seed, double isosurface) {
+  const auto key = std::make_tuple(path, count, medium_fraction, seed, isosurface);
   auto it = probes_.find(key);
   if (it != probes_.end()) return it->second;
   ProbePoints points =
-      make_probe_points(scene(path), host_data(path), count, medium_fraction, seed);
+      make_probe_points(scene(path), host_data(path), count, medium_fraction, seed, isosurface);
   return probes_.emplace(key, with_oracle(path, std::move(points))).first->second;
 }
 

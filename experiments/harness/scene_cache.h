@@ -48,7 +48,8 @@ class SceneCache {
   const Scene& scene(const std::string& path);
   const SceneData& host_data(const std::string& path);
   const SceneData& data(const std::string& path);  // in the backend's memory
-  const ProbeSet& probes(const std::string& path, int count, double medium_fraction, uint64_t seed);
+  const ProbeSet& probes(const std::string& path, int count, double medium_fraction, uint64_t seed,
+                         double isosurface = -1.0);
   // The raster renderer with the exact oracle's shadows at width x height.
   ReferenceRender& reference(const std::string& path, int width, int height);
   // The scene's camera at width x height: what each pixel sees.
@@ -67,7 +68,7 @@ class SceneCache {
 
   Backend backend_;
   std::map<std::string, Entry> scenes_;
-  std::map<std::tuple<std::string, int, double, uint64_t>, ProbeSet> probes_;
+  std::map<std::tuple<std::string, int, double, uint64_t, double>, ProbeSet> probes_;
   std::map<std::tuple<std::string, int, int>, ReferenceRender> references_;
   std::map<std::tuple<std::string, int, int>, CameraSight> sights_;
   std::map<std::tuple<std::string, int, int, int, uint64_t>, ProbeSet> visible_probes_;

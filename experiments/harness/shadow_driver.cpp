@@ -39,6 +39,7 @@ struct ShadowSettings {
   int width, height, probe_points;
   double medium_fraction;
   uint64_t seed;
+  double isosurface;  // >= 0: surface probes also on the volumes' isosurface at this density
   bool images;
   int visible_points;  // camera-visible probes; default probe_points
 };
@@ -50,6 +51,7 @@ ShadowSettings read_settings(const RunItem& item, const Scene& scene) {
                    p.integer("probe_points", 400),
                    p.number("medium_fraction", 0.5),
                    uint64_t(p.integer("seed", 1)),
+                   p.number("isosurface", -1.0),
                    p.integer("images", 1) != 0,
                    0};
   s.visible_points = p.integer("visible_points", s.probe_points);
@@ -125,8 +127,8 @@ void class_errors(const ProbeResults& r, const ProbeSet& probes,
 class ShadowDriver : public Driver {
  public:
   std::vector<std::string> settings() const override {
-    return {"width", "height", "probe_points",  "medium_fraction",
-            "seed",  "images", "visible_points"};
+    return {"width", "height",     "probe_points", "medium_fraction",
+            "seed",  "isosurface", "images",       "visible_points"};
   }
   std::vector<std::string> default_columns() const override {
     return {
@@ -198,8 +200,8 @@ class ShadowDriver : public Driver {
     std::map<ProbeClass, std::vector<double>> errors;
     size_t flagged = 0;
     if (s.probe_points > 0) {
-      const ProbeSet& probes =
-          ctx.scenes->probes(item.scene_path, s.probe_points, s.medium_fraction, s.seed);
+      const ProbeSet& probes = ctx.scenes->probes(item.scene_path, s.probe_points,
+                                                  s.medium_fraction, s.seed, s.isosurface);
       const ProbeResults r = probe_transmittance(ctx.backend, data, method, probes.points.points);
       rows.add("probe_ms", "value", r.milliseconds, "ms");
       class_errors(r, probes, errors, flagged);

@@ -1,8 +1,8 @@
 // Storage strategy `chunked` (see chunked_device.h). Parameters (table at the registration):
 // alloc, chunk = L_C layers per chunk, block_chunks = C_B, pool = C_max chunks, pool_per_block,
 // sizing (strategies/storage/pool_sizing.h). The pool: `pool` when given; else counted sums over
-// the 8x8 blocks the chunks each needs for its nodes (at most C_B), and thesis reserves
-// pool_per_block per block.
+// the 8x8 blocks the chunks each needs for its nodes (at most C_B; with alloc=thesis the most
+// its race can take, racing_units_worst), and thesis reserves pool_per_block per block.
 // `thesis` allocates as Knecht's
 // Algorithm 4.1 (threads of a block race, losers' chunks are wasted: measured, reported);
 // `aggregated` claims each chunk once with a pending state, so a block wastes at most the
@@ -60,20 +60,18 @@ class ChunkedStorage final : public DsmStorage {
 
   void generate(const DsmGenerationContext& c) override {
     blocks_ = c.generator.thread_count() / (kDsmBlockSide * kDsmBlockSide);
-    const bool counted = counts_nodes(sizing_, pool_);
-    double wanted = pool_units_wanted(c, sizing_, pool_, pool_per_block_ * double(blocks_),
-                                      {NodeCountGroups::generation_block, false}, blocks_,
-                                      chunk_layers_, block_limit_, &scratch_);
-    // The racing allocation (alloc=thesis) loses chunks to the race, so a counted pool may run
-    // out: it then doubles what the race took and the maps are written again, until no node is
-    // refused (the race differs each time; growing only to what it took left a retry short now
-    // and then, and the maps then differed between runs: HardDeterminism on an H200) or the
-    // pool reaches its 32-bit limit, where the overflow is reported.
-    for (;;) {
-      write_pool(c, wanted);
-      if (!counted || taken_ <= capacity_ || capacity_ >= int32_t(max_pool_chunks())) break;
-      wanted = 2.0 * double(taken_);
-    }
+    // The racing allocation (alloc=thesis) loses chunks to the race, so a counted pool holds
+    // the race's worst case (racing_units_worst: at most one chunk per node, per thread and
+    // slot): one write pass, no node refused whatever the schedule, and the waste is what the
+    // race took beyond the used chunks. (Retrying with a larger pool when the race had exhausted
+    // it timed several write passes; growing only to what the race took left the seeds' runs of
+    // 2026-12-01 16,549 refused texels short at 512^2.) Anything still refused (a fixed pool,
+    // the block limit C_B, the 32-bit limit) is reported as overflowed texels.
+    const double wanted = pool_units_wanted(
+        c, sizing_, pool_, pool_per_block_ * double(blocks_),
+        {NodeCountGroups::generation_block, false}, blocks_, chunk_layers_, block_limit_, &scratch_,
+        alloc_ == "thesis" ? int64_t(kDsmBlockSide) * kDsmBlockSide : 0);
+    write_pool(c, wanted);
     scratch_.end();
   }
 

@@ -136,7 +136,9 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
     options.light = settings_.light;
     generation_ =
         std::make_unique<DsmGeneration>(scene, backend, options, clustered_ ? &clusters_ : nullptr);
-    passes_.push_back({"raster", timer.stop()});
+    const double ms = timer.stop(), table_ms = generation_->table_milliseconds();
+    passes_.push_back({"raster", ms - table_ms});
+    if (settings_.precompressed) passes_.push_back({"table", table_ms});
   }
   const DsmGenerator& g = generation_->generator();
   ensure_buffer(records_, memory_of(backend), g.texel_count(), "dsm texel records");

@@ -52,12 +52,14 @@ std::vector<int32_t> count_nodes_per_group(const DsmGenerationContext& c,
 
 double pool_units_wanted(const DsmGenerationContext& c, PoolSizing sizing, int64_t pool,
                          double thesis_units, const NodeCountGroups& groups, int64_t group_count,
-                         int64_t per_unit, int64_t limit, NodeReplayScratch* scratch) {
+                         int64_t per_unit, int64_t limit, NodeReplayScratch* scratch,
+                         int64_t racers) {
   if (pool > 0) return double(pool);
   if (!counts_nodes(sizing, pool)) return thesis_units;
   double wanted = 0.0;
   for (int32_t nodes : count_nodes_per_group(c, groups, group_count, scratch))
-    wanted += double(units_needed(nodes, per_unit, limit));
+    wanted += double(racers > 0 ? racing_units_worst(nodes, per_unit, limit, racers)
+                                : units_needed(nodes, per_unit, limit));
   return wanted;
 }
 

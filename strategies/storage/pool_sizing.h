@@ -59,12 +59,26 @@ inline int64_t units_needed(int64_t nodes, int64_t per_unit, int64_t limit) {
   return units < limit ? units : limit;
 }
 
+// The most pool units a group's racing allocation (claim_racing, slot_claim.h) can take for
+// `nodes` nodes at `per_unit` nodes a unit, at most `limit` units used, among `racers` threads:
+// each node's claim takes at most one unit, and a thread that has claimed a slot sees it taken
+// from then on, so a slot costs at most min(nodes written in it, racers) units. A pool of the sum
+// over the groups cannot run out whatever the schedule, and still lets the race waste as it does.
+inline int64_t racing_units_worst(int64_t nodes, int64_t per_unit, int64_t limit, int64_t racers) {
+  const int64_t per_full = per_unit < racers ? per_unit : racers;
+  const int64_t full = nodes / per_unit, rest = nodes % per_unit;
+  if (full >= limit) return limit * per_full;
+  return full * per_full + (rest < racers ? rest : racers);
+}
+
 // How many pool units (chunks, blocks) to reserve: an explicit `pool` (> 0) as given; else with
 // counted sizing the sum over the groups of what each group's count needs (units_needed at
-// `per_unit` nodes a unit, at most `limit` a group; the counting pass runs and keeps the nodes
-// in `scratch`); else `thesis_units`, the papers' formula.
+// `per_unit` nodes a unit, at most `limit` a group, or with `racers` > 0 racing_units_worst
+// among that many threads; the counting pass runs and keeps the nodes in `scratch`); else
+// `thesis_units`, the papers' formula.
 double pool_units_wanted(const DsmGenerationContext& c, PoolSizing sizing, int64_t pool,
                          double thesis_units, const NodeCountGroups& groups, int64_t group_count,
-                         int64_t per_unit, int64_t limit, NodeReplayScratch* scratch = nullptr);
+                         int64_t per_unit, int64_t limit, NodeReplayScratch* scratch = nullptr,
+                         int64_t racers = 0);
 
 }  // namespace dv

@@ -15,6 +15,7 @@
 #include "cuda/device_memory.h"
 #include "strategies/shadow/probe.h"
 #include "strategies/storage/deep_shadow_maps.h"
+#include "strategies/storage/pool_sizing.h"
 #include "tests/strategies/storage/storage_test_support.h"
 
 namespace dv {
@@ -153,6 +154,50 @@ TEST(ChunkedAllocation, ThesisSchemeStoresTheSameFunctions) {
   EXPECT_EQ(s["chunks_allocated"].get<int64_t>(),
             s["chunks_used"].get<int64_t>() + s["chunks_wasted"].get<int64_t>());
   expect_same_lookups(compact, thesis, Backend::cpu);
+}
+
+// The racing allocation's worst case (pool_sizing.h): at most one chunk per node, and per slot
+// at most one per racing thread.
+TEST(ChunkedAllocation, RacingWorstCaseClosedForms) {
+  EXPECT_EQ(racing_units_worst(0, 64, 64, 64), 0);
+  EXPECT_EQ(racing_units_worst(100, 64, 64, 64), 100);  // every node of a slot from its own thread
+  EXPECT_EQ(racing_units_worst(100, 16, 64, 64), 100);
+  EXPECT_EQ(racing_units_worst(200, 128, 64, 64), 128);  // 64 racers a slot at most
+  EXPECT_EQ(racing_units_worst(5000, 64, 2, 64), 128);   // C_B slots, then refused unclaimed
+}
+
+// alloc=thesis with counted sizing reserves the race's worst case, so no schedule can exhaust
+// the pool and drop nodes (the seeds run of 2026-12-01 lost 16,549 texels at 512^2 to a pool
+// grown only to what one race took): with chunks of at most 64 layers that is one chunk per
+// node.
+TEST(ChunkedAllocation, ThesisPoolHoldsTheRacingWorstCase) {
+  const Scene scene = test::scene_file("demo.json");
+  for (const char* chunk : {"chunk=64", "chunk=16"}) {
+    const Generated g =
+        generate(scene, Backend::cpu, "chunked", {"alloc=thesis", chunk}, 0.01f, 64);
+    const nlohmann::json& f = g.maps->figures();
+    ASSERT_EQ(f["overflowed_texels"], 0) << chunk;
+    EXPECT_EQ(f["strategy"]["pool_chunks"], f["nodes_needed"]) << chunk;
+    EXPECT_FALSE(f["strategy"]["pool_exhausted"].get<bool>()) << chunk;
+  }
+}
+
+// On a GPU the threads of a block do race: the thesis allocation wastes chunks (Table 5.11) yet
+// drops no node and stores the same functions as compact.
+TEST(ChunkedAllocation, ThesisRaceOnCudaWastesButDropsNothing) {
+  std::string why;
+  if (!cuda_device_available(&why)) GTEST_SKIP() << "the race needs a GPU: " << why;
+  const Scene scene = test::scene_file("demo.json");
+  const Generated thesis = generate(scene, Backend::cuda, "chunked", {"alloc=thesis"}, 0.01f, 256);
+  const Generated compact = generate(scene, Backend::cuda, "compact", {}, 0.01f, 256);
+  const nlohmann::json& f = thesis.maps->figures();
+  ASSERT_EQ(f["overflowed_texels"], 0) << f.dump();
+  const nlohmann::json& s = f["strategy"];
+  EXPECT_EQ(s["refused_nodes"], 0);
+  EXPECT_FALSE(s["pool_exhausted"].get<bool>());
+  EXPECT_GT(s["chunks_wasted"].get<int64_t>(), 0) << "no race happened";
+  EXPECT_LE(s["chunks_allocated"].get<int64_t>(), s["pool_chunks"].get<int64_t>());
+  expect_same_lookups(compact, thesis, Backend::cuda);
 }
 
 // A lamp-like scene with five omni lights (30 map faces, like glTF's LightsPunctualLamp): the
