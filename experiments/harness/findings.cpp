@@ -316,7 +316,8 @@ FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>
     const std::string here = selector + " " + over + "=" + levels[k];
     const std::string next = selector + " " + over + "=" + levels[k + 1];
     TrendStep step{levels[k], levels[k + 1],
-                   compare_selections(next, column, here, column, runs, seed + k)};
+                   compare_selections(next, column, here, column, runs, seed + k, false,
+                                      f.value("lossy", "") == "expected")};
     const Comparison& c = step.comparison;
     r.effect += (r.effect.empty() ? "" : "; ") + levels[k] + " → " + levels[k + 1] + ": " +
                 (c.has_interval ? interval_text(c.interval) : c.verdict);
@@ -365,7 +366,8 @@ std::string interval_text(const EffectInterval& iv) {
 
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
-                              const std::vector<RunView>& runs, uint64_t seed, bool difference) {
+                              const std::vector<RunView>& runs, uint64_t seed, bool difference,
+                              bool lossy_expected) {
   Comparison c;
   const RunView& run = runs[0];
   const SelectionMean a = selection_mean(first_selector, first_column, run.items);
@@ -381,7 +383,8 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
   const std::vector<int> second = matching_items(second_selector, second_column, run);
   std::vector<int> both = first;
   both.insert(both.end(), second.begin(), second.end());
-  if (const std::string lossy = lossy_rows(both, runs); !lossy.empty()) {
+  const std::string lossy = lossy_rows(both, runs);
+  if (!lossy.empty() && !lossy_expected) {
     c.verdict = "defect (" + lossy + ": the measurement lost data)";
     return c;
   }
@@ -414,6 +417,7 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
     c.basis = std::to_string(errors.front().size()) +
               " probe errors per item (paired over the points of each scene, first run), " +
               items_text;
+    if (!lossy.empty()) c.basis += "; lossy as the claim expects (" + lossy + ")";
     c.verdict = verdict_of(c.interval);
     return c;
   }
@@ -436,6 +440,7 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
   c.basis = std::to_string(max_runs) + " run" + (max_runs == 1 ? "" : "s") + " x " +
             (timing ? std::to_string(repetitions) + " repetitions" : "1 value") + ", " + items_text;
   if (max_runs < 3 && timing) c.basis += " (fewer than 3 runs: drift between runs not in it)";
+  if (!lossy.empty()) c.basis += "; lossy as the claim expects (" + lossy + ")";
   c.verdict = verdict_of(c.interval);
   return c;
 }
@@ -459,7 +464,8 @@ std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
     const Column lower_column = parse_column(f["lower"][1].get<std::string>());
     const Column than_column = parse_column(f["than"][1].get<std::string>());
     const Comparison c = compare_selections(lower_selector, lower_column, than_selector,
-                                            than_column, runs, seed_of(r.claim + r.lower_text));
+                                            than_column, runs, seed_of(r.claim + r.lower_text),
+                                            false, f.value("lossy", "") == "expected");
     r.lower = c.first;
     r.than = c.second;
     r.lower_items = c.first_items;

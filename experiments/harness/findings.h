@@ -89,11 +89,13 @@ SelectionMean selection_mean(const std::string& selector, const Column& column,
 
 // The first selection against the second on `runs` (runs[0]: the folder reported; at least
 // one run); `seed` makes the bootstrap reproducible.
-// `difference`: the effect is the difference of the means, not their ratio.
+// `difference`: the effect is the difference of the means, not their ratio. `lossy_expected`:
+// the claim is about the loss itself (a finding's "lossy": "expected", e.g. a layer limit
+// exercised on purpose), so overflowed or dropped rows are named in the basis, not a defect.
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
                               const std::vector<RunView>& runs, uint64_t seed,
-                              bool difference = false);
+                              bool difference = false, bool lossy_expected = false);
 
 // `findings` as validated by the suite loader.
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,

@@ -77,8 +77,8 @@ void check_finding_side(JsonReader& r, const Json& side, const std::string& key)
     r.fail(key, "expected [\"selector\", \"metric:stat\"]");
 }
 
-// A comparison {claim, lower, than, why, why_not} or a trend {claim, trend, over, selector,
-// column, levels, from, why, why_not} (findings.h).
+// A comparison {claim, lower, than, why, why_not, lossy} or a trend {claim, trend, over,
+// selector, column, levels, from, why, why_not, lossy} (findings.h).
 void check_findings(JsonReader& r, const Json& findings) {
   if (!findings.is_array()) r.fail("findings", "expected an array of claims");
   for (size_t i = 0; i < findings.size(); ++i) {
@@ -91,8 +91,10 @@ void check_findings(JsonReader& r, const Json& findings) {
     const bool trend = f.contains("trend");
     const std::vector<std::string> known =
         trend ? std::vector<std::string>{"claim",  "trend", "over", "selector", "column",
-                                         "levels", "from",  "why",  "why_not"}
-              : std::vector<std::string>{"claim", "lower", "than", "why", "why_not"};
+                                         "levels", "from",  "why",  "why_not",  "lossy"}
+              : std::vector<std::string>{"claim", "lower", "than", "why", "why_not", "lossy"};
+    if (f.contains("lossy") && f["lossy"] != "expected")
+      r.fail(at + "/lossy", "expected \"expected\" (the claim is about a loss, e.g. a limit)");
     for (const auto& [key, v] : f.items())
       if (std::find(known.begin(), known.end(), key) == known.end()) {
         std::string list;

@@ -196,75 +196,77 @@ TEST(ImageMetrics, DepthBinsCoverTheImageNearestFirst) {
   for (size_t k = 0; k < 4; ++k) total += double(b.pixels[k]) * rmse[k] * rmse[k];
   EXPECT_NEAR(std::sqrt(total / 8.0), image_error(image, reference).rmse, 1e-12);
   EXPECT_THROW(binned_rmse(image, reference, few), InputError);
-  // Isosurface probes (Hadwiger 2006's isosurface self-shadowing): the CT phantom of the hadwiger
-  // experiment's smoke form has no visible mesh but its volume; with an isovalue its surface
-  // probes lie on the volume's isosurface (trilinear density there equals the isovalue), without
-  // one there are none.
-  TEST(ProbePoints, IsosurfaceProbesLieOnTheIsosurface) {
-    const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/ct-phantom.json");
-    const SceneData host(scene, Memory::host);
-    const SceneView& view = host.view();
-    // Surface probes of `p` where some volume's density is the isovalue.
-    const auto on_isosurface = [&](const ProbePoints& p) {
-      int count = 0;
-      for (size_t i = 0; i < p.points.size(); ++i)
-        for (int32_t o = 0; o < int32_t(view.objects.size); ++o) {
-          const ObjectView& ov = view.objects[o];
-          if (p.classes[i] != ProbeClass::surface || ov.interior != InteriorKind::volume) continue;
-          const dvec3 g = world_to_grid(ov, p.points[i]);
-          count += std::abs(density_at_grid(view, view.volumes[ov.volume], g) - 0.175) < 1e-6;
-        }
-      return count;
-    };
-    const ProbePoints p = make_probe_points(scene, host, 60, 0.5, 3, 0.175);
-    ASSERT_EQ(p.points.size(), 60u);
-    EXPECT_GT(on_isosurface(p), 5);
-    EXPECT_EQ(make_probe_points(scene, host, 60, 0.5, 3, 0.175).points, p.points);
-    EXPECT_EQ(on_isosurface(make_probe_points(scene, host, 60, 0.5, 3)), 0);
-  }
+}
 
-  TEST(ErrorSummary, MaxMeanAndNearestRankP99) {
-    std::vector<double> errors;
-    for (int i = 1; i <= 200; ++i) errors.push_back(i * 0.01);
-    const ErrorSummary s = summarize_errors(errors);
-    EXPECT_EQ(s.count, 200u);
-    EXPECT_DOUBLE_EQ(s.max, 2.0);
-    EXPECT_NEAR(s.mean, 1.005, 1e-12);
-    EXPECT_DOUBLE_EQ(s.p99, 1.98);  // rank ceil(0.99 * 200) = 198
-    EXPECT_DOUBLE_EQ(s.p50, 1.00);  // rank 100
-    EXPECT_DOUBLE_EQ(s.p90, 1.80);  // rank 180
-    EXPECT_DOUBLE_EQ(s.p95, 1.90);  // rank 190
-    // Five errors, unsorted: ranks ceil(2.5) = 3, ceil(4.5) = 5, ceil(4.75) = 5.
-    const ErrorSummary five = summarize_errors({0.3, 0.1, 0.5, 0.2, 0.4});
-    EXPECT_DOUBLE_EQ(five.p50, 0.3);
-    EXPECT_DOUBLE_EQ(five.p90, 0.5);
-    EXPECT_DOUBLE_EQ(five.p95, 0.5);
-    EXPECT_DOUBLE_EQ(five.p99, 0.5);
-    // A saturated tail: max and p99 at 1 say nothing the lower quantiles do not tell apart.
-    std::vector<double> saturated(100, 0.01);
-    for (int i = 0; i < 6; ++i) saturated[size_t(i)] = 1.0;
-    const ErrorSummary sat = summarize_errors(saturated);
-    EXPECT_EQ(sat.p99, 1.0);
-    EXPECT_EQ(sat.p95, 1.0);
-    EXPECT_EQ(sat.p90, 0.01);
-    EXPECT_DOUBLE_EQ(summarize_errors({0.5}).p99, 0.5);
-    EXPECT_EQ(summarize_errors({}).count, 0u);
-  }
+// Isosurface probes (Hadwiger 2006's isosurface self-shadowing): the CT phantom of the hadwiger
+// experiment's smoke form has no visible mesh but its volume; with an isovalue its surface
+// probes lie on the volume's isosurface (trilinear density there equals the isovalue), without
+// one there are none.
+TEST(ProbePoints, IsosurfaceProbesLieOnTheIsosurface) {
+  const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/ct-phantom.json");
+  const SceneData host(scene, Memory::host);
+  const SceneView& view = host.view();
+  // Surface probes of `p` where some volume's density is the isovalue.
+  const auto on_isosurface = [&](const ProbePoints& p) {
+    int count = 0;
+    for (size_t i = 0; i < p.points.size(); ++i)
+      for (int32_t o = 0; o < int32_t(view.objects.size); ++o) {
+        const ObjectView& ov = view.objects[o];
+        if (p.classes[i] != ProbeClass::surface || ov.interior != InteriorKind::volume) continue;
+        const dvec3 g = world_to_grid(ov, p.points[i]);
+        count += std::abs(density_at_grid(view, view.volumes[ov.volume], g) - 0.175) < 1e-6;
+      }
+    return count;
+  };
+  const ProbePoints p = make_probe_points(scene, host, 60, 0.5, 3, 0.175);
+  ASSERT_EQ(p.points.size(), 60u);
+  EXPECT_GT(on_isosurface(p), 5);
+  EXPECT_EQ(make_probe_points(scene, host, 60, 0.5, 3, 0.175).points, p.points);
+  EXPECT_EQ(on_isosurface(make_probe_points(scene, host, 60, 0.5, 3)), 0);
+}
 
-  TEST(ImageMetrics, ErrorOnTheEightBitValues) {
-    Image reference(4, 2), image(4, 2);
-    const ImageError same = image_error(image, reference);
-    EXPECT_EQ(same.rmse, 0.0);
-    EXPECT_TRUE(std::isinf(same.psnr_db));
-    EXPECT_EQ(same.fraction_over_8, 0.0);
-    image.rgb[0] = 1.0f;    // one channel of one pixel: 0 -> 255
-    image.rgb[4] = 0.002f;  // 0.002 linear is sRGB byte 7: within 8/255
-    const ImageError e = image_error(image, reference);
-    EXPECT_NEAR(e.rmse, std::sqrt((1.0 + (7.0 / 255) * (7.0 / 255)) / 24.0), 1e-12);
-    EXPECT_NEAR(e.psnr_db, 20.0 * std::log10(1.0 / e.rmse), 1e-12);
-    EXPECT_EQ(e.fraction_over_8, 1.0 / 8.0);
-    EXPECT_THROW(image_error(Image(3, 2), reference), InputError);
-  }
+TEST(ErrorSummary, MaxMeanAndNearestRankP99) {
+  std::vector<double> errors;
+  for (int i = 1; i <= 200; ++i) errors.push_back(i * 0.01);
+  const ErrorSummary s = summarize_errors(errors);
+  EXPECT_EQ(s.count, 200u);
+  EXPECT_DOUBLE_EQ(s.max, 2.0);
+  EXPECT_NEAR(s.mean, 1.005, 1e-12);
+  EXPECT_DOUBLE_EQ(s.p99, 1.98);  // rank ceil(0.99 * 200) = 198
+  EXPECT_DOUBLE_EQ(s.p50, 1.00);  // rank 100
+  EXPECT_DOUBLE_EQ(s.p90, 1.80);  // rank 180
+  EXPECT_DOUBLE_EQ(s.p95, 1.90);  // rank 190
+  // Five errors, unsorted: ranks ceil(2.5) = 3, ceil(4.5) = 5, ceil(4.75) = 5.
+  const ErrorSummary five = summarize_errors({0.3, 0.1, 0.5, 0.2, 0.4});
+  EXPECT_DOUBLE_EQ(five.p50, 0.3);
+  EXPECT_DOUBLE_EQ(five.p90, 0.5);
+  EXPECT_DOUBLE_EQ(five.p95, 0.5);
+  EXPECT_DOUBLE_EQ(five.p99, 0.5);
+  // A saturated tail: max and p99 at 1 say nothing the lower quantiles do not tell apart.
+  std::vector<double> saturated(100, 0.01);
+  for (int i = 0; i < 6; ++i) saturated[size_t(i)] = 1.0;
+  const ErrorSummary sat = summarize_errors(saturated);
+  EXPECT_EQ(sat.p99, 1.0);
+  EXPECT_EQ(sat.p95, 1.0);
+  EXPECT_EQ(sat.p90, 0.01);
+  EXPECT_DOUBLE_EQ(summarize_errors({0.5}).p99, 0.5);
+  EXPECT_EQ(summarize_errors({}).count, 0u);
+}
+
+TEST(ImageMetrics, ErrorOnTheEightBitValues) {
+  Image reference(4, 2), image(4, 2);
+  const ImageError same = image_error(image, reference);
+  EXPECT_EQ(same.rmse, 0.0);
+  EXPECT_TRUE(std::isinf(same.psnr_db));
+  EXPECT_EQ(same.fraction_over_8, 0.0);
+  image.rgb[0] = 1.0f;    // one channel of one pixel: 0 -> 255
+  image.rgb[4] = 0.002f;  // 0.002 linear is sRGB byte 7: within 8/255
+  const ImageError e = image_error(image, reference);
+  EXPECT_NEAR(e.rmse, std::sqrt((1.0 + (7.0 / 255) * (7.0 / 255)) / 24.0), 1e-12);
+  EXPECT_NEAR(e.psnr_db, 20.0 * std::log10(1.0 / e.rmse), 1e-12);
+  EXPECT_EQ(e.fraction_over_8, 1.0 / 8.0);
+  EXPECT_THROW(image_error(Image(3, 2), reference), InputError);
+}
 
 }  // namespace
 }  // namespace dv

@@ -246,6 +246,22 @@ TEST(Verdicts, LossyRowsMakeADefect) {
   EXPECT_EQ(f.effect, "-");
 }
 
+TEST(Verdicts, ExpectedLossIsDecidedAndNamed) {
+  Runs runs(3);
+  runs.timed(0, "storage=chunked", "generate_ms", {reps(2.0), reps(2.0), reps(2.0)});
+  runs.timed(1, "storage=texture3d", "generate_ms", {reps(4.0), reps(4.0), reps(4.0)});
+  runs.value(1, "storage=texture3d", "stats.storage.overflowed_texels", 7);
+  nlohmann::json claim = nlohmann::json::parse(kChunkedFaster);
+  claim[0]["lossy"] = "expected";
+  const std::vector<FindingResult> f = evaluate_findings(claim, runs.views());
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].verdict, "confirmed");
+  EXPECT_NE(f[0].basis.find("lossy as the claim expects (item 1: "
+                            "stats.storage.overflowed_texels = 7; 1 of 2 items lossy)"),
+            std::string::npos)
+      << f[0].basis;
+}
+
 TEST(Verdicts, NotComparable) {
   Runs runs(3);
   runs.timed(0, "storage=chunked", "generate_ms", {reps(2.0), reps(2.0), reps(2.0)});

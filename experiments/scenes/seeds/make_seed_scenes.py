@@ -242,6 +242,28 @@ def hadwiger_scenes():
         {"ct": {"generator": "shepp_logan", "dims": [256, 256, 256]}})}
 
 
+# ---------------------------------------------------------------- Knecht 2011 §4.2.1: the 3D texture's layer limit
+
+LAYER_SLABS = 64
+
+
+def layer_limit_scenes():
+    """No figure of the thesis: a scene deep enough to exceed the 3D texture's 64 layers."""
+    objects = [floor(-1.5, -1.5, 1.5, 1.5)]
+    for k in range(LAYER_SLABS):
+        y = round(0.3 + 0.02 * k, 6)
+        objects.append({"name": f"slab-{k}", "mesh": {"generator": "box", "min": [-0.6, y, -0.6], "max": [0.6, round(y + 0.01, 6), 0.6]},
+                        "material": {"color": [0.85, 0.8, 0.7], "alpha": 0.03}})
+    return {"knecht-layer-limit-64-slabs.json": scene(
+        f"Knecht 2011 §4.2.1 layer limit (no figure): {LAYER_SLABS} stacked translucent slabs (alpha 0.03 each, "
+        f"{2 * LAYER_SLABS} surfaces on every light ray through the stack) over a floor under one spot light, 720x480, "
+        "so that a texel's compressed visibility needs more than the 3D texture's 64 layers at a small eps. No thesis "
+        "scene is given for the limit; every other seeds scene stays below 18 layers.",
+        camera([2.2, 2.6, 3.0], [0.0, 0.6, 0.0]),
+        [spot([0.3, 4.0, 0.2], [0.0, 0.0, 0.0], 30, 10.0)],
+        objects)}
+
+
 # ---------------------------------------------------------------- Buchacher 2014
 
 def buchacher_scene(description, mesh, transform, cam):
@@ -359,7 +381,7 @@ def readme(descriptions):
 
 def main():
     check = "--check" in sys.argv[1:]
-    made = {**knecht_scenes(), **hadwiger_scenes(), **buchacher_scenes()}
+    made = {**knecht_scenes(), **layer_limit_scenes(), **hadwiger_scenes(), **buchacher_scenes()}
     files = {name: dump(content) for name, (_, content) in made.items()}
     files["README.md"] = readme({name: description for name, (description, _) in made.items()})
     stale = []
