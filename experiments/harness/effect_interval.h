@@ -13,6 +13,10 @@
 //   interval is a paired bootstrap: per resample one draw of point indices per pairing group
 //   (the scene), applied to every item of that group on both sides.
 // The interval is the 2.5 and 97.5 percentiles of the resampled effects.
+// "No effect" is a band for ratios, not the point 1: a ratio within 1 % of 1 (kSmallestRatio)
+// counts as no effect, so a count that does not vary between runs (layers, bytes, voxels: a
+// zero-width interval) does not confirm a claim by 0.05 %. Differences (probe errors) keep 0:
+// their intervals come from the spread over the points.
 #pragma once
 
 #include <cstdint>
@@ -21,12 +25,16 @@
 
 namespace dv {
 
+constexpr double kSmallestRatio = 0.01;
+
 struct EffectInterval {
   double effect = 0.0, low = 0.0, high = 0.0;
   bool ratio = true;  // ratio of means (no effect: 1), else difference (no effect: 0)
   double none() const { return ratio ? 1.0 : 0.0; }
-  bool below() const { return high < none(); }  // entirely below "no effect"
-  bool above() const { return low > none(); }   // entirely above "no effect"
+  // Entirely below / above the band of "no effect" (ratios: 1 / (1 + kSmallestRatio) to
+  // 1 + kSmallestRatio; differences: 0).
+  bool below() const { return high < (ratio ? 1.0 / (1.0 + kSmallestRatio) : 0.0); }
+  bool above() const { return low > (ratio ? 1.0 + kSmallestRatio : 0.0); }
 };
 
 constexpr int kResamples = 2000;

@@ -262,6 +262,22 @@ TEST(Verdicts, ExpectedLossIsDecidedAndNamed) {
       << f[0].basis;
 }
 
+TEST(Verdicts, ACountWithinOnePercentIsATie) {
+  // Mean layers that do not vary between runs: a zero-width interval at 1.005x is no effect,
+  // 1.05x is one.
+  const char* more = R"([{"claim": "more layers at res 512",
+    "lower": ["res=256", "stats.storage.mean_layers"],
+    "than": ["res=512", "stats.storage.mean_layers"]}])";
+  Runs close(3);
+  close.value(0, "res=256", "stats.storage.mean_layers", 2.0, "layers");
+  close.value(1, "res=512", "stats.storage.mean_layers", 2.01, "layers");
+  EXPECT_EQ(one(more, close.views()).verdict, "tie");
+  Runs apart(3);
+  apart.value(0, "res=256", "stats.storage.mean_layers", 2.0, "layers");
+  apart.value(1, "res=512", "stats.storage.mean_layers", 2.1, "layers");
+  EXPECT_EQ(one(more, apart.views()).verdict, "confirmed");
+}
+
 TEST(Verdicts, NotComparable) {
   Runs runs(3);
   runs.timed(0, "storage=chunked", "generate_ms", {reps(2.0), reps(2.0), reps(2.0)});
