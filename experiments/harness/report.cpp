@@ -130,11 +130,6 @@ std::string our_cell(const Json& map, size_t row, size_t column,
   return m.items ? format_value(m.mean) : "";
 }
 
-// The paper's number in a cell, NaN for a range, text or null.
-double paper_number(const Json& v) {
-  return v.is_number() ? v.get<double>() : std::nan("");
-}
-
 // The shape table of a mapped paper table with a "shape" entry (suite-format.md): the paper's
 // ratios beside ours with our intervals (between two value columns of a row: across the sweep;
 // between two rows of a column: within the table) and the overhead above the no-shadow frame,
@@ -147,7 +142,18 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
   const Json& rows = t["rows"];
   const Json& columns = t["columns"];
   const auto row_name = [&](size_t r) {
-    return labels > 0 ? cell(rows[r][labels - 1]) : "row " + std::to_string(r + 1);
+    std::string name;
+    for (size_t l = 0; l < labels; ++l) name += (l ? " " : "") + cell(rows[r][l]);
+    return labels > 0 ? name : "row " + std::to_string(r + 1);
+  };
+  // A paper cell as a number: a range at its midpoint; with "paper_as": "ms_from_fps" a rate as
+  // milliseconds (1000 / fps, a range's ends converted first), so its ratios are time ratios.
+  const bool from_fps = map.value("paper_as", "") == "ms_from_fps";
+  const auto paper_value = [&](const Json& v) {
+    const auto as_time = [&](double x) { return from_fps ? 1000.0 / x : x; };
+    if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number())
+      return 0.5 * (as_time(v[0].get<double>()) + as_time(v[1].get<double>()));
+    return v.is_number() ? as_time(v.get<double>()) : std::nan("");
   };
   const auto column_name = [&](size_t c) { return cell(columns[labels + c]); };
   std::vector<std::vector<std::string>> body;
@@ -182,8 +188,8 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
         const std::string what =
             of_rows ? row_name(ra) + " / " + row_name(rb) + ", " + column_name(ca)
                     : row_name(ra) + ", " + column_name(ca) + " / " + column_name(cb);
-        line(what, paper_number(rows[ra][labels + ca]) / paper_number(rows[rb][labels + cb]), sa,
-             ma, "experiment=" + experiment + " " + sb, mb, false);
+        line(what, paper_value(rows[ra][labels + ca]) / paper_value(rows[rb][labels + cb]), sa, ma,
+             "experiment=" + experiment + " " + sb, mb, false);
       }
     }
   };
@@ -199,14 +205,15 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
         Column metric;
         if (!cell_selection(map, row, c, selector, metric)) continue;
         line(row_name(row) + ", " + column_name(c) + " − the no-shadow frame",
-             paper_number(rows[row][labels + c]) - base["paper"].get<double>(), selector, metric,
+             paper_value(rows[row][labels + c]) - base["paper"].get<double>(), selector, metric,
              base["selector"].get<std::string>(), base_column, true);
       }
     }
   }
   if (body.empty()) return;
   md << "Shape (ratios within the table and across the sweep, paper beside ours with our 95 % "
-        "interval"
+        "interval; the paper's ranges at their midpoints"
+     << (from_fps ? ", its rates as times (1000 / fps)" : "")
      << (shape.contains("baseline")
              ? "; overhead above the no-shadow frame: the paper's " +
                    format_value(shape["baseline"]["paper"].get<double>()) + " ms (" +
