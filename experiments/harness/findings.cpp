@@ -278,6 +278,11 @@ std::vector<std::string> trend_levels(const nlohmann::json& f, const Column& col
 }
 
 // The suite's reading after the data: `why` for a confirmed claim, else `why_not`.
+// Whether a finding says its claim is about a loss ("lossy": "expected", suite-format.md).
+bool expects_loss(const nlohmann::json& f) {
+  return f.value("lossy", "") == "expected";
+}
+
 std::string reading(const nlohmann::json& f, bool confirmed) {
   const std::string text = confirmed ? f.value("why", "") : f.value("why_not", "");
   if (text.empty()) return confirmed ? "" : "; the cause is not explained here";
@@ -315,9 +320,9 @@ FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>
   for (size_t k = 0; k + 1 < levels.size(); ++k) {
     const std::string here = selector + " " + over + "=" + levels[k];
     const std::string next = selector + " " + over + "=" + levels[k + 1];
-    TrendStep step{levels[k], levels[k + 1],
-                   compare_selections(next, column, here, column, runs, seed + k, false,
-                                      f.value("lossy", "") == "expected")};
+    TrendStep step{
+        levels[k], levels[k + 1],
+        compare_selections(next, column, here, column, runs, seed + k, false, expects_loss(f))};
     const Comparison& c = step.comparison;
     r.effect += (r.effect.empty() ? "" : "; ") + levels[k] + " → " + levels[k + 1] + ": " +
                 (c.has_interval ? interval_text(c.interval) : c.verdict);
@@ -463,9 +468,9 @@ std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
     r.than_text = than_selector + ": " + f["than"][1].get<std::string>();
     const Column lower_column = parse_column(f["lower"][1].get<std::string>());
     const Column than_column = parse_column(f["than"][1].get<std::string>());
-    const Comparison c = compare_selections(lower_selector, lower_column, than_selector,
-                                            than_column, runs, seed_of(r.claim + r.lower_text),
-                                            false, f.value("lossy", "") == "expected");
+    const Comparison c =
+        compare_selections(lower_selector, lower_column, than_selector, than_column, runs,
+                           seed_of(r.claim + r.lower_text), false, expects_loss(f));
     r.lower = c.first;
     r.than = c.second;
     r.lower_items = c.first_items;

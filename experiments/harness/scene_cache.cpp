@@ -54,13 +54,18 @@ ProbeSet SceneCache::with_oracle(const std::string& path, ProbePoints points) {
   return set;
 }
 
+Camera SceneCache::camera_at(const std::string& path, int width, int height) {
+  Camera camera = scene(path).camera;
+  camera.width = width;
+  camera.height = height;
+  return camera;
+}
+
 const CameraSight& SceneCache::sight(const std::string& path, int width, int height) {
   const auto key = std::make_tuple(path, width, height);
   auto it = sights_.find(key);
   if (it != sights_.end()) return it->second;
-  Camera camera = scene(path).camera;
-  camera.width = width;
-  camera.height = height;
+  const Camera camera = camera_at(path, width, height);
   CameraSight sight;
   sight.surface = visible_surface(Backend::cpu, host_data(path), camera);
   sight.depth = view_depths(sight.surface, camera);
@@ -80,9 +85,7 @@ ReferenceRender& SceneCache::reference(const std::string& path, int width, int h
   const auto key = std::make_tuple(path, width, height);
   auto it = references_.find(key);
   if (it != references_.end()) return it->second;
-  Camera camera = scene(path).camera;
-  camera.width = width;
-  camera.height = height;
+  const Camera camera = camera_at(path, width, height);
   auto oracle = shadow_registry().create("reference");
   RasterRenderResult r =
       render_raster(backend_, data(path), camera, *oracle, scene(path).background);

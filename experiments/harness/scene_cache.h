@@ -59,6 +59,8 @@ class SceneCache {
                                  uint64_t seed);
 
  private:
+  // The scene's camera at `width` x `height` (the experiment's image size).
+  Camera camera_at(const std::string& path, int width, int height);
   struct Entry {
     Scene scene;
     std::unique_ptr<SceneData> host, device;
