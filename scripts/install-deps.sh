@@ -4,12 +4,14 @@
 # listed because Debian's OpenImageIOTargets.cmake checks that /usr/bin/iconvert exists: without
 # it the CMake configure step fails (libopenimageio-dev only recommends it). clang and
 # libclang-rt-dev (libFuzzer, the sanitizer runtimes) build the fuzz targets (scripts/fuzz.sh).
+# libopenvdb-dev reads and writes .vdb volumes (full build; DEEPVOX_OPENVDB).
 # ccache keeps compiled objects between builds and clones (CMakeLists.txt, DEEPVOX_CCACHE).
 set -euo pipefail
 
 packages=(
   cmake g++ make pkg-config git ccache
   libglm-dev libglfw3-dev libopenimageio-dev openimageio-tools python3-imath libcgal-dev libeigen3-dev
+  libopenvdb-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   libgtest-dev libbenchmark-dev
   libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri libegl-mesa0

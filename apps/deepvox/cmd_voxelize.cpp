@@ -1,6 +1,7 @@
 // `deepvox voxelize MESH_OR_SCENE --method NAME [--backend cpu|cuda|gl] --res 512x512x32
-//  [--bounds x0,y0,z0,x1,y1,z1] --out grid.binvox [--stats stats.json] [--compare-exact]`:
-// a binary surface voxel grid of every triangle of the scene, written as binvox, with counts,
+//  [--bounds x0,y0,z0,x1,y1,z1] --out grid.binvox|grid.vdb [--stats stats.json] [--compare-exact]`:
+// a binary surface voxel grid of every triangle of the scene, written as binvox or as an OpenVDB
+// float grid "density" (render/io/vdb_io.h; not in the lean build), with counts,
 // pass timings and (optionally) the metrics against `exact` in the stats JSON. The work itself
 // is run_voxelize_job (apps/deepvox/voxelize_job.h). In the full binary `--backend gl`
 // runs the OpenGL implementations (gl/gl_voxelizers.h, registered by main.cpp), headless
@@ -27,7 +28,9 @@ Runner add_voxelize(CLI::App& app) {
   cmd->add_option("--res", job->res, "grid size WxHxD, D a multiple of 32")->capture_default_str();
   cmd->add_option("--bounds", job->bounds,
                   "grid box x0,y0,z0,x1,y1,z1 (default: the scene's bounds made cubic)");
-  cmd->add_option("--out", job->out, "binvox file to write")->required();
+  cmd->add_option("--out", job->out,
+                  "grid to write: .binvox, or .vdb (float grid \"density\", 1 in set voxels)")
+      ->required();
   cmd->add_option("--stats", job->stats, "write counts, timings and run metadata as JSON");
   cmd->add_flag("--compare-exact", job->compare_exact,
                 "also run `exact` on the CPU and report missing/extra voxels");

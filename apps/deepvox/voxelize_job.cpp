@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
@@ -12,6 +13,7 @@
 #include "cuda/kernel_timing.h"
 #include "render/io/binvox.h"
 #include "render/io/output_path.h"
+#include "render/io/vdb_io.h"
 #include "render/load/scene_loader.h"
 #include "strategies/voxelizer/exact_voxelizer.h"
 #include "strategies/voxelizer/voxel_metrics.h"
@@ -23,6 +25,10 @@ namespace {
 
 nlohmann::json vec(const dvec3& v) {
   return {v.x, v.y, v.z};
+}
+
+bool writes_vdb(const VoxelizeJob& job) {
+  return std::filesystem::path(job.out).extension() == ".vdb";
 }
 
 void write_json(const std::string& path, const nlohmann::json& j) {
@@ -44,7 +50,10 @@ Backend voxelize_job_backend(const VoxelizeJob& job) {
 }
 
 nlohmann::json run_voxelize_job(const VoxelizeJob& job, const RunMetadataSource& meta) {
-  if (!job.out.empty()) check_output_path(job.out, {".binvox"}, "binvox grid");  // before work
+  if (!job.out.empty()) {  // before any work
+    check_output_path(job.out, {".binvox", ".vdb"}, "voxel grid");
+    if (writes_vdb(job)) require_vdb_support(job.out);
+  }
   if (!job.stats.empty()) check_output_path(job.stats, {".json"}, "stats JSON");
   const bool gl = voxelize_job_uses_gl(job);
   const Registry<Voxelizer>& registry = gl ? gl_voxelizer_registry() : voxelizer_registry();
@@ -93,7 +102,13 @@ nlohmann::json run_voxelize_job(const VoxelizeJob& job, const RunMetadataSource&
     stats["exact"] = {{"ms", exact.milliseconds},
                       {"metrics", compare_with_exact(result.grid, exact).to_json()}};
   }
-  if (!job.out.empty()) {
+  if (!job.out.empty() && writes_vdb(job)) {
+    write_vdb_occupancy(job.out, result.grid);
+    mark_wall_phase("vdb written");
+    stats["vdb"] = {{"path", job.out},
+                    {"grid", "density"},
+                    {"first_voxel_centre", vec(bounds.lo + 0.5 * spec.voxel_size())}};
+  } else if (!job.out.empty()) {
     write_binvox(job.out, result.grid);
     mark_wall_phase("binvox written");
     const int max_dim = std::max({res.x, res.y, res.z});

@@ -1,6 +1,6 @@
 // What `deepvox voxelize` does, as library functions the tests can call: parse the resolution
 // and bounds options, voxelize a mesh or scene with a registered voxelizer, optionally measure
-// it against `exact`, write the binvox grid and the stats JSON.
+// it against `exact`, write the grid (binvox, or .vdb in a build with OpenVDB) and the stats JSON.
 #pragma once
 
 #include <functional>
@@ -22,7 +22,7 @@ struct VoxelizeJob {
   std::string backend;              // "cpu" | "cuda" | "gl"; empty: CUDA when a GPU is present
   std::string res = "512x512x32";   // WxHxD, D a multiple of 32
   std::string bounds;               // "x0,y0,z0,x1,y1,z1"; empty: the scene's bounds made cubic
-  std::string out;                  // binvox path; empty: none written
+  std::string out;                  // .binvox or .vdb path; empty: none written
   std::string stats;                // stats JSON path; empty: none written
   bool compare_exact = false;       // add metrics against `exact` (CPU) to the stats
 };

@@ -1,7 +1,7 @@
 // Procedural density volumes (see volume_generators.h): the 3D Shepp-Logan phantom, a seeded
 // smoke plume built from our own integer-hash gradient noise (only integer hashing and
 // +,-,*,/,sqrt, so outputs are bit-identical wherever IEEE doubles are), a constant block, and
-// the JSON entry point that also loads raw files.
+// the JSON entry point that also loads raw and OpenVDB files.
 #include "render/load/volume_generators.h"
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "render/io/vdb_io.h"
 #include "render/io/volume_io.h"
 
 namespace dv {
@@ -327,8 +328,18 @@ VolumeGrid make_constant_block(ivec3 dims, float density) {
 }
 
 std::vector<std::string> volume_generator_names() {
-  return {"shepp_logan", "smoke", "block", "raw"};
+  return {"shepp_logan", "smoke", "block", "raw", "vdb"};
 }
+
+namespace {
+
+std::string resolve_volume_file(const std::string& file, const std::string& scene_dir) {
+  std::filesystem::path path(file);
+  if (path.is_relative() && !scene_dir.empty()) path = std::filesystem::path(scene_dir) / path;
+  return path.string();
+}
+
+}  // namespace
 
 VolumeGrid generate_volume(JsonReader& spec, const std::string& scene_dir) {
   const std::string generator = spec.string("generator");
@@ -337,6 +348,14 @@ VolumeGrid generate_volume(JsonReader& spec, const std::string& scene_dir) {
     std::string known;
     for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
     spec.fail("generator", "unknown volume generator '" + generator + "' (known: " + known + ")");
+  }
+  if (generator == "vdb") {  // size and placement come from the file
+    for (const char* key : {"dims", "spacing", "origin"})
+      if (spec.has(key)) spec.fail(key, "a vdb volume takes its size and placement from the file");
+    const std::string file = spec.string("file");
+    const std::string grid = spec.string("grid", kDefaultVdbGrid);
+    spec.finish();
+    return load_vdb_volume(resolve_volume_file(file, scene_dir), grid);
   }
   const ivec3 dims = spec.ivec3_value("dims");
   check_volume_dims(dims, spec.where("dims"));
@@ -378,9 +397,7 @@ VolumeGrid generate_volume(JsonReader& spec, const std::string& scene_dir) {
     const RawType type = parse_raw_type(spec.string("type"), spec.where("type"));
     const bool big_endian = spec.boolean("big_endian", false);
     spec.finish();
-    std::filesystem::path path(file);
-    if (path.is_relative() && !scene_dir.empty()) path = std::filesystem::path(scene_dir) / path;
-    volume = load_raw_volume(path.string(), dims, type, spacing, big_endian);
+    volume = load_raw_volume(resolve_volume_file(file, scene_dir), dims, type, spacing, big_endian);
   }
   volume.origin = origin;
   volume.spacing = spacing;

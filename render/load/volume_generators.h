@@ -1,11 +1,12 @@
 // Procedural density volumes for object interiors: the 3D Shepp-Logan phantom (a standard test
 // object with known structure), a seeded smoke plume (soft, turbulent density) and a constant
-// block, plus the JSON entry point that scene files use (it also loads raw volume files).
+// block, plus the JSON entry point that scene files use (it also loads raw and OpenVDB volume
+// files).
 //
 // Scene-file parameters of a volume spec (an object read with JsonReader; unknown keys are
 // errors):
-//   "generator"   required: "shepp_logan" | "smoke" | "block" | "raw"
-//   "dims"        required: [x, y, z] sample counts, each >= 1
+//   "generator"   required: "shepp_logan" | "smoke" | "block" | "raw" | "vdb"
+//   "dims"        required (not for vdb): [x, y, z] sample counts, each >= 1
 //   "spacing"     optional: [x, y, z] world units between samples, each > 0;
 //                 default 1 / (max(dims) - 1) on every axis, so the largest extent is 1 unit
 //                 (1 when max(dims) == 1)
@@ -18,6 +19,9 @@
 //   raw only:     "file" (required; a relative path resolves against the scene's folder),
 //                 "type" (required: "uint8" | "uint16" | "float32"), "big_endian" (default
 //                 false). Integer samples are divided by 255 / 65535.
+//   vdb only:     "file" (required; relative to the scene's folder like raw), "grid" (the float
+//                 grid to read, default "density"). "dims", "spacing" and "origin" are errors:
+//                 the file's active voxels and transform give them (render/io/vdb_io.h).
 // "origin" and "spacing" replace the placement the C++ generators below choose for
 // themselves; the samples themselves do not change.
 //
@@ -78,7 +82,7 @@ VolumeGrid make_constant_block(ivec3 dims, float density);
 // scene_dir resolves relative raw file paths; errors name the spec's file and JSON path.
 VolumeGrid generate_volume(JsonReader& spec, const std::string& scene_dir);
 
-// "shepp_logan", "smoke", "block", "raw".
+// "shepp_logan", "smoke", "block", "raw", "vdb".
 std::vector<std::string> volume_generator_names();
 
 }  // namespace dv

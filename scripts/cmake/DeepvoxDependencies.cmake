@@ -1,7 +1,7 @@
 # Third-party libraries, all from Debian packages (scripts/install-deps.sh installs them).
-# deepvox_deps carries what every build needs; OpenImageIO (EXR, deep EXR, image metrics) is
-# only found for the full build, so the lean GPU-node binary needs nothing beyond glibc,
-# libstdc++ and the NVIDIA driver.
+# deepvox_deps carries what every build needs; OpenImageIO (EXR, deep EXR, image metrics) and
+# OpenVDB (.vdb volumes, DEEPVOX_OPENVDB) are only found for the full build, so the lean GPU-node
+# binary needs nothing beyond glibc, libstdc++ and the NVIDIA driver.
 find_package(glm CONFIG REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
@@ -35,6 +35,23 @@ if(NOT DEEPVOX_LEAN)
     endif()
   endforeach()
   set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_oiio_existing}")
+endif()
+if(DEEPVOX_OPENVDB AND NOT DEEPVOX_LEAN)
+  # An imported target of our own: Debian 12's FindOpenVDB.cmake also asks for Boost.Iostreams
+  # (not a dependency of libopenvdb-dev), which nothing here uses. OpenVDB's headers need TBB's
+  # and Imath's (its half type), both dependencies of libopenvdb-dev.
+  find_path(OPENVDB_INCLUDE_DIR openvdb/openvdb.h)
+  find_library(OPENVDB_LIBRARY openvdb)
+  find_package(TBB CONFIG)
+  find_package(Imath CONFIG)
+  if(NOT OPENVDB_INCLUDE_DIR OR NOT OPENVDB_LIBRARY OR NOT TARGET TBB::tbb OR NOT TARGET Imath::Imath)
+    message(FATAL_ERROR "OpenVDB not found: run scripts/install-deps.sh (libopenvdb-dev), or "
+                        "configure with -DDEEPVOX_OPENVDB=OFF to build without .vdb volumes")
+  endif()
+  add_library(OpenVDB::openvdb UNKNOWN IMPORTED)
+  set_target_properties(OpenVDB::openvdb PROPERTIES IMPORTED_LOCATION "${OPENVDB_LIBRARY}"
+                        INTERFACE_INCLUDE_DIRECTORIES "${OPENVDB_INCLUDE_DIR}"
+                        INTERFACE_LINK_LIBRARIES "TBB::tbb;Imath::Imath")
 endif()
 if(DEEPVOX_TESTS)
   find_package(GTest REQUIRED)

@@ -1,7 +1,7 @@
 // The lean GPU-node binary starts with only glibc, libstdc++ (and libgcc) plus the NVIDIA
 // driver (which the CUDA runtime loads at run time, so ldd does not list it): no OpenImageIO,
-// tinygltf, GMP or CUDA runtime library may appear among its dependencies. What needs
-// OpenImageIO fails there with a clear error, and the rest still works.
+// tinygltf, GMP, OpenVDB or CUDA runtime library may appear among its dependencies. What needs
+// OpenImageIO or OpenVDB fails there with a clear error, and the rest still works.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -62,6 +62,22 @@ TEST(LeanBinary, DsmExrNeedsTheFullBuildButTheHeatmapWorks) {
   const auto [png_status, png_out] = shell(dsm + " --heatmap " + png);
   EXPECT_EQ(png_status, 0) << png_out;
   EXPECT_TRUE(std::filesystem::exists(png));
+}
+
+TEST(LeanBinary, VdbNeedsTheFullBuildAndFailsBeforeAnyWork) {
+  const std::filesystem::path dir = std::filesystem::path(dv::test::binary_dir()) / "test_lean_tmp";
+  std::filesystem::create_directories(dir);
+  const std::string vdb = (dir / "grid.vdb").string();
+  std::filesystem::remove(vdb);
+  const auto [status, out] =
+      shell(std::string(DEEPVOX_LEAN_BINARY) + " voxelize " + dv::test::source_dir() +
+            "/experiments/assets/meshes/stanford-bunny-lowres.obj --backend cpu --res 32x32x32 "
+            "--out " +
+            vdb);
+  EXPECT_EQ(status, 2) << out;
+  EXPECT_NE(out.find(vdb + ": this deepvox is built without OpenVDB"), std::string::npos) << out;
+  EXPECT_EQ(out.find("voxels set"), std::string::npos) << out;  // no voxelizing first
+  EXPECT_FALSE(std::filesystem::exists(vdb));
 }
 
 }  // namespace

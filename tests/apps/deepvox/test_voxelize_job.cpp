@@ -1,8 +1,9 @@
 // The `deepvox voxelize` command's functions: option parsing (resolution, bounds) with clear
-// InputErrors, default cubic bounds, and whole jobs on a mesh file and a scene (binvox and
-// stats JSON written, metrics against exact).
+// InputErrors, default cubic bounds, and whole jobs on a mesh file and a scene (binvox or .vdb
+// and stats JSON written, metrics against exact).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -12,6 +13,7 @@
 #include "core/error.h"
 #include "experiments/source_paths.h"
 #include "render/io/binvox.h"
+#include "render/io/vdb_io.h"
 #include "render/load/scene_loader.h"
 #include "strategies/voxelizer/triangle_soup.h"
 
@@ -100,6 +102,38 @@ TEST(VoxelizeJob, MeshFileToBinvoxAndStats) {
   EXPECT_NEAR(file.scale, hi[0] - lo[0], 1e-12);
   std::ifstream written(job.stats);
   EXPECT_EQ(nlohmann::json::parse(written)["filled"].get<int64_t>(), filled);
+}
+
+// The grid as a .vdb (full build), read back as a scene volume: the set voxels are the samples
+// of 1, the first voxel's centre sits at bounds.lo + half a voxel. The lean build says it cannot.
+TEST(VoxelizeJob, MeshFileToVdb) {
+  VoxelizeJob job;
+  job.input = test::source_dir() + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
+  job.backend = "cpu";
+  job.res = "32x32x32";
+  job.bounds = "-1,-1,-1,1,1,1";
+  job.out = scratch_file("bunny.vdb");
+  std::filesystem::remove(job.out);
+  if (!vdb_supported()) {
+    expect_input_error([&] { run_voxelize_job(job); }, "built without OpenVDB");
+    EXPECT_FALSE(std::filesystem::exists(job.out));
+    return;
+  }
+  const nlohmann::json stats = run_voxelize_job(job);
+  EXPECT_EQ(stats["vdb"]["grid"], "density");
+  EXPECT_FALSE(stats.contains("binvox"));
+  const VolumeGrid volume = load_vdb_volume(job.out);
+  int64_t ones = 0;
+  for (float d : volume.density) ones += d == 1.0f;
+  EXPECT_EQ(ones, stats["filled"].get<int64_t>());
+  EXPECT_GT(ones, 100);
+  const double voxel = 2.0 / 32;
+  EXPECT_NEAR(volume.spacing.x, voxel, 1e-12);
+  // The loaded box starts one voxel before the first set voxel, on the voxel-centre lattice.
+  for (int a = 0; a < 3; ++a) {
+    const double cells = (volume.origin[a] - (-1.0 + 0.5 * voxel)) / voxel;
+    EXPECT_NEAR(cells, std::round(cells), 1e-9) << a;
+  }
 }
 
 TEST(VoxelizeJob, SceneWithGivenBoundsAndExactMethod) {

@@ -117,7 +117,7 @@ TEST(GenerateVolume, UnknownKeysAndGenerators) {
   for (const std::string& name : volume_generator_names()) {
     EXPECT_TRUE(contains(unknown_generator, name)) << unknown_generator;
   }
-  EXPECT_EQ(volume_generator_names().size(), 4u);
+  EXPECT_EQ(volume_generator_names().size(), 5u);
 }
 
 TEST(GenerateVolume, BadDimsAndPlacement) {

@@ -1,0 +1,209 @@
+// OpenVDB volumes with OpenVDB (see vdb_io.h): the only file that includes OpenVDB's headers,
+// so the library's templates and their warnings stay in one translation unit. Files are read
+// without delayed loading (no memory-mapped file a truncated file could fault in).
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Dense.h>
+
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <system_error>
+
+#include "core/error.h"
+#include "render/io/vdb_io.h"
+#include "render/io/volume_io.h"
+
+namespace dv {
+
+namespace {
+
+void initialize_openvdb() {
+  static std::once_flag once;
+  std::call_once(once, [] { openvdb::initialize(); });
+}
+
+std::string coord_text(const openvdb::Coord& c) {
+  return "(" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) +
+         ")";
+}
+
+void require_readable_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) throw InputError(path, "volume file not found");
+  if (!fs::is_regular_file(status)) throw InputError(path, "volume path is not a regular file");
+}
+
+// "density (float), temperature (float)": the grids a file holds, for the error that names none.
+std::string grid_listing(openvdb::io::File& file) {
+  std::string listing;
+  for (const openvdb::GridBase::Ptr& grid : *file.readAllGridMetadata()) {
+    if (!listing.empty()) listing += ", ";
+    listing += "'" + grid->getName() + "' (" + grid->valueType() + ")";
+  }
+  return listing.empty() ? "none" : listing;
+}
+
+openvdb::FloatGrid::Ptr read_float_grid(const std::string& path, const std::string& grid_name) {
+  openvdb::io::File file(path);
+  file.open(false);
+  if (!file.hasGrid(grid_name)) {
+    const std::string listing = grid_listing(file);
+    throw InputError(path, "no grid named '" + grid_name + "' (grids in the file: " + listing +
+                               "); name one with \"grid\"");
+  }
+  const openvdb::GridBase::Ptr base = file.readGrid(grid_name);
+  file.close();
+  openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+  if (!grid) {
+    throw InputError(path, "grid '" + grid_name + "' holds " + base->valueType() + " values (" +
+                               base->type() + "); deepvox reads float grids");
+  }
+  return grid;
+}
+
+// Origin and spacing of index space, or an InputError for transforms that are not linear and
+// axis aligned with positive voxel sizes.
+void axis_aligned_placement(const std::string& path, const std::string& grid_name,
+                            const openvdb::math::Transform& transform, dvec3& origin,
+                            dvec3& spacing) {
+  const std::string which = "grid '" + grid_name + "': ";
+  if (!transform.isLinear()) {
+    throw InputError(path, which + "its transform (" + transform.mapType() +
+                               ") is not linear (a frustum); deepvox reads linear, axis-aligned "
+                               "transforms: resample the grid to one first");
+  }
+  const openvdb::Vec3d o = transform.indexToWorld(openvdb::Vec3d(0.0));
+  for (int a = 0; a < 3; ++a) {
+    openvdb::Vec3d step(0.0);
+    step[a] = 1.0;
+    const openvdb::Vec3d axis = transform.indexToWorld(step) - o;
+    const double length = axis.length();
+    const bool aligned = std::isfinite(length) && length > 0.0 &&
+                         std::abs(axis[(a + 1) % 3]) <= 1e-9 * length &&
+                         std::abs(axis[(a + 2) % 3]) <= 1e-9 * length && axis[a] > 0.0;
+    if (!aligned) {
+      throw InputError(path, which + "its transform (" + transform.mapType() +
+                                 ") is rotated, sheared or mirrored (index axis " +
+                                 std::to_string(a) + " maps to (" + std::to_string(axis[0]) + ", " +
+                                 std::to_string(axis[1]) + ", " + std::to_string(axis[2]) +
+                                 ")); deepvox reads axis-aligned transforms: rotate the object "
+                                 "in the scene instead, or resample the grid");
+    }
+    spacing[a] = axis[a];
+  }
+  for (int a = 0; a < 3; ++a) origin[a] = o[a];
+}
+
+}  // namespace
+
+bool vdb_supported() {
+  return true;
+}
+
+void require_vdb_support(const std::string&) {}
+
+VolumeGrid load_vdb_volume(const std::string& path, const std::string& grid_name) {
+  require_readable_file(path);
+  initialize_openvdb();
+  openvdb::FloatGrid::Ptr grid;
+  try {
+    grid = read_float_grid(path, grid_name);
+  } catch (const openvdb::Exception& e) {
+    throw InputError(path, std::string("not a readable OpenVDB file: ") + e.what());
+  } catch (const std::ios_base::failure& e) {
+    throw InputError(path, std::string("not a readable OpenVDB file: ") + e.what());
+  }
+
+  dvec3 origin{0.0}, spacing{1.0};
+  axis_aligned_placement(path, grid_name, grid->transform(), origin, spacing);
+
+  const openvdb::CoordBBox active = grid->evalActiveVoxelBoundingBox();
+  if (active.empty()) throw InputError(path, "grid '" + grid_name + "' has no active voxels");
+  for (int a = 0; a < 3; ++a)
+    if (active.min()[a] == INT_MIN || active.max()[a] == INT_MAX)
+      throw InputError(path,
+                       "grid '" + grid_name + "': active voxels reach the edge of index space");
+  // One voxel more on every side (vdb_io.h), in 64 bits: an index box may span all of int32.
+  int64_t extent[3];
+  for (int a = 0; a < 3; ++a) extent[a] = int64_t(active.max()[a]) - active.min()[a] + 3;
+  const bool too_large = extent[0] * extent[1] > kMaxVolumeVoxels ||
+                         extent[0] * extent[1] * extent[2] > kMaxVolumeVoxels;
+  if (too_large) {
+    const double bytes = double(extent[0]) * double(extent[1]) * double(extent[2]) * 4.0;
+    char bytes_text[64];
+    std::snprintf(bytes_text, sizeof bytes_text, "%.0f", bytes);
+    throw InputError(
+        path, "grid '" + grid_name + "': active voxels span " + coord_text(active.min()) + " to " +
+                  coord_text(active.max()) + ", a dense grid of " + std::to_string(extent[0]) +
+                  "x" + std::to_string(extent[1]) + "x" + std::to_string(extent[2]) +
+                  " samples with its border (" + bytes_text + " bytes of float32); at most " +
+                  std::to_string(kMaxVolumeVoxels) + " samples (" +
+                  std::to_string(kMaxVolumeVoxels * 4) + " bytes) are allowed");
+  }
+  const openvdb::CoordBBox box(active.min().offsetBy(-1), active.max().offsetBy(1));
+
+  VolumeGrid volume;
+  volume.name = path;
+  volume.dims = ivec3(int(extent[0]), int(extent[1]), int(extent[2]));
+  volume.spacing = spacing;
+  const openvdb::Vec3d lo = grid->transform().indexToWorld(box.min());
+  volume.origin = dvec3(lo[0], lo[1], lo[2]);
+  volume.density.resize(size_t(volume.voxel_count()));
+  // LayoutXYZ: x fastest, as VolumeGrid; the dense view writes straight into the densities.
+  openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, volume.density.data());
+  openvdb::tools::copyToDense(*grid, dense);
+  for (size_t i = 0; i < volume.density.size(); ++i) {
+    if (!std::isfinite(volume.density[i])) {
+      const int64_t x = int64_t(i) % extent[0];
+      const int64_t y = (int64_t(i) / extent[0]) % extent[1];
+      const int64_t z = int64_t(i) / (extent[0] * extent[1]);
+      throw InputError(path, "grid '" + grid_name + "': the value at index " +
+                                 coord_text(box.min().offsetBy(int(x), int(y), int(z))) +
+                                 " is not a finite number");
+    }
+  }
+  return volume;
+}
+
+void write_vdb_occupancy(const std::string& path, const VoxelGrid& grid) {
+  const GridSpec& spec = grid.spec();
+  if (spec.kind != GridKind::box) {
+    throw InputError(path,
+                     "only box grids can be written as .vdb (a light-frustum grid has no "
+                     "linear placement)");
+  }
+  initialize_openvdb();
+  const VoxelGrid host = grid.memory() == Memory::device ? grid.copy_to(Memory::host) : VoxelGrid();
+  const VoxelGridView view = (grid.memory() == Memory::device ? host : grid).view();
+
+  openvdb::FloatGrid::Ptr out = openvdb::FloatGrid::create(0.0f);
+  out->setName("density");
+  out->setGridClass(openvdb::GRID_FOG_VOLUME);
+  const dvec3 size = spec.voxel_size();
+  const dvec3 first_centre = spec.bounds.lo + 0.5 * size;
+  openvdb::math::Mat4d matrix = openvdb::math::Mat4d::identity();
+  for (int a = 0; a < 3; ++a) {
+    matrix[a][a] = size[a];
+    matrix[3][a] = first_centre[a];  // OpenVDB matrices act on row vectors: translation in row 3
+  }
+  out->setTransform(openvdb::math::Transform::createLinearTransform(matrix));
+  openvdb::FloatGrid::Accessor voxels = out->getAccessor();
+  for (int z = 0; z < spec.res.z; ++z)
+    for (int y = 0; y < spec.res.y; ++y)
+      for (int x = 0; x < spec.res.x; ++x)
+        if (view.get(x, y, z)) voxels.setValueOn(openvdb::Coord(x, y, z), 1.0f);
+  try {
+    openvdb::io::File file(path);
+    file.write({out});
+    file.close();
+  } catch (const openvdb::Exception& e) {
+    throw InputError(path, std::string("writing the .vdb file failed: ") + e.what());
+  }
+}
+
+}  // namespace dv
