@@ -42,15 +42,10 @@ nlohmann::json warnings(const Scene& scene) {
   for (const Object& o : scene.objects) {
     if (o.material.alpha == 0.0 && o.material.transmission > 0.0)
       out.push_back("object '" + o.name +
-                    "' is fully transmissive (glTF transmission 1): its surfaces cast no "
-                    "shadow; the camera sees their highlights and their colour's tint on what is "
-                    "behind them");
-    const Interior& in = o.interior;
-    if (in.kind == InteriorKind::constant && in.sigma_tint != dvec3(1.0))
-      out.push_back("object '" + o.name +
-                    "' has a tinted medium: the camera sees it per channel, shadows use the "
-                    "mean extinction " +
-                    std::to_string(in.sigma));
+                    "' is fully transmissive (glTF transmission 1): it casts the faint shadow "
+                    "its Fresnel reflectance and its colour leave, not a solid one; the camera "
+                    "sees its highlights, a Fresnel rim and its colour's tint on what is behind "
+                    "it");
   }
   return out;
 }

@@ -28,7 +28,10 @@ Runner add_probe(CLI::App& app) {
   cmd->add_option("scene", opt->scene, "scene: .json, .gltf/.glb or a mesh file")->required();
   cmd->add_option("--points", opt->points, "CSV of points, x,y,z per line (header optional)")
       ->required();
-  cmd->add_option("--out", opt->out, "output CSV: x,y,z,light0,light1,...")->required();
+  cmd->add_option(
+         "--out", opt->out,
+         "output CSV: x,y,z,light0,light1,... (luminance), then light0_r,light0_g,light0_b,...")
+      ->required();
   add_shadow_options(cmd, opt->shadows);
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   return [opt] {
@@ -40,7 +43,7 @@ Runner add_probe(CLI::App& app) {
     const std::vector<dvec3> points = read_points_csv(opt->points);
     const SceneData data(scene, memory_of(backend));
     const ProbeResults r = probe_transmittance(backend, data, *method, points);
-    write_transmittance_csv(opt->out, points, r.transmittance, r.light_count);
+    write_transmittance_csv(opt->out, points, r.transmittance, r.rgb, r.light_count);
     explain_shadows(opt->shadows, *method, "probe");
     int flagged = 0;
     for (uint32_t f : r.flags) flagged += f != 0;

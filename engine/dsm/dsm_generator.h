@@ -107,22 +107,25 @@ struct DsmGenerator {
   }
 
   // Walks texel t's ray into `target` (push / push_step), sampling constant media for error
-  // bound eps; returns the walk's status and the visibility where it ended.
+  // bound eps; returns the walk's status and the visibility where it ended. With `colour` the
+  // walk also sums the optical depths of the colour side channel (engine/dsm/dsm_colour.h).
   template <class Target>
-  DV_HD WalkStatus walk(const DsmTexel& t, double eps, Target& target,
-                        double& final_visibility) const {
+  DV_HD WalkStatus walk(const DsmTexel& t, double eps, Target& target, double& final_visibility,
+                        ColourDepth* colour = nullptr) const {
     const ShadowFace& f = faces[t.face];
     const PixelRay ray = pixel_ray(f.projection, t.x, t.y);
     const ObjectMask mask = mask_of(t.face);
     const NearPlaneStart front =
         masked_start_at_near_plane(scene, f.projection, ray, ray_media[t.face], mask);
     VisibilityPayload<Target> payload = make_payload(target, ray, eps);
+    payload.track_colour = colour != nullptr;
     const MaskedFragments<RasterFragments> fragments{
         &scene, RasterFragments{&scene, lists[t.face], t.x, t.y, ray.origin, ray.direction}, mask};
     WalkStatus status =
         walk_fragments(scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
     status.overflow |= front.status.overflow;
     final_visibility = payload.visibility;
+    if (colour) *colour = {payload.optical_depth, payload.optical_depth_rgb};
     return status;
   }
 

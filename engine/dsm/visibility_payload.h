@@ -3,7 +3,9 @@
 // visibility function to a target (the streaming compressor, engine/dsm/visibility_compressor.h) as
 // samples (z, V) at float32 depths z = the ray parameter (distance from the light, or from an
 // orthographic map's near plane):
-// - a surface crossing with opacity a: a step V -> V (1 - a) at its depth (twin nodes);
+// - a surface crossing: a step V -> V (1 - a) at its depth (twin nodes), a the crossing's
+//   opacity (engine/scene/surface_transmittance.h: alpha, or for glass one minus the luminance
+//   of what the crossing lets through at the ray's angle);
 // - volumes: the renderer's step rules (engine/raster/media_march.h), V after each step sampled at
 // the
 //   step's end, so the interpolant matches the camera pass's midpoint quadrature at step ends;
@@ -13,6 +15,9 @@
 //   interpolant stays within eps / 2 of the exponential (the chord error of exp(-x) over a step h
 //   is at most (sigma h)^2 / 8), and at least at both ends.
 // The function starts at the first crossing (or where the walk starts inside a medium) with V = 1.
+// With track_colour the payload also sums, up to the first opaque crossing, the optical depth
+// of V (-ln of each factor) and the per-channel optical depth of the crossing rule and the
+// media's sigma_rgb: their ratio is the texel's colour side channel (dsm_colour.h).
 // Host and device code.
 #pragma once
 
@@ -24,6 +29,7 @@
 #include "engine/dsm/precompressed_table.h"
 #include "engine/raster/fragment_walk.h"
 #include "engine/raster/media_march.h"
+#include "engine/scene/surface_transmittance.h"
 
 namespace dv {
 
@@ -31,6 +37,12 @@ namespace dv {
 inline constexpr double kDsmSaturatedVisibility = 1e-6;
 // Most samples one constant-medium segment is split into.
 inline constexpr int kMaxConstantMediumSamples = 1024;
+
+// What a colour-tracking walk summed (VisibilityPayload::track_colour).
+struct ColourDepth {
+  double optical_depth = 0.0;
+  dvec3 optical_depth_rgb{0.0};
+};
 
 // Target interface: void push(float z, float v); void push_step(float z, float before, float
 // after).
@@ -46,13 +58,24 @@ struct VisibilityPayload {
   double step_scale = 1.0;       // multiplies the volumes' steps
   bool started = false;
   unsigned long long samples = 0;
+  bool track_colour = false;     // sum the optical depths below
+  double optical_depth = 0.0;    // of V, up to the first opaque crossing
+  dvec3 optical_depth_rgb{0.0};  // per channel, the same stretch
+  dvec3 segment_sigma_rgb{0.0};  // the constant media's per-channel extinction (track_colour)
 
   DV_HD bool done() const { return visibility <= kDsmSaturatedVisibility; }
 
   DV_HD void surface(const RayHit& h, int32_t object) {
-    const double alpha = s.objects[object].alpha;
+    const ObjectView& o = s.objects[object];
+    if (material_coverage(o) <= 0.0) return;
+    const double alpha = crossing_opacity(s, o, h.triangle, dir);
     if (alpha <= 0.0) return;
     const double after = alpha >= 1.0 ? 0.0 : visibility * (1.0 - alpha);
+    if (track_colour && alpha < 1.0) {
+      const dvec3 t = crossing_transmittance(s, o, h.triangle, dir);
+      optical_depth -= log(1.0 - alpha);
+      optical_depth_rgb -= dvec3(log(t.x), log(t.y), log(t.z));
+    }
     target.push_step(float(h.t), float(visibility), float(after));
     started = true;
     visibility = after;
@@ -63,11 +86,21 @@ struct VisibilityPayload {
       target.push(float(t0), 1.0f);
       started = true;
     }
+    if (track_colour) segment_sigma_rgb = constant_extinction_rgb(s, inside);
     march_media(s, inside, origin, dir, t0, t1, *this, step_scale);
+  }
+
+  // Adds a stretch of `length` with scalar extinction `sigma` = constant + volume part, whose
+  // constant media have per-channel extinction segment_sigma_rgb (track_colour only).
+  DV_HD void add_colour_depth(double sigma, double sigma_constant, double length) {
+    if (!track_colour) return;
+    optical_depth += sigma * length;
+    optical_depth_rgb += (segment_sigma_rgb + dvec3(sigma - sigma_constant)) * length;
   }
 
   DV_HD void absorb(double sigma_constant, double a, double b) {
     if (b <= a) return;
+    add_colour_depth(sigma_constant, sigma_constant, b - a);
     if (sigma_constant <= 0.0) {  // an empty stretch: V is flat up to b
       target.push(float(b), float(visibility));
       return;
@@ -95,6 +128,7 @@ struct VisibilityPayload {
       return;
     }
     const double sigma = sigma_constant + volume_extinction(s, inside, x);
+    add_colour_depth(sigma, sigma_constant, b - a);
     visibility *= exp(-sigma * (b - a));
     target.push(float(b), float(visibility));
   }
@@ -136,6 +170,7 @@ struct VisibilityPayload {
       target.push(float(a + u * dt), float(v0 * exp(-optical - sigma_constant * u * dt)));
     }
     const double mean = transfer_sigma_mean(tf, o.transfer_count, d0, d1);
+    add_colour_depth(mean + sigma_constant, sigma_constant, dt);
     visibility = v0 * exp(-dt * (mean + sigma_constant));
     target.push(float(b), float(visibility));
   }

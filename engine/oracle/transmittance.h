@@ -1,16 +1,20 @@
 // The exact transmittance oracle: the fraction of a light's unoccluded intensity that reaches a
-// world point through the scene, in double precision, on host and device.
+// world point through the scene, per colour channel, in double precision, on host and device.
 //
-//   T = prod over surface crossings strictly between light and point of (1 - alpha)
-//       * exp(-optical depth through constant interiors (exact chords) and volumes)
+//   T_c = prod over surface crossings strictly between light and point of the crossing rule's
+//         T_c (engine/scene/surface_transmittance.h: 1 - alpha without glass; glass adds
+//         transmission (1 - Fresnel) times its colour)
+//       * exp(-optical depth of channel c through constant interiors (exact chords, per channel:
+//         sigma * sigma_tint) and volumes (grey))
 //
+// Its scalar answer is the luminance of T (Rec. 709 weights; a grey T is itself).
 // Crossings come from a BVH walk along the ray from a point outside the scene through the
 // light to the point, so objects that contain the light are known without a special case.
 // Constant interiors use the order-free chord formula sum_i s_i (t_p - clamp(t_i, t_l, t_p))
-// with s_i = +1 entering, -1 leaving (closed meshes oriented outward). Volume interiors collect
-// their crossings (at most kMaxVolumeCrossings per ray, overflow flagged), and integrate the
-// transfer-mapped trilinear density over each inside interval, split at cell faces, with
-// adaptive Simpson to an absolute tolerance of kOracleTolerance per inside interval
+// per channel with s_i = +1 entering, -1 leaving (closed meshes oriented outward). Volume
+// interiors collect their crossings (at most kMaxVolumeCrossings per ray, overflow flagged), and
+// integrate the transfer-mapped trilinear density over each inside interval, split at cell
+// faces, with adaptive Simpson to an absolute tolerance of kOracleTolerance per inside interval
 // (non-convergence flagged).
 //
 // Conventions: a crossing within kOracleEndTolerance * (scene diagonal + segment length) of
@@ -26,6 +30,7 @@
 #include "engine/oracle/quadrature.h"
 #include "engine/scene/ray_query.h"
 #include "engine/scene/scene_view.h"
+#include "engine/scene/surface_transmittance.h"
 #include "engine/scene/volume_sampling.h"
 
 namespace dv {
@@ -40,9 +45,14 @@ enum OracleFlag : uint32_t {
 };
 
 struct OracleResult {
-  double transmittance;
+  double transmittance;  // luminance(rgb)
   uint32_t flags;
+  dvec3 rgb;  // per channel
 };
+
+DV_HD inline OracleResult oracle_result(const dvec3& rgb, uint32_t flags) {
+  return {luminance(rgb), flags, rgb};
+}
 
 // The ray of one light/point query: from `origin` (outside every object) along unit `dir`;
 // the light sits at t_light, the point at t_point.
@@ -148,8 +158,8 @@ DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o
 DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightView& light,
                                               const dvec3& p) {
   LightSegment seg;
-  if (!make_light_segment(s, light, p, seg)) return {0.0, 0u};
-  if (seg.t_point <= seg.t_light) return {1.0, 0u};
+  if (!make_light_segment(s, light, p, seg)) return oracle_result(dvec3(0.0), 0u);
+  if (seg.t_point <= seg.t_light) return oracle_result(dvec3(1.0), 0u);
   const double eps = kOracleEndTolerance * (s.diagonal + (seg.t_point - seg.t_light));
   const double t_l = seg.t_light, t_p = seg.t_point;
   struct Crossing {
@@ -160,15 +170,16 @@ DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightVie
   Crossing crossings[kMaxVolumeCrossings];
   int n_crossings = 0;
   uint32_t flags = 0;
-  double surface = 1.0, tau_constant = 0.0;
+  dvec3 surface(1.0), tau_constant(0.0);
   const ShearedRay ray = make_sheared_ray(seg.origin, seg.dir);
   for_each_hit(s, ray, 0.0, t_p + eps, [&](const RayHit& h) {
     const int32_t oi = int32_t(s.triangle_object[h.triangle]);
     const ObjectView& o = s.objects[oi];
-    if (h.t > t_l + eps && h.t < t_p - eps) surface *= 1.0 - o.alpha;
+    if (h.t > t_l + eps && h.t < t_p - eps)
+      surface *= crossing_transmittance(s, o, h.triangle, seg.dir);
     const double sign = h.entering ? 1.0 : -1.0;
     if (o.interior == InteriorKind::constant) {
-      tau_constant += o.sigma * sign * (t_p - clamp_value(h.t, t_l, t_p));
+      tau_constant += o.sigma_rgb * (sign * (t_p - clamp_value(h.t, t_l, t_p)));
     } else if (o.interior == InteriorKind::volume) {
       if (n_crossings < kMaxVolumeCrossings)
         crossings[n_crossings++] = {h.t, oi, h.entering};
@@ -177,7 +188,7 @@ DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightVie
     }
     return true;
   });
-  if (tau_constant < 0.0) tau_constant = 0.0;  // rounding of cancelling chords
+  tau_constant = glm::max(tau_constant, dvec3(0.0));  // rounding of cancelling chords
   // Sort volume crossings by t (few per ray), then integrate each object's inside intervals.
   for (int i = 1; i < n_crossings; ++i) {
     Crossing c = crossings[i];
@@ -209,7 +220,8 @@ DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightVie
       tau_volume += volume_optical_depth(s, o, seg, a, t_p, kOracleTolerance, flags);
     }
   }
-  return {surface * exp(-(tau_constant + tau_volume)), flags};
+  const dvec3 tau = tau_constant + dvec3(tau_volume);
+  return oracle_result(surface * dvec3(exp(-tau.x), exp(-tau.y), exp(-tau.z)), flags);
 }
 
 }  // namespace dv

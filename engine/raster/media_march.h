@@ -89,8 +89,9 @@ DV_HD void march_media(const SceneView& s, const InsideSet& inside, const dvec3&
   }
 }
 
-// The per-channel extinction of the constant media the ray is inside (the camera pass tints by
-// it; shadows and march_media use the scalar sigma, summed in the same order).
+// The per-channel extinction of the constant media the ray is inside (the camera pass and the
+// DSM's colour side channel tint by it; march_media steps by the scalar sigma, summed in the same
+// order).
 DV_HD inline dvec3 constant_extinction_rgb(const SceneView& s, const InsideSet& inside) {
   dvec3 sigma(0.0);
   for (int i = 0; i < inside.count; ++i) {

@@ -11,6 +11,7 @@
 #include "engine/oracle/transmittance.h"
 #include "engine/scene/ray_query.h"
 #include "engine/scene/scene_view.h"
+#include "engine/scene/surface_transmittance.h"
 
 namespace dv {
 
@@ -21,18 +22,9 @@ struct ShadowReceiver {
   DV_HD bool on_surface() const { return glm::dot(normal, normal) > 0.0; }
 };
 
-// Unit geometric normal of a triangle (zero for a degenerate one).
-DV_HD inline dvec3 triangle_normal(const SceneView& s, uint32_t triangle) {
-  const u32vec3 tri = s.triangles[triangle];
-  const dvec3 p0 = s.vertices[tri.x];
-  const dvec3 n = glm::cross(s.vertices[tri.y] - p0, s.vertices[tri.z] - p0);
-  const double len = glm::length(n);
-  return len > 0.0 ? n / len : dvec3(0.0);
-}
-
-// The receiver for a probe point: on the surface (alpha > 0) that `light`'s oracle segment
-// crosses within the oracle's end tolerance of p, if any (the nearest such crossing); else a
-// point with no surface.
+// The receiver for a probe point: on the surface (coverage > 0: opaque or glass) that `light`'s
+// oracle segment crosses within the oracle's end tolerance of p, if any (the nearest such
+// crossing); else a point with no surface.
 DV_HD inline ShadowReceiver probe_receiver(const SceneView& s, const LightView& light,
                                            const dvec3& p) {
   ShadowReceiver r{p};
@@ -43,7 +35,7 @@ DV_HD inline ShadowReceiver probe_receiver(const SceneView& s, const LightView& 
   double nearest = eps;
   for_each_hit(s, ray, seg.t_point - eps, seg.t_point + eps, [&](const RayHit& h) {
     const double d = h.t > seg.t_point ? h.t - seg.t_point : seg.t_point - h.t;
-    if (s.objects[s.triangle_object[h.triangle]].alpha > 0.0 && d <= nearest) {
+    if (material_coverage(s.objects[s.triangle_object[h.triangle]]) > 0.0 && d <= nearest) {
       nearest = d;
       r.normal = triangle_normal(s, h.triangle);
     }

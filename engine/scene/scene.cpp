@@ -103,6 +103,8 @@ void validate_scene(Scene& scene) {
     if (!finite(m.color)) throw InputError(where, "material colour is not finite");
     if (!(m.transmission >= 0.0 && m.transmission <= 1.0 - m.alpha + 1e-12))
       throw InputError(where, "material transmission must lie in [0, 1 - alpha]");
+    if (!(m.ior >= 1.0 && std::isfinite(m.ior)))
+      throw InputError(where, "material ior must be a finite number >= 1");
     if (std::abs(glm::determinant(obj.transform)) < 1e-300 ||
         !std::isfinite(glm::determinant(obj.transform)))
       throw InputError(where, "transform is singular or not finite");

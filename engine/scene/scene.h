@@ -18,10 +18,12 @@ struct TriangleMesh {
   std::vector<u32vec3> triangles;
 };
 
-// Surface material: Phong parameters plus surface opacity. Light through one surface crossing
-// is multiplied by (1 - alpha). `transmission` (at most 1 - alpha) is the part of that light
-// which passes through the material (glass) rather than past it (holes, coverage): the camera
-// pass shows Phong highlights on it and tints it by `color`; shadows see only 1 - alpha.
+// Surface material: Phong parameters plus surface opacity. `alpha` is the opaque part of the
+// surface, `transmission` (at most 1 - alpha) its glass part: light through one crossing is
+// multiplied by (1 - alpha - transmission) + transmission (1 - F) color per channel, F the
+// Fresnel reflectance for `ior` (engine/scene/surface_transmittance.h; `color` drops out when
+// the object has an interior). Without transmission that is 1 - alpha; the camera pass and
+// every shadow method follow the same rule.
 struct Material {
   dvec3 color{0.8, 0.8, 0.8};
   double ambient = 0.1;
@@ -30,6 +32,7 @@ struct Material {
   double shininess = 32.0;
   double alpha = 1.0;
   double transmission = 0.0;
+  double ior = 1.5;  // index of refraction of the glass part (KHR_materials_ior)
 };
 
 // One control point of a piecewise-linear transfer function: density -> colour and extinction
@@ -62,8 +65,9 @@ enum class InteriorKind : uint8_t { none, constant, volume };
 struct Interior {
   InteriorKind kind = InteriorKind::none;
   double sigma = 0.0;  // constant: extinction per world unit (absorption only), for shadows
-  // constant: the camera pass's extinction of channel c is sigma * sigma_tint[c] (tinted
-  // media, mean 1); shadows are scalar and use sigma alone. Grey media keep [1, 1, 1].
+  // constant: the extinction of channel c is sigma * sigma_tint[c] (tinted media, mean 1), in
+  // the camera pass and in shadows (the storages carry sigma, a colour side channel the rest).
+  // Grey media keep [1, 1, 1].
   dvec3 sigma_tint{1.0};
   int volume = -1;  // volume: index into Scene::volumes
   TransferFunction transfer;

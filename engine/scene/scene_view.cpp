@@ -73,6 +73,7 @@ ObjectView make_object_view(const Scene& scene, const Object& obj,
   o.shininess = m.shininess;
   o.alpha = m.alpha;
   o.transmission = m.transmission;
+  o.ior = m.ior;
   o.interior = obj.interior.kind;
   const bool constant = obj.interior.kind == InteriorKind::constant;
   o.sigma = constant ? obj.interior.sigma : 0.0;
@@ -116,6 +117,7 @@ uint64_t object_content_hash(const Scene& scene, const Object& obj, const Object
   h.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(u32vec3));
   h.add(o.color).add(o.ambient).add(o.diffuse).add(o.specular).add(o.shininess);
   h.add(o.alpha).add(o.transmission).add(o.interior).add(o.sigma).add(o.sigma_rgb).add(o.step);
+  if (o.transmission > 0.0) h.add(o.ior);  // grey scenes keep their hashes
   h.add(o.world_to_grid);
   for (const TransferPoint& t : obj.interior.transfer.points)
     h.add(t.density).add(t.color).add(t.sigma);

@@ -16,10 +16,11 @@ struct ObjectView {
   dvec3 color;
   double ambient, diffuse, specular, shininess;
   double alpha;         // surface opacity per crossing
-  double transmission;  // part of 1 - alpha through the material: highlights and tint
+  double transmission;  // glass part of the surface (surface_transmittance.h)
+  double ior;           // the glass part's index of refraction (Fresnel)
   InteriorKind interior;
-  double sigma;     // constant interior (shadows)
-  dvec3 sigma_rgb;  // constant interior per channel (camera pass)
+  double sigma;     // constant interior: the extinction the scalar storages carry
+  dvec3 sigma_rgb;  // constant interior per channel (camera pass, oracle, colour side channel)
   int32_t volume;   // index into SceneView::volumes, or -1
   int32_t transfer_first, transfer_count;
   double step;           // volume ray-marching step (world units)

@@ -1,8 +1,9 @@
 // The camera pass's payload for the fragment walk: Phong-shaded translucent surfaces and
 // volume samples composited front to back (Knecht eq. 3.10/3.11), constant media absorbing
 // exactly, the shadow term of every shaded sample from a shadow source. Host and device code.
-// What the camera sees through things is RGB: transmissive surfaces tint it by their colour
-// and constant media by their per-channel extinction; shadows stay scalar (the oracle's).
+// What the camera sees through things is RGB and follows the crossing rule the shadows follow
+// (engine/scene/surface_transmittance.h): transmissive surfaces pass (1 - F) of their glass part
+// tinted by their colour, constant media absorb per channel; the shadow term is RGB too.
 #pragma once
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "core/lane_group.h"
 #include "engine/raster/fragment_walk.h"
 #include "engine/raster/media_march.h"
+#include "engine/scene/surface_transmittance.h"
 #include "engine/scene/volume_sampling.h"
 #include "render/frame/shading.h"
 
@@ -40,7 +42,9 @@ struct ShadePayload {
   DV_HD bool done() const { return saturated(transmittance * transmittance_scale); }
 
   // A translucent surface: its Phong colour over what lies behind, weighted by its opacity;
-  // its transmissive part adds highlights and tints what lies behind by its colour. The shaded
+  // its transmissive part adds highlights and reflects, by the Fresnel reflectance F at the
+  // viewing angle, an ambient environment of level o.ambient (so clear glass shows a bright rim
+  // on any background), and lets through what the crossing rule says. The shaded
   // point is the crossing moved onto its triangle (a rasterized crossing can lie just outside
   // it, on the plane's extension behind a neighbour, and would shadow itself), and its shadow
   // receiver carries the geometric normal.
@@ -58,13 +62,13 @@ struct ShadePayload {
       const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir);
       color += transmittance * o.alpha * c;
     }
-    if (o.transmission <= 0.0) {
-      transmittance *= 1.0 - o.alpha;
-      return;
+    const double cos_to_normal = glm::dot(n, dir);
+    if (o.transmission > 0.0) {
+      const dvec3 highlight = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir, true);
+      const double reflected = fresnel_schlick(o.ior, cos_to_normal) * o.ambient;
+      color += transmittance * o.transmission * (highlight + dvec3(reflected));
     }
-    const dvec3 highlight = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir, true);
-    color += transmittance * o.transmission * highlight;
-    transmittance *= (1.0 - o.alpha - o.transmission) + o.transmission * o.color;
+    transmittance *= surface_transmittance(o, cos_to_normal, material_coverage(o), o.color);
   }
 
   // Media over [t0, t1], stepped by march_media (engine/raster/media_march.h); volume steps in

@@ -1,7 +1,7 @@
 // Phong shading (Knecht eq. 3.8/3.9) shared by every renderer, on host and device. The shadow
-// term multiplies both the diffuse and the specular term (eq. 3.9 as printed shadows only the
-// specular: a typo). Cone fade and 1/d^2 falloff belong to the light's intensity at a point,
-// never to its transmittance.
+// term (RGB: tinted glass and media colour the light) multiplies both the diffuse and the specular
+// term (eq. 3.9 as printed shadows only the specular: a typo). Cone fade and 1/d^2 falloff belong
+// to the light's intensity at a point, never to its transmittance.
 #pragma once
 
 #include <cmath>
@@ -71,8 +71,8 @@ DV_HD dvec3 shade_phong(const SceneView& s, const Source& shadows, typename Sour
     if (a.intensity <= 0.0) continue;
     const double n_dot_l = oriented ? glm::dot(n, a.to_light) : 1.0;
     if (n_dot_l <= 0.0) continue;
-    const double t = shadows.transmittance(cursor, at, li);
-    if (t <= 0.0) continue;
+    const dvec3 t = shadows.transmittance_rgb(cursor, at, li);
+    if (max_value(t.x, max_value(t.y, t.z)) <= 0.0) continue;
     double spec = 0.0;
     if (oriented && o.specular > 0.0) {
       const dvec3 r = 2.0 * n_dot_l * n - a.to_light;

@@ -65,11 +65,14 @@ std::vector<dvec3> read_points_csv(const std::string& path) {
 }
 
 void write_transmittance_csv(const std::string& path, const std::vector<dvec3>& points,
-                             const std::vector<double>& values, int light_count) {
+                             const std::vector<double>& values, const std::vector<dvec3>& rgb,
+                             int light_count) {
   std::ofstream out(path);
   if (!out) throw InputError(path, "cannot open output file for writing");
   out << "x,y,z";
   for (int l = 0; l < light_count; ++l) out << ",light" << l;
+  for (int l = 0; l < light_count; ++l)
+    out << ",light" << l << "_r,light" << l << "_g,light" << l << "_b";
   out << "\n";
   char buf[64];
   auto put = [&](double v) {
@@ -79,6 +82,10 @@ void write_transmittance_csv(const std::string& path, const std::vector<dvec3>& 
   for (size_t i = 0; i < points.size(); ++i) {
     put(points[i].x), out << ",", put(points[i].y), out << ",", put(points[i].z);
     for (int l = 0; l < light_count; ++l) out << ",", put(values[i * light_count + l]);
+    for (int l = 0; l < light_count; ++l) {
+      const dvec3& c = rgb[i * light_count + l];
+      out << ",", put(c.x), out << ",", put(c.y), out << ",", put(c.z);
+    }
     out << "\n";
   }
   if (!out) throw InputError(path, "write failed");

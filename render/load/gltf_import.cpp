@@ -134,8 +134,8 @@ Model parse_model(const std::string& path) {
 
 void check_extensions(const std::string& path, const Model& model) {
   static const std::set<std::string> supported = {
-      "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_volume",
-      "KHR_materials_emissive_strength", "KHR_texture_transform"};
+      "KHR_lights_punctual", "KHR_materials_transmission",      "KHR_materials_volume",
+      "KHR_materials_ior",   "KHR_materials_emissive_strength", "KHR_texture_transform"};
   for (const std::string& name : model.extensionsRequired) {
     if (!supported.count(name))
       throw InputError(path, "required extension " + name + " is not supported by deepvox");
@@ -368,8 +368,9 @@ Interior volume_interior(const tinygltf::Value& volume, const std::string& where
   dvec3 sigma(0.0);
   if (std::isfinite(distance)) sigma = -glm::log(glm::max(color, dvec3(1e-6))) / distance;
   interior.kind = InteriorKind::constant;
-  interior.sigma = (sigma.x + sigma.y + sigma.z) / 3.0;
-  if (interior.sigma > 0.0) interior.sigma_tint = sigma / interior.sigma;
+  const bool grey = sigma.x == sigma.y && sigma.y == sigma.z;  // tint exactly 1 (no colour)
+  interior.sigma = grey ? sigma.x : (sigma.x + sigma.y + sigma.z) / 3.0;
+  if (interior.sigma > 0.0 && !grey) interior.sigma_tint = sigma / interior.sigma;
   return interior;
 }
 
@@ -402,6 +403,12 @@ MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string&
   }
   out.material.alpha = coverage * (1.0 - transmission);
   out.material.transmission = coverage * transmission;
+  if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_ior")) {
+    std::string ext_where = where + ": KHR_materials_ior";
+    out.material.ior = number_field(*ext, "ior", 1.5, ext_where);
+    require(out.material.ior >= 1.0 && std::isfinite(out.material.ior), ext_where,
+            "ior must be a finite number >= 1");
+  }
   if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_volume"))
     out.interior = volume_interior(*ext, where + ": KHR_materials_volume");
   return out;

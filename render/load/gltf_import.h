@@ -10,8 +10,9 @@
 //     JSON. Missing or empty files, malformed JSON, a truncated or corrupt .glb, a bad buffer
 //     URI: dv::InputError naming the file. tinygltf's own warnings become dv::log_warning.
 //   - extensionsRequired may only name KHR_lights_punctual, KHR_materials_transmission,
-//     KHR_materials_volume, KHR_materials_emissive_strength and KHR_texture_transform (the last
-//     two change nothing here: deepvox has no emission and reads no textures). Any other
+//     KHR_materials_volume, KHR_materials_ior, KHR_materials_emissive_strength and
+//     KHR_texture_transform (the last two change nothing here: deepvox has no emission and
+//     reads no textures). Any other
 //     (KHR_mesh_quantization, KHR_draco_mesh_compression, ...) is an InputError naming it.
 //     Unknown names in extensionsUsed only warn.
 // Nodes and meshes
@@ -66,21 +67,25 @@
 //   - Phong from PBR roughness r: specular = 0.2 * (1 - r) + 0.04 (a dielectric's 4 % plus a
 //     gloss term that fades with roughness); shininess = 2 / max(r^4, 1e-4) - 2 clamped to
 //     [1, 512] (the Blinn-Phong exponent whose lobe matches a GGX lobe of alpha = r^2).
-//   - Surface alpha (opacity per crossing): coverage a times (1 - t). a = 1 for OPAQUE, the
-//     baseColorFactor alpha for BLEND, and 1 or 0 for MASK (alpha >= alphaCutoff or not);
-//     t = KHR_materials_transmission transmissionFactor (0 without the extension). So
-//     transmission 0.25 gives alpha 0.75, and a BLEND material without it its factor's alpha.
-//     Shadows see exactly this alpha. Material::transmission = a * t: in the camera image
-//     that part of the surface shows Phong highlights and tints what is seen through it by
-//     the base colour (glass with transmission 1 casts no shadow but is visible); `info`
-//     warns about fully transmissive materials.
+//   - Coverage a = 1 for OPAQUE, the baseColorFactor alpha for BLEND, and 1 or 0 for MASK
+//     (alpha >= alphaCutoff or not); t = KHR_materials_transmission transmissionFactor (0
+//     without the extension). Material::alpha = a (1 - t) (the opaque part), ::transmission =
+//     a t (the glass part), ::ior = KHR_materials_ior ior (default 1.5, at least 1). One
+//     crossing lets through, per channel, T = (1 - a) + a t (1 - F) c with c the base colour
+//     (white when the object has a KHR_materials_volume interior: the medium tints) and F
+//     Schlick's Fresnel reflectance for ior at the crossing's angle
+//     (engine/scene/surface_transmittance.h): glass of transmission 1 casts a partial shadow of
+//     its colour (two crossings of clear glass: 0.92 at normal incidence), in the oracle, the
+//     camera pass and every shadow method alike. In the camera image the glass part also shows
+//     Phong highlights and reflects F of an ambient environment (a rim at grazing angles).
 //   - KHR_materials_volume: thicknessFactor 0 (the default) is thin-walled: no interior.
 //     thicknessFactor > 0 gives a constant interior with sigma = -ln(c) / d per channel from
 //     attenuationColor c (default [1,1,1], channels clamped to >= 1e-6) and
-//     attenuationDistance d (default +infinity, giving sigma 0). Shadows (the oracle and every
-//     shadow method) are scalar and use the mean of the three sigmas (Interior::sigma); the
-//     camera pass attenuates each channel by its own (Interior::sigma_tint), so a red medium
-//     tints what is seen through it red. An object with an interior must have a closed
+//     attenuationDistance d (default +infinity, giving sigma 0): Interior::sigma their mean,
+//     Interior::sigma_tint the ratios (exactly [1,1,1] for a grey medium). The oracle, the
+//     camera pass and the shadows attenuate each channel by its own extinction (the DSM
+//     storages carry the mean and a colour side channel the rest, engine/dsm/dsm_colour.h),
+//     so a red medium casts a red shadow. An object with an interior must have a closed
 //     mesh; dv::validate_scene, called at the end, reports open edges.
 //   - Factors outside their glTF ranges ([0,1] colours, roughness, transmission; d > 0;
 //     thickness >= 0) or of the wrong JSON type are InputErrors naming the material.

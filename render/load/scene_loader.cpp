@@ -92,6 +92,7 @@ Material read_material(JsonReader& m) {
   mat.shininess = m.number("shininess", mat.shininess);
   mat.alpha = m.number("alpha", mat.alpha);
   mat.transmission = m.number("transmission", mat.transmission);
+  mat.ior = m.number("ior", mat.ior);
   m.finish();
   return mat;
 }
@@ -156,8 +157,9 @@ struct Loader {
       it.kind = InteriorKind::constant;
       if (in.has("sigma") && in.raw("sigma").is_array()) {  // tinted: per-channel extinction
         const dvec3 sigma = in.vec3("sigma");
-        it.sigma = (sigma.x + sigma.y + sigma.z) / 3.0;
-        if (it.sigma > 0.0) it.sigma_tint = sigma / it.sigma;
+        const bool grey = sigma.x == sigma.y && sigma.y == sigma.z;  // tint exactly 1
+        it.sigma = grey ? sigma.x : (sigma.x + sigma.y + sigma.z) / 3.0;
+        if (it.sigma > 0.0 && !grey) it.sigma_tint = sigma / it.sigma;
       } else {
         it.sigma = in.number("sigma");
       }

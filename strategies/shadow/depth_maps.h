@@ -40,21 +40,25 @@ enum class DepthCasters {
   surfaces,  // every surface with alpha > 0 (the shadowmap method)
   opaque,    // only alpha >= 1
 };
+// Glass (transmission > 0) that a depth map leaves out goes into its glass layer.
 
 // The maps of one scene's lights in backend memory.
 struct DepthMaps {
-  Buffer<float> depths;  // per face res x res nearest caster depths, +inf where none
+  Buffer<float> depths;        // per face res x res nearest caster depths, +inf where none
+  Buffer<float> glass_depths;  // the glass layer (shadow_map_device.h); empty without glass
+  Buffer<vec3> glass_filters;
   Buffer<ShadowFace> faces;
   Buffer<ShadowLight> lights;
   int res = 0;
 
   ShadowMapSource source(const SceneView& s, const DepthMapParams& params) const;
+  int64_t bytes() const;  // depths and glass layer
 };
 
 // Renders every face of `layout` (res x res texels each), or with `rendered` only the faces i
 // with rendered[i] != 0, the others left empty (+inf: lit). Throws Error when the rasterizer's
 // tile lists overflow.
-DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapLayout& layout,
+DepthMaps render_depth_maps(Backend backend, const SceneData& scene, const LightMapLayout& layout,
                             int res, DepthCasters casters,
                             const std::vector<uint8_t>* rendered = nullptr);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/content_hash.h"
+#include "engine/scene/surface_transmittance.h"
 
 namespace dv {
 
@@ -18,7 +19,7 @@ double min_abs(double lo, double hi) {
 }
 
 bool casts(const ObjectView& o) {
-  return o.alpha > 0.0 || o.interior != InteriorKind::none;
+  return material_coverage(o) > 0.0 || o.interior != InteriorKind::none;
 }
 
 std::string count_of(int n, const char* what) {

@@ -1,8 +1,9 @@
 // The effect planner (issue 12): before a frame, what each light needs, decided on the host
 // from the scene's object bounds and materials, so the `auto` shadow method
 // (auto_shadows.cpp) runs only that. Per light:
-//   - the casters it reaches: objects that cast (alpha > 0, a constant medium or a volume) whose
-//     bounding box meets its cone (spot) and range window (spot, omni; directional: everything);
+//   - the casters it reaches: objects that cast (alpha > 0 or glass, a constant medium or a
+//     volume) whose bounding box meets its cone (spot) and range window (spot, omni; directional:
+//     everything);
 //   - the method: none when it reaches no caster (no map, no lookups), `shadowmap` (one depth
 //     layer) when every caster is opaque (alpha >= 1, no interior), `dsm` otherwise, with volume
 //     sampling in generation only when a volume is among its casters;

@@ -34,17 +34,21 @@ struct PlannedShadowSource {
   };
 
   DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    return luminance(transmittance_rgb(cursor, r, light));
+  }
+
+  DV_HD dvec3 transmittance_rgb(Cursor& cursor, const ShadowReceiver& r, int light) const {
     const PlannedLight& p = plan[light];
     if (p.kind == PlannedKind::depth_map) {
       ShadowMapSource::Cursor unused;
-      return depth_maps[p.index].transmittance(unused, r, 0);
+      return depth_maps[p.index].transmittance_rgb(unused, r, 0);
     }
     if (p.kind == PlannedKind::deep_map) {
       int scratch[4] = {-1, -1, -1, -1};
       return deep_maps[p.index].hinted_transmittance(
           r, 0, light < kDsmCursorLights ? cursor.deep.hint + 4 * light : scratch);
     }
-    return outside_light_cone(lights[light], r.point) ? 0.0 : 1.0;
+    return dvec3(outside_light_cone(lights[light], r.point) ? 0.0 : 1.0);
   }
 };
 

@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "cuda/buffer.h"
+#include "engine/scene/surface_transmittance.h"
 
 namespace dv {
 
@@ -13,6 +14,7 @@ namespace {
 struct ProbeAnswer {
   double transmittance;
   uint32_t flags;
+  dvec3 rgb;
 };
 
 // A probe point on a surface (by the oracle's convention) is a surface receiver; see
@@ -25,8 +27,8 @@ void probe_points(Backend backend, const SceneView& s, const Source& source, int
         typename Source::Cursor cursor{};
         const int light = int(i % lights);
         const ShadowReceiver r = probe_receiver(s, s.lights[light], points[i / lights]);
-        const double t = source.transmittance(cursor, r, light);
-        out[i] = {t, cursor.flags};
+        const dvec3 rgb = source.transmittance_rgb(cursor, r, light);
+        out[i] = {luminance(rgb), cursor.flags, rgb};
       });
 }
 
@@ -54,6 +56,7 @@ ProbeResults probe_transmittance(Backend backend, const SceneData& scene, Shadow
   for (const ProbeAnswer& a : out.to_vector()) {
     r.transmittance.push_back(a.transmittance);
     r.flags.push_back(a.flags);
+    r.rgb.push_back(a.rgb);
   }
   return r;
 }

@@ -13,7 +13,8 @@
 namespace dv {
 
 struct ProbeResults {
-  std::vector<double> transmittance;  // [point * light_count + light]
+  std::vector<double> transmittance;  // [point * light_count + light]: luminance of rgb
+  std::vector<dvec3> rgb;             // the same answers per colour channel
   std::vector<uint32_t> flags;        // per answer: the method's cursor flags (oracle: OracleFlag)
   int light_count = 0;
   double milliseconds = 0.0;  // the query kernel alone

@@ -1,5 +1,7 @@
 // Shadow sources as kernels see them. A shadow source answers
-//   transmittance(cursor, receiver, light)
+//   transmittance_rgb(cursor, receiver, light)   per colour channel (what shading multiplies)
+//   transmittance(cursor, receiver, light)       its luminance
+//   (engine/scene/surface_transmittance.h)
 // for receivers (shadow_receiver.h: a point, with its geometric normal when it lies on a
 // surface) of non-decreasing distance along one camera ray; the small per-ray Cursor lets
 // coherent methods (the DSM's incremental lookup) keep state. Kernels are templated on the
@@ -28,6 +30,7 @@ struct NoShadowSource {
     uint32_t flags = 0;
   };
   DV_HD double transmittance(Cursor&, const ShadowReceiver&, int) const { return 1.0; }
+  DV_HD dvec3 transmittance_rgb(Cursor&, const ShadowReceiver&, int) const { return dvec3(1.0); }
 };
 
 // The exact oracle per shaded sample: slow, the ground truth.
@@ -37,9 +40,15 @@ struct ReferenceShadowSource {
     uint32_t flags = 0;  // OracleFlag bits seen along this ray
   };
   DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
-    const OracleResult exact = exact_transmittance(scene, scene.lights[light], r.point);
-    cursor.flags |= exact.flags;
-    return exact.transmittance;
+    return exact(cursor, r, light).transmittance;
+  }
+  DV_HD dvec3 transmittance_rgb(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    return exact(cursor, r, light).rgb;
+  }
+  DV_HD OracleResult exact(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    const OracleResult answer = exact_transmittance(scene, scene.lights[light], r.point);
+    cursor.flags |= answer.flags;
+    return answer;
   }
 };
 

@@ -59,31 +59,53 @@ void focus_face(ShadowFace& face, const Aabb& region) {
   face.texel_size *= 0.5 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
 }
 
-// Nearest caster depth per texel of one face.
+// Whether a surface goes into the depth map for `casters`.
+DV_HD inline bool depth_caster(const ObjectView& o, DepthCasters casters) {
+  return casters == DepthCasters::opaque ? o.alpha >= 1.0 : o.alpha > 0.0;
+}
+
+// Whether a surface goes into the glass layer: glass the depth map leaves out.
+DV_HD inline bool glass_caster(const ObjectView& o, DepthCasters casters) {
+  return o.transmission > 0.0 && !depth_caster(o, casters);
+}
+
+// Nearest caster depth per texel of one face; with a glass layer (non-empty views) also the
+// nearest glass crossing's depth and the product of the crossing rule over the glass crossings.
 void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face,
-                       DepthCasters casters, View<float> depths) {
-  const double min_alpha = casters == DepthCasters::opaque ? 1.0 : 0.0;
-  const bool inclusive = casters == DepthCasters::opaque;
+                       DepthCasters casters, View<float> depths, View<float> glass_depths,
+                       View<vec3> glass_filters) {
   const TileLists lists = rasterize_tiles(backend, s, face.projection);
   if (lists.stats.overflow)
     throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
   const TileListsView tiles = lists.view();
   const int res = face.projection.width;
+  const bool glass = !glass_filters.empty();
   parallel_for(
       backend, "shadow_map_depth", int64_t(res) * res, DV_KERNEL_LAMBDA(int64_t i) {
         const int x = int(i % res), y = int(i / res);
         const PixelRay ray = pixel_ray(face.projection, x, y);
-        double nearest = 1e300;
+        double nearest = 1e300, nearest_glass = 1e300;
+        dvec3 filter(1.0);
         for_each_fragment(tiles, x, y, [&](uint32_t tri) {
           double t;
           bool entering;
-          const double alpha = s.objects[s.triangle_object[tri]].alpha;
-          if ((inclusive ? alpha < min_alpha : alpha <= min_alpha) ||
+          const ObjectView& o = s.objects[s.triangle_object[tri]];
+          const bool in_glass = glass && glass_caster(o, casters);
+          if (!(depth_caster(o, casters) || in_glass) ||
               !triangle_plane_hit(s, tri, ray.origin, ray.direction, t, entering))
             return;
-          nearest = min_value(nearest, shadow_depth(face, ray.origin + ray.direction * t));
+          const double depth = shadow_depth(face, ray.origin + ray.direction * t);
+          if (!in_glass) {
+            nearest = min_value(nearest, depth);
+            return;
+          }
+          nearest_glass = min_value(nearest_glass, depth);
+          filter *= crossing_transmittance(s, o, tri, ray.direction);
         });
         depths[face.offset + i] = nearest >= 1e300 ? INFINITY : float(nearest);
+        if (!glass) return;
+        glass_depths[face.offset + i] = nearest_glass >= 1e300 ? INFINITY : float(nearest_glass);
+        glass_filters[face.offset + i] = vec3(filter);
       });
 }
 
@@ -105,7 +127,7 @@ class ShadowMapMethod final : public ShadowMethod {
     return {{"maps_built", builds_},
             {"prepare_calls", prepare_calls_},
             {"faces", faces_built_},
-            {"bytes", maps_.depths.bytes()},
+            {"bytes", maps_.bytes()},
             {"last_build_ms", build_ms_}};
   }
 
@@ -137,7 +159,7 @@ class ShadowMapMethod final : public ShadowMethod {
       for (const ShadowLight& l : layout.lights)
         if (l.face_count == 1)
           focus_face(layout.faces[l.first_face], visible_region(*focus_on, s.bounds));
-    maps_ = render_depth_maps(backend, s, layout, params_.res, DepthCasters::surfaces);
+    maps_ = render_depth_maps(backend, scene, layout, params_.res, DepthCasters::surfaces);
     source_ = maps_.source(s, params_);
     prepared_for_ = &scene;
     backend_ = backend;
@@ -191,21 +213,43 @@ nlohmann::json DepthMapParams::json() const {
 }
 
 ShadowMapSource DepthMaps::source(const SceneView& s, const DepthMapParams& params) const {
-  return {s.lights, lights.const_view(), faces.const_view(), depths.const_view(),
-          res,      params.pcf,          params.bias_for(s), params.slope};
+  return {s.lights,
+          lights.const_view(),
+          faces.const_view(),
+          depths.const_view(),
+          res,
+          params.pcf,
+          params.bias_for(s),
+          params.slope,
+          glass_depths.const_view(),
+          glass_filters.const_view()};
 }
 
-DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapLayout& layout,
+int64_t DepthMaps::bytes() const {
+  return int64_t(depths.bytes() + glass_depths.bytes() + glass_filters.bytes());
+}
+
+DepthMaps render_depth_maps(Backend backend, const SceneData& scene, const LightMapLayout& layout,
                             int res, DepthCasters casters, const std::vector<uint8_t>* rendered) {
+  const SceneView& s = scene.view();
   const Memory memory = memory_of(backend);
   DepthMaps maps;
   maps.res = res;
   maps.depths = Buffer<float>(memory, layout.texel_count(), "shadow map depths");
+  bool glass = false;
+  for (const ObjectView& o : scene.host_objects()) glass |= glass_caster(o, casters);
+  if (glass) {
+    // +inf (no glass) on faces left empty; rendered faces overwrite theirs.
+    const std::vector<float> none(size_t(layout.texel_count()), INFINITY);
+    maps.glass_depths = Buffer<float>(memory, none, "shadow map glass depths");
+    maps.glass_filters = Buffer<vec3>(memory, layout.texel_count(), "shadow map glass filters");
+  }
   for (size_t i = 0; i < layout.faces.size(); ++i) {
     if (rendered && !(*rendered)[i])
       clear_depth_face(backend, layout.faces[i], maps.depths.view());
     else
-      render_depth_face(backend, s, layout.faces[i], casters, maps.depths.view());
+      render_depth_face(backend, s, layout.faces[i], casters, maps.depths.view(),
+                        maps.glass_depths.view(), maps.glass_filters.view());
   }
   maps.faces = Buffer<ShadowFace>(memory, layout.faces, "shadow map faces");
   maps.lights = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");

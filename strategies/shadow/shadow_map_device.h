@@ -6,7 +6,11 @@
 // times the receiver's tangent to the light, over the PCF kernel's reach; none elsewhere); PCF
 // averages that test over pcf x pcf texels around the point's projection (Reeves et al.:
 // compare, then filter). Every surface with alpha > 0 casts a full shadow; media are not
-// represented: this is the opaque-shadow baseline. Host and device code.
+// represented: this is the opaque-shadow baseline. Glass the depths leave out (transmission > 0)
+// is kept, for scenes that have it, in a glass layer: a receiver beyond a texel's nearest glass
+// crossing gets the product of the crossing rule (engine/scene/surface_transmittance.h) over the
+// texel ray's glass crossings, one layer per texel (the translucent shadow maps of real-time
+// engines), per colour channel. Host and device code.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +20,7 @@
 #include "engine/raster/light_faces.h"
 #include "engine/raster/shadow_receiver.h"
 #include "engine/scene/scene_view.h"
+#include "engine/scene/surface_transmittance.h"
 
 namespace dv {
 
@@ -28,19 +33,35 @@ struct ShadowMapSource {
   int pcf;            // kernel side in texels (1: a single nearest-texel test)
   double bias;        // world units subtracted from a surface point's depth ...
   double slope_bias;  // ... plus this many texel sizes x tan(angle to the light) per reach
+  // The glass layer (only for scenes with glass the depths leave out; empty otherwise): per
+  // texel the nearest glass crossing's depth (+inf: none) and the product of the crossing rule
+  // over the texel ray's glass crossings.
+  View<const float> glass_depths{};
+  View<const vec3> glass_filters{};
 
   struct Cursor {
     uint32_t flags = 0;
   };
 
-  DV_HD double transmittance(Cursor&, const ShadowReceiver& r, int light) const {
+  DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    return luminance(transmittance_rgb(cursor, r, light));
+  }
+
+  DV_HD dvec3 transmittance_rgb(Cursor&, const ShadowReceiver& r, int light) const {
     const dvec3& p = r.point;
     const LightView& l = lights[light];
-    if (outside_light_cone(l, p)) return 0.0;
+    if (outside_light_cone(l, p)) return dvec3(0.0);
     const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
     FacePoint fp;
-    if (!project_to_face(f, resolution, p, fp)) return 1.0;
+    if (!project_to_face(f, resolution, p, fp)) return dvec3(1.0);
     const double depth = receiver_depth(f, r, fp.depth, bias, slope_bias, 0.5 * double(pcf + 1));
+    const double lit = lit_fraction(f, fp, depth);
+    if (glass_filters.empty() || lit == 0.0) return dvec3(lit);
+    return lit * glass_filter(f, fp, depth);
+  }
+
+  // The PCF kernel's share of texels whose nearest caster lies at or beyond `depth`.
+  DV_HD double lit_fraction(const ShadowFace& f, const FacePoint& fp, double depth) const {
     const int x0 = int(floor(fp.u - 0.5 * (pcf - 1) + 0.5)),
               y0 = int(floor(fp.v - 0.5 * (pcf - 1) + 0.5));
     int lit = 0, taps = 0;
@@ -52,6 +73,14 @@ struct ShadowMapSource {
         lit += depth <= double(depths[f.offset + int64_t(y) * resolution + x]);
       }
     return taps ? double(lit + (pcf * pcf - taps)) / double(pcf * pcf) : 1.0;
+  }
+
+  // The nearest texel's glass filter for a receiver beyond its nearest glass crossing, else 1.
+  DV_HD dvec3 glass_filter(const ShadowFace& f, const FacePoint& fp, double depth) const {
+    const int x = int(floor(fp.u + 0.5)), y = int(floor(fp.v + 0.5));
+    if (x < 0 || y < 0 || x >= resolution || y >= resolution) return dvec3(1.0);
+    const int64_t texel = f.offset + int64_t(y) * resolution + x;
+    return depth > double(glass_depths[texel]) ? dvec3(glass_filters[texel]) : dvec3(1.0);
   }
 };
 

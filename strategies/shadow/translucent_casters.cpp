@@ -23,7 +23,10 @@ TranslucentCasters gather_translucent_casters(const SceneData& scene) {
   const std::vector<u32vec3> triangles = to_host_vector(s.triangles, memory);
   const std::vector<uint32_t> owner = to_host_vector(s.triangle_object, memory);
   const std::vector<ObjectView> objects = to_host_vector(s.objects, memory);
-  auto translucent = [&](uint32_t o) { return objects[o].alpha > 0.0 && objects[o].alpha < 1.0; };
+  auto translucent = [&](uint32_t o) {
+    const ObjectView& v = objects[o];
+    return v.alpha > 0.0 && v.alpha < 1.0 && v.transmission <= 0.0;  // glass: the glass layer
+  };
   TranslucentCasters out;
   std::vector<bool> seen(objects.size(), false);
   for (size_t t = 0; t < triangles.size(); ++t) {

@@ -1,7 +1,8 @@
 // The translucent casters of a scene for transmittance shadow mapping: the triangles of every
-// object with surface opacity 0 < alpha < 1 (opaque ones, alpha >= 1, go into a depth map;
-// alpha 0 surfaces cast nothing), and the spread of their opacities, since the method applies
-// one opacity to every set voxel: the mean over the objects when they differ.
+// object with surface opacity 0 < alpha < 1 and no glass (opaque ones, alpha >= 1, go into a
+// depth map, glass, transmission > 0, into its glass layer; alpha 0 surfaces cast nothing), and the
+// spread of their opacities, since the method applies one opacity to every set voxel: the mean over
+// the objects when they differ.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -51,7 +51,7 @@ class TransmittanceSlicemap final : public ShadowMethod {
     j["casters"] = casters_;
     j["set_voxels"] = set_voxels_;
     j["grid_bytes"] = words_.bytes();
-    j["opaque_map_bytes"] = opaque_.depths.bytes();
+    j["opaque_map_bytes"] = opaque_.bytes();
     j["opaque_map_ms"] = opaque_ms_;
     j["voxelize_ms"] = voxelize_ms_;
     j["last_build_ms"] = build_ms_;
@@ -80,7 +80,7 @@ class TransmittanceSlicemap final : public ShadowMethod {
         light_map_layout(scene.host_lights(), s.bounds, s.diagonal, params_.res);
     {
       PassTimer timer(backend);
-      opaque_ = render_depth_maps(backend, s, layout, params_.res, DepthCasters::opaque);
+      opaque_ = render_depth_maps(backend, scene, layout, params_.res, DepthCasters::opaque);
       opaque_ms_ = timer.stop();
     }
     const TranslucentCasters casters = gather_translucent_casters(scene);

@@ -5,8 +5,9 @@
 // column in the slices strictly in front of p's slice, a the casters' (mean) opacity; the
 // powers come from a table so that CPU and CUDA agree exactly. A surface point's depth is
 // biased towards the light like the shadow map's (receiver_depth), so that the receiver's own
-// surface voxel is not counted; points not on a surface are not biased. Interiors (media, volumes)
-// are not represented. Host and device code.
+// surface voxel is not counted; points not on a surface are not biased. Glass (transmission > 0)
+// is not voxelized: the opaque map's glass layer (shadow_map_device.h) carries it, in colour.
+// Interiors (media, volumes) are not represented. Host and device code.
 #pragma once
 
 #include <cstdint>
@@ -31,8 +32,12 @@ struct TransmittanceSlicemapSource {
   using Cursor = ShadowMapSource::Cursor;
 
   DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
-    const double lit = opaque.transmittance(cursor, r, light);
-    if (lit == 0.0 || grids.empty()) return lit;
+    return luminance(transmittance_rgb(cursor, r, light));
+  }
+
+  DV_HD dvec3 transmittance_rgb(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    const dvec3 lit = opaque.transmittance_rgb(cursor, r, light);
+    if (max_value(lit.x, max_value(lit.y, lit.z)) == 0.0 || grids.empty()) return lit;
     const int face = face_of(opaque.light_faces[light], opaque.lights[light], r.point);
     return lit * attenuation[slices_in_front(face, r)];
   }

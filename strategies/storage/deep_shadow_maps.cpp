@@ -5,6 +5,8 @@
 
 #include "core/error.h"
 #include "cuda/ensure_buffer.h"
+#include "cuda/pass_timer.h"
+#include "engine/dsm/dsm_colour.h"
 
 namespace dv {
 
@@ -146,6 +148,16 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
   storage_->generate(context);
   host_records_stale_ = true;
   figures_ = dsm_figures(*storage_, backend, records_.const_view());
+  colour_exponents_ = Buffer<vec3>();
+  if (scene_tints_light(scene)) {
+    PassTimer timer(backend);
+    colour_exponents_ = Buffer<vec3>(memory_of(backend), g.texel_count(), "dsm colour exponents");
+    generate_colour_exponents(backend, g, colour_exponents_.view());
+    passes_.push_back({"colour", timer.stop()});
+    const int64_t colour_bytes = colour_exponents_.bytes();
+    figures_["colour_bytes"] = colour_bytes;
+    figures_["bytes_allocated"] = figures_["bytes_allocated"].get<int64_t>() + colour_bytes;
+  }
   const SceneView& s = scene.view();
   const View<const LightView> lights =
       settings_.light < 0 ? s.lights : View<const LightView>{s.lights.data + settings_.light, 1};
@@ -156,7 +168,8 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
                       resolution(),
                       settings_.bias >= 0.0 ? settings_.bias : 1e-4 * s.diagonal,
                       settings_.slope_bias,
-                      settings_.bilinear};
+                      settings_.bilinear,
+                      colour_exponents_.const_view()};
   ++generations_;
 }
 

@@ -9,6 +9,9 @@
 // as lit; points outside a spot cone get nothing. The per-ray cursor keeps each (light, tap)'s last
 // node index for the coherent search.
 // Clustered lights (ShadowLight::clustered) multiply the visibilities of their cluster faces.
+// Colour: with the colour side channel (engine/dsm/dsm_colour.h; only for scenes with tinted
+// casters) each tap's V' becomes V'^k_c per channel before the filter; without it the answer is
+// grey.
 #pragma once
 
 #include <cmath>
@@ -16,8 +19,10 @@
 
 #include "core/hd.h"
 #include "cuda/buffer.h"
+#include "engine/dsm/dsm_colour.h"
 #include "engine/raster/light_faces.h"
 #include "engine/raster/shadow_receiver.h"
+#include "engine/scene/surface_transmittance.h"
 #include "strategies/storage/dsm_reader.h"
 
 namespace dv {
@@ -33,6 +38,7 @@ struct DsmSource {
   double bias;
   double slope_bias;
   bool bilinear;
+  View<const vec3> colour_exponents{};  // per texel k (dsm_colour.h); empty: grey maps
 
   struct Cursor {
     uint32_t flags = 0;
@@ -56,6 +62,10 @@ struct DsmSource {
   }
 
   DV_HD double transmittance(Cursor& cursor, const ShadowReceiver& r, int light) const {
+    return luminance(transmittance_rgb(cursor, r, light));
+  }
+
+  DV_HD dvec3 transmittance_rgb(Cursor& cursor, const ShadowReceiver& r, int light) const {
     int scratch[4] = {-1, -1, -1, -1};
     return hinted_transmittance(r, light,
                                 light < kDsmCursorLights ? cursor.hint + 4 * light : scratch);
@@ -63,23 +73,23 @@ struct DsmSource {
 
   // transmittance() with the caller's four coherent-search slots for this light (the planner's
   // per-light sources keep them in their own cursor, planned_shadow_device.h).
-  DV_HD double hinted_transmittance(const ShadowReceiver& r, int light, int* hint) const {
+  DV_HD dvec3 hinted_transmittance(const ShadowReceiver& r, int light, int* hint) const {
     const dvec3& p = r.point;
     const LightView& l = lights[light];
-    if (outside_light_cone(l, p)) return 0.0;
+    if (outside_light_cone(l, p)) return dvec3(0.0);
     if (light_faces[light].clustered) return clustered_transmittance(light_faces[light], r);
     const ShadowFace& f = faces[face_of(light_faces[light], l, p)];
     FacePoint fp;
-    if (!project_to_face(f, resolution, p, fp)) return 1.0;
-    return face_visibility(f, fp, r, hint);
+    if (!project_to_face(f, resolution, p, fp)) return dvec3(1.0);
+    return face_visibility_rgb(f, fp, r, hint);
   }
 
   // Knecht eq. 3.12: the product of the visibilities of the light's cluster faces whose window
   // holds the point (each holds only its cluster's objects); a face that misses it counts 1.
   // No coherent search across clusters (each face starts its search afresh).
-  DV_HD double clustered_transmittance(const ShadowLight& sl, const ShadowReceiver& r) const {
+  DV_HD dvec3 clustered_transmittance(const ShadowLight& sl, const ShadowReceiver& r) const {
     const dvec3& p = r.point;
-    double t = 1.0;
+    dvec3 t(1.0);
     for (int i = 0; i < sl.face_count; ++i) {
       const ShadowFace& f = faces[sl.first_face + i];
       FacePoint fp;
@@ -87,7 +97,7 @@ struct DsmSource {
       if (!(fp.u >= -0.5 && fp.u < resolution - 0.5 && fp.v >= -0.5 && fp.v < resolution - 0.5))
         continue;
       int hint[4] = {-1, -1, -1, -1};
-      t *= face_visibility(f, fp, r, hint);
+      t *= face_visibility_rgb(f, fp, r, hint);
     }
     return t;
   }
@@ -96,6 +106,12 @@ struct DsmSource {
   // slots.
   DV_HD double face_visibility(const ShadowFace& f, const FacePoint& fp, const ShadowReceiver& r,
                                int* hint) const {
+    return luminance(face_visibility_rgb(f, fp, r, hint));
+  }
+
+  // face_visibility per colour channel.
+  DV_HD dvec3 face_visibility_rgb(const ShadowFace& f, const FacePoint& fp, const ShadowReceiver& r,
+                                  int* hint) const {
     const float z = float(receiver_depth(f, r, fp.depth, bias, slope_bias, bilinear ? 1.0 : 0.5));
     // A point beyond the face's texels is lit. One on them is looked up with its coordinates
     // clamped to the texel centres (clamp to edge): a point on the face's outer edge (an omni
@@ -104,7 +120,7 @@ struct DsmSource {
     // lit value 1: light leaking along every omni seam and at the spot cone's edge. The edge
     // takes 1e-6 texels of slack for the projection's rounding of points on a seam.
     const double lo = -0.5 - 1e-6, hi = resolution - 0.5 + 1e-6;
-    if (!(fp.u >= lo && fp.u <= hi && fp.v >= lo && fp.v <= hi)) return 1.0;
+    if (!(fp.u >= lo && fp.u <= hi && fp.v >= lo && fp.v <= hi)) return dvec3(1.0);
     const double u = clamp_value(fp.u, 0.0, resolution - 1.0);
     const double v = clamp_value(fp.v, 0.0, resolution - 1.0);
     DsmTaps taps;
@@ -125,9 +141,17 @@ struct DsmSource {
     }
     float tv[4];
     reader.visibilities(taps, z, hint, tv);
-    if (!bilinear) return tv[0];
-    const double v00 = tv[0], v10 = tv[1], v01 = tv[2], v11 = tv[3];
-    return (1.0 - wy) * ((1.0 - wx) * v00 + wx * v10) + wy * ((1.0 - wx) * v01 + wx * v11);
+    if (colour_exponents.empty()) {
+      if (!bilinear) return dvec3(tv[0]);
+      const double v00 = tv[0], v10 = tv[1], v01 = tv[2], v11 = tv[3];
+      return dvec3((1.0 - wy) * ((1.0 - wx) * v00 + wx * v10) + wy * ((1.0 - wx) * v01 + wx * v11));
+    }
+    dvec3 c[4];
+    for (int i = 0; i < taps.count; ++i)
+      c[i] = taps.texel[i] < 0 ? dvec3(1.0)
+                               : coloured_visibility(tv[i], colour_exponents[taps.texel[i]]);
+    if (!bilinear) return c[0];
+    return (1.0 - wy) * ((1.0 - wx) * c[0] + wx * c[1]) + wy * ((1.0 - wx) * c[2] + wx * c[3]);
   }
 };
 

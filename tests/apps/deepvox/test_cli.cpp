@@ -142,17 +142,22 @@ TEST_F(Cli, ProbeMatchesTheOracle) {
   std::ifstream in(path("t.csv"));
   std::string header;
   std::getline(in, header);
-  EXPECT_EQ(header, "x,y,z,light0");
+  EXPECT_EQ(header, "x,y,z,light0,light0_r,light0_g,light0_b");
   const Scene s = load_scene(scene);
   const SceneData data(s, Memory::host);
   std::string line;
   int rows = 0;
   while (std::getline(in, line)) {
-    double x, y, z, t;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &z, &t), 4) << line;
-    const double expected =
-        exact_transmittance(data.view(), data.view().lights[0], {x, y, z}).transmittance;
-    EXPECT_DOUBLE_EQ(t, expected);
+    double x, y, z, t, r, g, b;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &x, &y, &z, &t, &r, &g, &b),
+              7)
+        << line;
+    const OracleResult expected =
+        exact_transmittance(data.view(), data.view().lights[0], {x, y, z});
+    EXPECT_DOUBLE_EQ(t, expected.transmittance);
+    EXPECT_DOUBLE_EQ(r, expected.rgb.x);
+    EXPECT_DOUBLE_EQ(g, expected.rgb.y);
+    EXPECT_DOUBLE_EQ(b, expected.rgb.z);
     ++rows;
   }
   EXPECT_EQ(rows, 4);
@@ -161,6 +166,27 @@ TEST_F(Cli, ProbeMatchesTheOracle) {
       exact_transmittance(data.view(), data.view().lights[0], {0.1, 0.6, 0.05}).transmittance;
   EXPECT_GT(inside, 0.0);
   EXPECT_LT(inside, 0.6);
+}
+
+// Probe's colour columns: under the red glass stand-in the light is red, beside the luminance.
+TEST_F(Cli, ProbeWritesColourColumns) {
+  write("points.csv", "0,0,0\n");
+  const CommandResult r =
+      run("probe " + test::source_dir() + "/experiments/scenes/glass-red-slab.json --points " +
+          path("points.csv") + " --out " + path("t.csv") + " --backend cpu --shadows reference");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(path("t.csv"));
+  std::string header, line;
+  std::getline(in, header);
+  std::getline(in, line);
+  double x, y, z, t, red, green, blue;
+  ASSERT_EQ(
+      std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &x, &y, &z, &t, &red, &green, &blue),
+      7)
+      << line;
+  EXPECT_GT(red, 10.0 * green);
+  EXPECT_NEAR(blue, green, 1e-12);
+  EXPECT_NEAR(t, 0.2126 * red + 0.7152 * green + 0.0722 * blue, 1e-12);
 }
 
 TEST_F(Cli, RenderWritesImagesAndStats) {

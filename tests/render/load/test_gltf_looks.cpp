@@ -1,8 +1,9 @@
-// glTF scenes as a user would see them: transmissive glass shows Phong highlights and tints
-// what is behind it by its base colour while casting what its alpha says (nothing at
-// transmission 1); a tinted KHR_materials_volume medium tints the camera image per channel
-// while shadows stay scalar; and JSON scenes that import a glTF keep, scale or replace its
-// lights and get default lights only when they end up with none.
+// glTF scenes as a user would see them: transmissive glass shows Phong highlights, a Fresnel
+// reflection, and tints what is behind it by its base colour, and casts the same tinted,
+// partial shadow (engine/scene/surface_transmittance.h); a tinted KHR_materials_volume medium
+// tints the camera image and the shadows per channel, its surfaces adding only Fresnel; and JSON
+// scenes that import a glTF keep, scale or replace its lights and get default lights only when
+// they end up with none.
 #include <cmath>
 #include <string>
 
@@ -10,6 +11,7 @@
 
 #include "engine/oracle/transmittance.h"
 #include "engine/raster/camera_rays.h"
+#include "engine/scene/surface_transmittance.h"
 #include "render/frame/reference_render.h"
 #include "render/load/gltf_import.h"
 #include "render/load/scene_loader.h"
@@ -78,22 +80,30 @@ TEST(GltfLooks, TransmissiveGlassShowsHighlightsAndTintsWhatIsBehind) {
       {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}};
   const Scene scene = box_before_wall(dir, glass, false);
   const Image with = render(scene), behind = render_without_box(scene);
-  // Off the highlight: the wall through two crossings of the glass, tinted by (1, .25, .25)^2.
+  // Off the highlight: the wall through two crossings of the glass, each passing (1 - F) times
+  // the colour (1, .25, .25) and reflecting F of the ambient 0.1 (F: Schlick, ior 1.5).
   const dvec3 tinted = with.at(16, 12), wall = behind.at(16, 12);
   EXPECT_NEAR(wall.y, 1.0, 1e-12);
-  EXPECT_NEAR(tinted.x, wall.x, 1e-3);
-  EXPECT_NEAR(tinted.y, wall.y / 16.0, 1e-3);
-  EXPECT_NEAR(tinted.z, wall.z / 16.0, 1e-3);
+  const dvec3 ray = camera_ray_direction(make_camera_view(scene.camera), 16, 12);
+  const double f = fresnel_schlick(1.5, ray.z), ambient = 0.1;
+  const dvec3 crossing = (1.0 - f) * dvec3(1.0, 0.25, 0.25);
+  const dvec3 expected = wall * crossing * crossing + f * ambient + crossing * f * ambient;
+  EXPECT_NEAR(tinted.x, expected.x, 1e-3);
+  EXPECT_NEAR(tinted.y, expected.y, 1e-3);
+  EXPECT_NEAR(tinted.z, expected.z, 1e-3);
   // Facing the light: a Phong highlight (specular 0.24 of irradiance 1 at the front face).
   const dvec3 centre = with.at(32, 24);
   EXPECT_GT(centre.y - behind.at(32, 24).y / 16.0, 0.2);
-  // Shadows keep the physical mapping: alpha = 1 - transmission = 0 casts nothing.
+  // Shadows follow the same rule: two crossings at normal incidence (F = 0.04), tinted.
   const SceneData data(scene, Memory::host);
-  EXPECT_EQ(exact_transmittance(data.view(), data.view().lights[0], {0.0, 0.0, -2.9}).transmittance,
-            1.0);
+  const OracleResult shadow =
+      exact_transmittance(data.view(), data.view().lights[0], {0.0, 0.0, -2.9});
+  EXPECT_NEAR(shadow.rgb.x, 0.96 * 0.96, 1e-12);
+  EXPECT_NEAR(shadow.rgb.y, 0.96 * 0.96 / 16.0, 1e-12);
+  EXPECT_NEAR(shadow.transmittance, luminance(shadow.rgb), 1e-15);
 }
 
-TEST(GltfLooks, TintedMediumTintsTheCameraImageButShadowsStayScalar) {
+TEST(GltfLooks, TintedMediumTintsTheCameraImageAndTheShadows) {
   ScratchDir dir;
   // attenuationColor (1, .25, .25) at distance 1: sigma = (0, ln 4, ln 4) per unit.
   const json medium = {{"extensions",
@@ -107,15 +117,24 @@ TEST(GltfLooks, TintedMediumTintsTheCameraImageButShadowsStayScalar) {
   const dvec3 dir_centre = camera_ray_direction(make_camera_view(scene.camera), 32, 24);
   const double chord = 2.0 / std::abs(dir_centre.z);  // through the box from z = 1 to z = -1
   const dvec3 seen = with.at(32, 24), wall = behind.at(32, 24);
-  EXPECT_NEAR(seen.x, wall.x, 1e-6);  // red passes
-  EXPECT_NEAR(seen.y, wall.y * std::exp(-std::log(4.0) * chord), 1e-6);
-  EXPECT_NEAR(seen.z, wall.z * std::exp(-std::log(4.0) * chord), 1e-6);
+  // The surfaces add only Fresnel (the medium colours): (1 - F) per crossing, F of the
+  // ambient 0.1 reflected at each.
+  const double f = fresnel_schlick(1.5, dir_centre.z), ambient = 0.1;
+  const dvec3 inside(1.0, std::exp(-std::log(4.0) * chord), std::exp(-std::log(4.0) * chord));
+  const dvec3 expected =
+      wall * (1.0 - f) * (1.0 - f) * inside + f * ambient + (1.0 - f) * inside * f * ambient;
+  EXPECT_NEAR(seen.x, expected.x, 1e-6);  // red passes
+  EXPECT_NEAR(seen.y, expected.y, 1e-6);
+  EXPECT_NEAR(seen.z, expected.z, 1e-6);
   EXPECT_GT(seen.x, 4.0 * seen.y);  // red-tinted
-  // Shadows: the oracle's scalar transmittance with the mean extinction 2 ln 4 / 3.
+  // Shadows: per channel, two crossings of the top and bottom at normal incidence and 2 units
+  // of medium.
   const SceneData data(scene, Memory::host);
-  const double t =
-      exact_transmittance(data.view(), data.view().lights[0], {0.0, -1.5, 0.0}).transmittance;
-  EXPECT_NEAR(t, std::exp(-2.0 * (2.0 * std::log(4.0) / 3.0)), 1e-9);
+  const OracleResult t = exact_transmittance(data.view(), data.view().lights[0], {0.0, -1.5, 0.0});
+  EXPECT_NEAR(t.rgb.x, 0.96 * 0.96, 1e-9);
+  EXPECT_NEAR(t.rgb.y, 0.96 * 0.96 * std::exp(-2.0 * std::log(4.0)), 1e-9);
+  EXPECT_NEAR(t.rgb.z, t.rgb.y, 1e-12);
+  EXPECT_GT(t.rgb.x, 10.0 * t.rgb.y);  // a red shadow, not a grey one
 }
 
 // A glTF file with one box and, if `lit`, a 683 cd point light above it.
