@@ -3,7 +3,8 @@
 // visibility function to a target (the streaming compressor, engine/dsm/visibility_compressor.h) as
 // samples (z, V) at float32 depths z = the ray parameter (distance from the light, or from an
 // orthographic map's near plane):
-// - a surface crossing with opacity a: a step V -> V (1 - a) at its depth (twin nodes);
+// - a surface crossing with opacity a (a texture's coverage at the crossing): a step
+//   V -> V (1 - a) at its depth (twin nodes);
 // - volumes: the renderer's step rules (engine/raster/media_march.h), V after each step sampled at
 // the
 //   step's end, so the interpolant matches the camera pass's midpoint quadrature at step ends;
@@ -24,6 +25,7 @@
 #include "engine/dsm/precompressed_table.h"
 #include "engine/raster/fragment_walk.h"
 #include "engine/raster/media_march.h"
+#include "engine/scene/texture_sampling.h"
 
 namespace dv {
 
@@ -50,7 +52,9 @@ struct VisibilityPayload {
   DV_HD bool done() const { return visibility <= kDsmSaturatedVisibility; }
 
   DV_HD void surface(const RayHit& h, int32_t object) {
-    const double alpha = s.objects[object].alpha;
+    const ObjectView& o = s.objects[object];
+    const double alpha =
+        o.texture < 0 ? o.alpha : surface_look(s, o, h.triangle, origin + dir * h.t).alpha;
     if (alpha <= 0.0) return;
     const double after = alpha >= 1.0 ? 0.0 : visibility * (1.0 - alpha);
     target.push_step(float(h.t), float(visibility), float(after));

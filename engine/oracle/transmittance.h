@@ -1,7 +1,8 @@
 // The exact transmittance oracle: the fraction of a light's unoccluded intensity that reaches a
 // world point through the scene, in double precision, on host and device.
 //
-//   T = prod over surface crossings strictly between light and point of (1 - alpha)
+//   T = prod over surface crossings strictly between light and point of (1 - alpha), alpha
+//       the crossing's own (a texture's coverage there, engine/scene/texture_sampling.h)
 //       * exp(-optical depth through constant interiors (exact chords) and volumes)
 //
 // Crossings come from a BVH walk along the ray from a point outside the scene through the
@@ -26,6 +27,7 @@
 #include "engine/oracle/quadrature.h"
 #include "engine/scene/ray_query.h"
 #include "engine/scene/scene_view.h"
+#include "engine/scene/texture_sampling.h"
 #include "engine/scene/volume_sampling.h"
 
 namespace dv {
@@ -165,7 +167,8 @@ DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightVie
   for_each_hit(s, ray, 0.0, t_p + eps, [&](const RayHit& h) {
     const int32_t oi = int32_t(s.triangle_object[h.triangle]);
     const ObjectView& o = s.objects[oi];
-    if (h.t > t_l + eps && h.t < t_p - eps) surface *= 1.0 - o.alpha;
+    if (h.t > t_l + eps && h.t < t_p - eps)
+      surface *= 1.0 - surface_alpha(s, h.triangle, seg.origin + seg.dir * h.t);
     const double sign = h.entering ? 1.0 : -1.0;
     if (o.interior == InteriorKind::constant) {
       tau_constant += o.sigma * sign * (t_p - clamp_value(h.t, t_l, t_p));

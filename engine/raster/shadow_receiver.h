@@ -11,6 +11,7 @@
 #include "engine/oracle/transmittance.h"
 #include "engine/scene/ray_query.h"
 #include "engine/scene/scene_view.h"
+#include "engine/scene/texture_sampling.h"
 
 namespace dv {
 
@@ -30,7 +31,7 @@ DV_HD inline dvec3 triangle_normal(const SceneView& s, uint32_t triangle) {
   return len > 0.0 ? n / len : dvec3(0.0);
 }
 
-// The receiver for a probe point: on the surface (alpha > 0) that `light`'s oracle segment
+// The receiver for a probe point: on the surface (alpha > 0 there) that `light`'s oracle segment
 // crosses within the oracle's end tolerance of p, if any (the nearest such crossing); else a
 // point with no surface.
 DV_HD inline ShadowReceiver probe_receiver(const SceneView& s, const LightView& light,
@@ -43,7 +44,7 @@ DV_HD inline ShadowReceiver probe_receiver(const SceneView& s, const LightView& 
   double nearest = eps;
   for_each_hit(s, ray, seg.t_point - eps, seg.t_point + eps, [&](const RayHit& h) {
     const double d = h.t > seg.t_point ? h.t - seg.t_point : seg.t_point - h.t;
-    if (s.objects[s.triangle_object[h.triangle]].alpha > 0.0 && d <= nearest) {
+    if (surface_alpha(s, h.triangle, ray.origin + ray.dir * h.t) > 0.0 && d <= nearest) {
       nearest = d;
       r.normal = triangle_normal(s, h.triangle);
     }

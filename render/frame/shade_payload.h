@@ -11,6 +11,7 @@
 #include "core/lane_group.h"
 #include "engine/raster/fragment_walk.h"
 #include "engine/raster/media_march.h"
+#include "engine/scene/texture_sampling.h"
 #include "engine/scene/volume_sampling.h"
 #include "render/frame/shading.h"
 
@@ -43,28 +44,33 @@ struct ShadePayload {
   // its transmissive part adds highlights and tints what lies behind by its colour. The shaded
   // point is the crossing moved onto its triangle (a rasterized crossing can lie just outside
   // it, on the plane's extension behind a neighbour, and would shadow itself), and its shadow
-  // receiver carries the geometric normal.
+  // receiver carries the geometric normal; shading uses the interpolated vertex normal, and a
+  // textured surface its texel's colour and coverage (engine/scene/texture_sampling.h).
   DV_HD void surface(const RayHit& h, int32_t object) {
     const ObjectView& o = s.objects[object];
     if (o.alpha <= 0.0 && o.transmission <= 0.0) return;
     const u32vec3 tri = s.triangles[h.triangle];
     const dvec3 p0 = s.vertices[tri.x], p1 = s.vertices[tri.y], p2 = s.vertices[tri.z];
+    const dvec3 point = nearest_point_on_triangle(origin + dir * h.t, p0, p1, p2);
+    const SurfaceLook look = surface_look(s, o, h.triangle, point);
+    if (look.alpha <= 0.0 && look.transmission <= 0.0) return;
     dvec3 n = glm::cross(p1 - p0, p2 - p0);
     const double len = glm::length(n);
     n = len > 0.0 ? n / len : -dir;
     if (glm::dot(n, dir) > 0.0) n = -n;  // two-sided: face the viewer
-    const ShadowReceiver at{nearest_point_on_triangle(origin + dir * h.t, p0, p1, p2), n};
-    if (o.alpha > 0.0) {
-      const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir);
-      color += transmittance * o.alpha * c;
+    const ShadowReceiver at{point, n};
+    const dvec3 shading = shading_normal(s, h.triangle, point, n);
+    if (look.alpha > 0.0) {
+      const dvec3 c = shade_phong(s, shadows, cursor, o, look.color, at, shading, -dir);
+      color += transmittance * look.alpha * c;
     }
-    if (o.transmission <= 0.0) {
-      transmittance *= 1.0 - o.alpha;
+    if (look.transmission <= 0.0) {
+      transmittance *= 1.0 - look.alpha;
       return;
     }
-    const dvec3 highlight = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir, true);
-    color += transmittance * o.transmission * highlight;
-    transmittance *= (1.0 - o.alpha - o.transmission) + o.transmission * o.color;
+    const dvec3 highlight = shade_phong(s, shadows, cursor, o, look.color, at, shading, -dir, true);
+    color += transmittance * look.transmission * highlight;
+    transmittance *= (1.0 - look.alpha - look.transmission) + look.transmission * look.color;
   }
 
   // Media over [t0, t1], stepped by march_media (engine/raster/media_march.h); volume steps in
