@@ -4,8 +4,8 @@
 // samples (z, V) at float32 depths z = the ray parameter (distance from the light, or from an
 // orthographic map's near plane):
 // - a surface crossing: a step V -> V (1 - a) at its depth (twin nodes), a the crossing's
-//   opacity (engine/scene/surface_transmittance.h: alpha, or for glass one minus the luminance
-//   of what the crossing lets through at the ray's angle);
+//   opacity (engine/scene/surface_transmittance.h: alpha, a texture's coverage at the crossing,
+//   or for glass one minus the luminance of what the crossing lets through at the ray's angle);
 // - volumes: the renderer's step rules (engine/raster/media_march.h), V after each step sampled at
 // the
 //   step's end, so the interpolant matches the camera pass's midpoint quadrature at step ends;
@@ -68,11 +68,12 @@ struct VisibilityPayload {
   DV_HD void surface(const RayHit& h, int32_t object) {
     const ObjectView& o = s.objects[object];
     if (material_coverage(o) <= 0.0) return;
-    const double alpha = crossing_opacity(s, o, h.triangle, dir);
+    const dvec3 p = origin + dir * h.t;
+    const double alpha = crossing_opacity(s, o, h.triangle, dir, p);
     if (alpha <= 0.0) return;
     const double after = alpha >= 1.0 ? 0.0 : visibility * (1.0 - alpha);
     if (track_colour && alpha < 1.0) {
-      const dvec3 t = crossing_transmittance(s, o, h.triangle, dir);
+      const dvec3 t = crossing_transmittance(s, o, h.triangle, dir, p);
       optical_depth -= log(1.0 - alpha);
       optical_depth_rgb -= dvec3(log(t.x), log(t.y), log(t.z));
     }

@@ -3,7 +3,8 @@
 //
 //   T_c = prod over surface crossings strictly between light and point of the crossing rule's
 //         T_c (engine/scene/surface_transmittance.h: 1 - alpha without glass; glass adds
-//         transmission (1 - Fresnel) times its colour)
+//         transmission (1 - Fresnel) times its colour; a texture gives alpha and colour at
+//         the crossing, engine/scene/texture_sampling.h)
 //       * exp(-optical depth of channel c through constant interiors (exact chords, per channel:
 //         sigma * sigma_tint) and volumes (grey))
 //
@@ -176,7 +177,7 @@ DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightVie
     const int32_t oi = int32_t(s.triangle_object[h.triangle]);
     const ObjectView& o = s.objects[oi];
     if (h.t > t_l + eps && h.t < t_p - eps)
-      surface *= crossing_transmittance(s, o, h.triangle, seg.dir);
+      surface *= crossing_transmittance(s, o, h.triangle, seg.dir, seg.origin + seg.dir * h.t);
     const double sign = h.entering ? 1.0 : -1.0;
     if (o.interior == InteriorKind::constant) {
       tau_constant += o.sigma_rgb * (sign * (t_p - clamp_value(h.t, t_l, t_p)));

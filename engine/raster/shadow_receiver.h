@@ -35,7 +35,8 @@ DV_HD inline ShadowReceiver probe_receiver(const SceneView& s, const LightView& 
   double nearest = eps;
   for_each_hit(s, ray, seg.t_point - eps, seg.t_point + eps, [&](const RayHit& h) {
     const double d = h.t > seg.t_point ? h.t - seg.t_point : seg.t_point - h.t;
-    if (material_coverage(s.objects[s.triangle_object[h.triangle]]) > 0.0 && d <= nearest) {
+    const ObjectView& o = s.objects[s.triangle_object[h.triangle]];
+    if (hit_coverage(s, o, h.triangle, ray.origin + ray.dir * h.t) > 0.0 && d <= nearest) {
       nearest = d;
       r.normal = triangle_normal(s, h.triangle);
     }

@@ -4,6 +4,7 @@
 #include "cuda/buffer.h"
 #include "engine/raster/raster_projection.h"
 #include "engine/scene/ray_query.h"
+#include "engine/scene/texture_sampling.h"
 
 namespace dv {
 
@@ -14,8 +15,8 @@ struct PixelSurface {
   uint32_t hit;
 };
 
-// Keeps the nearest hit on a visible surface (alpha > 0) in front of the near plane; lowers
-// the traversal's t_max to it so that farther nodes are skipped.
+// Keeps the nearest hit on a visible surface (alpha > 0 at the hit) in front of the near plane;
+// lowers the traversal's t_max to it so that farther nodes are skipped.
 struct NearestVisibleHit {
   const SceneView* scene;
   const RasterProjection* projection;
@@ -25,8 +26,8 @@ struct NearestVisibleHit {
 
   DV_HD bool operator()(const RayHit& h) const {
     if (!(h.t > 0.0 && h.t <= *t_max)) return true;
-    if (!(scene->objects[scene->triangle_object[h.triangle]].alpha > 0.0)) return true;
     const dvec3 p = ray->origin + ray->direction * h.t;
+    if (!(surface_alpha(*scene, h.triangle, p) > 0.0)) return true;
     if (near_plane_distance(*projection, world_to_clip_point(*projection, p)) < 0.0) return true;
     *t_max = h.t;
     *found = true;

@@ -38,6 +38,35 @@ std::vector<Halfedge> one_halfedge_per_hole(const SurfaceMesh& surface) {
   return holes;
 }
 
+// Gives each triangle of `reworked` (the same vertices as `original`, triangles possibly reordered,
+// rotated or flipped by CGAL) the corner attributes of the original triangle over the same three
+// vertices, each corner following its vertex.
+void carry_corner_attributes(const TriangleMesh& original, TriangleMesh& reworked) {
+  if (original.corner_uvs.empty() && original.corner_normals.empty()) return;
+  auto key = [](const u32vec3& t) {
+    std::array<uint32_t, 3> k{t.x, t.y, t.z};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  std::map<std::array<uint32_t, 3>, size_t> source;
+  for (size_t t = 0; t < original.triangles.size(); ++t)
+    source.emplace(key(original.triangles[t]), t);
+  const bool uvs = !original.corner_uvs.empty(), normals = !original.corner_normals.empty();
+  for (const u32vec3& t : reworked.triangles) {
+    auto found = source.find(key(t));
+    for (int k = 0; k < 3; ++k) {
+      size_t from = 0;  // a new triangle (hole filling) takes the first corner's attributes
+      if (found != source.end()) {
+        const u32vec3& o = original.triangles[found->second];
+        const int j = o.x == t[k] ? 0 : o.y == t[k] ? 1 : 2;
+        from = 3 * found->second + size_t(j);
+      }
+      if (uvs) reworked.corner_uvs.push_back(original.corner_uvs[from]);
+      if (normals) reworked.corner_normals.push_back(original.corner_normals[from]);
+    }
+  }
+}
+
 size_t border_halfedge_count(const SurfaceMesh& surface) {
   size_t count = 0;
   for (Halfedge h : surface.halfedges()) count += surface.is_border(h) ? 1 : 0;
@@ -96,6 +125,7 @@ void orient_outward(TriangleMesh& mesh) {
   if (is_closed(oriented) && signed_volume(oriented) < 0.0) {
     for (u32vec3& t : oriented.triangles) std::swap(t.y, t.z);
   }
+  carry_corner_attributes(mesh, oriented);
   mesh = std::move(oriented);
 }
 
@@ -118,15 +148,25 @@ void merge_duplicate_vertices(TriangleMesh& mesh) {
     merged.push_back(p);
   }
   std::vector<u32vec3> triangles;
+  std::vector<dvec2> uvs;
+  std::vector<dvec3> normals;
   triangles.reserve(mesh.triangles.size());
-  for (const u32vec3& t : mesh.triangles) {
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const u32vec3& t = mesh.triangles[i];
     u32vec3 m(remap[t.x], remap[t.y], remap[t.z]);
     // A triangle whose corners collapsed onto each other has no area; keeping it would make
     // its one remaining edge look non-manifold.
-    if (m.x != m.y && m.y != m.z && m.z != m.x) triangles.push_back(m);
+    if (m.x == m.y || m.y == m.z || m.z == m.x) continue;
+    triangles.push_back(m);
+    for (size_t k = 3 * i; k < 3 * i + 3; ++k) {
+      if (!mesh.corner_uvs.empty()) uvs.push_back(mesh.corner_uvs[k]);
+      if (!mesh.corner_normals.empty()) normals.push_back(mesh.corner_normals[k]);
+    }
   }
   mesh.positions = std::move(merged);
   mesh.triangles = std::move(triangles);
+  mesh.corner_uvs = std::move(uvs);
+  mesh.corner_normals = std::move(normals);
 }
 
 void close_holes(TriangleMesh& mesh) {
@@ -152,6 +192,7 @@ void close_holes(TriangleMesh& mesh) {
   if (signed_volume(closed) < 0.0) {
     for (u32vec3& t : closed.triangles) std::swap(t.y, t.z);
   }
+  carry_corner_attributes(mesh, closed);
   mesh = std::move(closed);
 }
 

@@ -64,6 +64,21 @@ void validate_mesh(const std::string& where, const TriangleMesh& mesh) {
     }
   }
   if (mesh.triangles.empty()) throw InputError(where, "mesh has no triangles");
+  const size_t corners = 3 * mesh.triangles.size();
+  if (!mesh.corner_uvs.empty() && mesh.corner_uvs.size() != corners)
+    throw InputError(where, std::to_string(mesh.corner_uvs.size()) +
+                                " texture coordinates, but its triangles have " +
+                                std::to_string(corners) + " corners");
+  if (!mesh.corner_normals.empty() && mesh.corner_normals.size() != corners)
+    throw InputError(where, std::to_string(mesh.corner_normals.size()) +
+                                " normals, but its triangles have " + std::to_string(corners) +
+                                " corners");
+}
+
+void validate_texture(const std::string& where, const Texture& t) {
+  if (t.width < 1 || t.height < 1) throw InputError(where, "texture has zero size");
+  if (t.rgba.size() != size_t(t.width) * size_t(t.height) * 4)
+    throw InputError(where, "texel count does not match the dimensions");
 }
 
 void validate_transfer(const std::string& where, const TransferFunction& tf) {
@@ -93,11 +108,20 @@ void validate_scene(Scene& scene) {
     if (!(v.spacing.x > 0 && v.spacing.y > 0 && v.spacing.z > 0) || !finite(v.origin))
       throw InputError(where, "spacing must be positive and the origin finite");
   }
+  for (const Texture& t : scene.textures) validate_texture(src + ": texture '" + t.name + "'", t);
   for (Object& obj : scene.objects) {
     std::string where = src + ": object '" + obj.name + "'";
     if (obj.mesh < 0 || obj.mesh >= int(scene.meshes.size()))
       throw InputError(where, "mesh index out of range");
     const Material& m = obj.material;
+    if (m.base_texture >= int(scene.textures.size()))
+      throw InputError(where, "base-colour texture index out of range");
+    if (m.base_texture >= 0 && scene.meshes[obj.mesh].corner_uvs.empty())
+      throw InputError(where,
+                       "the material has a base-colour texture but the mesh has no "
+                       "texture coordinates");
+    if (!(m.coverage_factor >= 0.0 && m.coverage_factor <= 1.0))
+      throw InputError(where, "material coverage factor must lie in [0, 1]");
     if (!(m.alpha >= 0.0 && m.alpha <= 1.0))
       throw InputError(where, "material alpha must lie in [0,1]");
     if (!finite(m.color)) throw InputError(where, "material colour is not finite");

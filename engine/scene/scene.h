@@ -11,19 +11,44 @@
 
 namespace dv {
 
-// Triangle mesh in object space. Indices are 0-based into positions.
+// Triangle mesh in object space. Indices are 0-based into positions. Texture coordinates and
+// shading normals, where the source has them, belong to triangle corners (three per triangle,
+// in the triangle's vertex order), not to positions: positions stay shared across UV and
+// normal seams, so a textured closed mesh is still closed. Each is empty or 3 * triangles long.
 struct TriangleMesh {
   std::string name;  // generator name or file path, for messages
   std::vector<dvec3> positions;
   std::vector<u32vec3> triangles;
+  std::vector<dvec2> corner_uvs;
+  std::vector<dvec3> corner_normals;  // object space, not necessarily unit
 };
+
+enum class TextureWrap : uint8_t { repeat, clamp, mirror };
+enum class TextureFilter : uint8_t { nearest, bilinear };
+
+// A decoded image with its sampler: 8-bit RGBA, rows from the top (glTF's UV origin), RGB in
+// sRGB encoding (decoded to linear when sampled), alpha linear.
+struct Texture {
+  std::string name;  // for messages
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;  // width * height * 4
+  TextureWrap wrap_s = TextureWrap::repeat;
+  TextureWrap wrap_t = TextureWrap::repeat;
+  TextureFilter filter = TextureFilter::bilinear;
+};
+
+// How a base-colour texture's alpha covers the surface (glTF alphaMode): coverage = factor *
+// texel alpha, then opaque: 1; mask: 1 at or above the cutoff, else 0; blend: as is.
+enum class AlphaMode : uint8_t { opaque, mask, blend };
 
 // Surface material: Phong parameters plus surface opacity. `alpha` is the opaque part of the
 // surface, `transmission` (at most 1 - alpha) its glass part: light through one crossing is
 // multiplied by (1 - alpha - transmission) + transmission (1 - F) color per channel, F the
 // Fresnel reflectance for `ior` (engine/scene/surface_transmittance.h; `color` drops out when
 // the object has an interior). Without transmission that is 1 - alpha; the camera pass and
-// every shadow method follow the same rule.
+// every shadow method follow the same rule. A base-colour texture scales `alpha` and
+// `transmission` by the coverage at the hit and `color` by the texel.
 struct Material {
   dvec3 color{0.8, 0.8, 0.8};
   double ambient = 0.1;
@@ -33,6 +58,15 @@ struct Material {
   double alpha = 1.0;
   double transmission = 0.0;
   double ior = 1.5;  // index of refraction of the glass part (KHR_materials_ior)
+  // A base-colour texture (index into Scene::textures, -1: none). With one, colour is
+  // multiplied by the texel's linear RGB, and alpha and transmission are those of a fully
+  // covered point, scaled by the coverage there (alpha_mode of coverage_factor * texel alpha);
+  // uv_transform maps the mesh's corner UVs to texture UVs (KHR_texture_transform).
+  int base_texture = -1;
+  AlphaMode alpha_mode = AlphaMode::opaque;
+  double alpha_cutoff = 0.5;
+  double coverage_factor = 1.0;
+  glm::dmat3 uv_transform{1.0};
 };
 
 // One control point of a piecewise-linear transfer function: density -> colour and extinction
@@ -118,6 +152,7 @@ struct Scene {
   std::string source;  // file the scene came from, for messages
   std::vector<TriangleMesh> meshes;
   std::vector<VolumeGrid> volumes;
+  std::vector<Texture> textures;
   std::vector<Object> objects;
   std::vector<Light> lights;
   Camera camera;

@@ -83,6 +83,11 @@ ObjectView make_object_view(const Scene& scene, const Object& obj,
   o.transfer_count = int32_t(obj.interior.transfer.points.size());
   transfer.insert(transfer.end(), obj.interior.transfer.points.begin(),
                   obj.interior.transfer.points.end());
+  o.texture = m.base_texture;
+  o.alpha_mode = m.alpha_mode;
+  o.alpha_cutoff = m.alpha_cutoff;
+  o.coverage_factor = m.coverage_factor;
+  o.uv_transform = m.uv_transform;
   o.world_to_grid = dmat4(1.0);
   o.step = 0.0;
   if (o.volume >= 0) {
@@ -126,7 +131,33 @@ uint64_t object_content_hash(const Scene& scene, const Object& obj, const Object
     h.add(g.dims.x).add(g.dims.y).add(g.dims.z);
     h.bytes(g.density.data(), g.density.size() * sizeof(float));
   }
+  if (o.texture >= 0) {
+    const Texture& t = scene.textures[size_t(o.texture)];
+    h.add(int(o.alpha_mode)).add(o.alpha_cutoff).add(o.coverage_factor).add(t.width).add(t.height);
+    h.add(int(t.wrap_s)).add(int(t.wrap_t)).add(int(t.filter));
+    h.bytes(t.rgba.data(), t.rgba.size());
+    h.bytes(mesh.corner_uvs.data(), mesh.corner_uvs.size() * sizeof(dvec2));
+    for (int c = 0; c < 3; ++c) h.add(dvec3(o.uv_transform[c]));
+  }
   return h.value();
+}
+
+// The 256 sRGB-encoded byte values decoded to linear (IEC 61966-2-1), computed once on the
+// host so that host and device decode texels from the same table.
+std::vector<double> srgb_decode_table() {
+  std::vector<double> table(256);
+  for (int i = 0; i < 256; ++i) {
+    const double c = i / 255.0;
+    table[size_t(i)] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  }
+  return table;
+}
+
+// Unit world-space normal of object-space normal n under `transform` (zero stays zero).
+dvec3 world_normal(const glm::dmat3& normal_matrix, const dvec3& n) {
+  const dvec3 w = normal_matrix * n;
+  const double len = glm::length(w);
+  return len > 0.0 && std::isfinite(len) ? w / len : dvec3(0.0);
 }
 
 }  // namespace
@@ -136,15 +167,35 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
   std::vector<dvec3> vertices;
   std::vector<u32vec3> tris;
   std::vector<uint32_t> tri_object;
+  // Corner attributes only where some object needs them: untextured, unsmoothed scenes carry
+  // no extra bytes.
+  bool any_uvs = false, any_normals = false;
+  for (const Object& obj : scene.objects) {
+    any_uvs |= obj.material.base_texture >= 0;
+    any_normals |= !scene.meshes[obj.mesh].corner_normals.empty();
+  }
+  std::vector<dvec2> corner_uvs;
+  std::vector<dvec3> corner_normals;
   for (size_t oi = 0; oi < scene.objects.size(); ++oi) {
     const Object& obj = scene.objects[oi];
     const TriangleMesh& mesh = scene.meshes[obj.mesh];
+    // A mirroring transform flips winding; keep outward normals outward.
+    const bool flip = glm::determinant(obj.transform) < 0.0;
+    const bool textured = obj.material.base_texture >= 0;
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(obj.transform)));
+    for (size_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int k : {0, flip ? 2 : 1, flip ? 1 : 2}) {
+        const size_t corner = 3 * t + size_t(k);
+        if (any_uvs) corner_uvs.push_back(textured ? mesh.corner_uvs[corner] : dvec2(0.0));
+        if (any_normals)
+          corner_normals.push_back(mesh.corner_normals.empty()
+                                       ? dvec3(0.0)
+                                       : world_normal(normal_matrix, mesh.corner_normals[corner]));
+      }
     uint32_t base = uint32_t(vertices.size());
     for (const dvec3& p : mesh.positions) vertices.push_back(dvec3(obj.transform * dvec4(p, 1.0)));
     Aabb& object_box = host_object_bounds_.emplace_back();
     for (size_t v = base; v < vertices.size(); ++v) object_box.extend(vertices[v]);
-    // A mirroring transform flips winding; keep outward normals outward.
-    bool flip = glm::determinant(obj.transform) < 0.0;
     for (const u32vec3& t : mesh.triangles) {
       tris.push_back(flip ? u32vec3(t.x + base, t.z + base, t.y + base) : t + u32vec3(base));
       tri_object.push_back(uint32_t(oi));
@@ -161,10 +212,23 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
   order_ = bvh.order;
   std::vector<u32vec3> sorted_tris(tris.size());
   std::vector<uint32_t> sorted_object(tris.size());
+  std::vector<dvec2> sorted_uvs(corner_uvs.size());
+  std::vector<dvec3> sorted_normals(corner_normals.size());
   for (size_t i = 0; i < tris.size(); ++i) {
     sorted_tris[i] = tris[bvh.order[i]];
     sorted_object[i] = tri_object[bvh.order[i]];
+    for (size_t k = 0; k < 3; ++k) {
+      if (any_uvs) sorted_uvs[3 * i + k] = corner_uvs[3 * bvh.order[i] + k];
+      if (any_normals) sorted_normals[3 * i + k] = corner_normals[3 * bvh.order[i] + k];
+    }
   }
+  std::vector<TextureView> textures;
+  std::vector<uint8_t> texels;
+  for (const Texture& t : scene.textures) {
+    textures.push_back({t.width, t.height, int64_t(texels.size()), t.wrap_s, t.wrap_t, t.filter});
+    texels.insert(texels.end(), t.rgba.begin(), t.rgba.end());
+  }
+  const std::vector<double> srgb = textures.empty() ? std::vector<double>() : srgb_decode_table();
 
   std::vector<TransferPoint> transfer;
   std::vector<uint8_t> brick_empty;
@@ -194,6 +258,11 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
   transfer_ = Buffer<TransferPoint>(memory, transfer, "transfer functions");
   brick_empty_ = Buffer<uint8_t>(memory, brick_empty, "empty bricks");
   lights_ = Buffer<LightView>(memory, lights, "lights");
+  corner_uvs_ = Buffer<dvec2>(memory, sorted_uvs, "texture coordinates");
+  corner_normals_ = Buffer<dvec3>(memory, sorted_normals, "vertex normals");
+  textures_ = Buffer<TextureView>(memory, textures, "textures");
+  texels_ = Buffer<uint8_t>(memory, texels, "texture texels");
+  srgb_to_linear_ = Buffer<double>(memory, srgb, "sRGB decoding table");
   host_lights_ = lights;
 
   view_.vertices = vertices_.const_view();
@@ -206,6 +275,11 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
   view_.transfer = transfer_.const_view();
   view_.brick_empty = brick_empty_.const_view();
   view_.lights = lights_.const_view();
+  view_.corner_uvs = corner_uvs_.const_view();
+  view_.corner_normals = corner_normals_.const_view();
+  view_.textures = textures_.const_view();
+  view_.texels = texels_.const_view();
+  view_.srgb_to_linear = srgb_to_linear_.const_view();
   view_.bounds = bounds;
   view_.diagonal = bounds.empty() ? 0.0 : glm::length(bounds.extent());
 }

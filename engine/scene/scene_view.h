@@ -27,6 +27,21 @@ struct ObjectView {
   dmat4 world_to_grid;   // world position -> continuous grid index (i, j, k)
   ivec3 bricks;          // volume: empty-space bricks per axis (kBrickCells cells each)
   int64_t brick_offset;  // volume: first flag in SceneView::brick_empty
+  // Base-colour texture (Material::base_texture): index into SceneView::textures or -1; with
+  // one, alpha and transmission above are those of full coverage (texture_sampling.h).
+  int32_t texture;
+  AlphaMode alpha_mode;
+  double alpha_cutoff;
+  double coverage_factor;
+  glm::dmat3 uv_transform;
+};
+
+// A texture's place in SceneView::texels (RGBA8 rows from the top) and its sampler.
+struct TextureView {
+  int32_t width, height;
+  int64_t offset;  // first byte
+  TextureWrap wrap_s, wrap_t;
+  TextureFilter filter;
 };
 
 // Cells per side of the bricks used for empty-space skipping (Hadwiger et al. 2006, §3).
@@ -66,8 +81,15 @@ struct SceneView {
   View<const TransferPoint> transfer;
   View<const uint8_t> brick_empty;  // 1: extinction is zero everywhere in the brick
   View<const LightView> lights;
-  Aabb bounds;      // world bounds of all triangles
-  double diagonal;  // length of the bounds' diagonal (scale for tolerances)
+  // Per triangle corner (3 * BVH-order triangle + k), empty when no object needs them: texture
+  // coordinates (objects with a texture) and unit world-space shading normals (zero: none).
+  View<const dvec2> corner_uvs;
+  View<const dvec3> corner_normals;
+  View<const TextureView> textures;
+  View<const uint8_t> texels;
+  View<const double> srgb_to_linear;  // 256 entries when there are textures
+  Aabb bounds;                        // world bounds of all triangles
+  double diagonal;                    // length of the bounds' diagonal (scale for tolerances)
 };
 
 struct SceneDataOptions {
@@ -105,6 +127,11 @@ class SceneData {
   Buffer<TransferPoint> transfer_;
   Buffer<uint8_t> brick_empty_;
   Buffer<LightView> lights_;
+  Buffer<dvec2> corner_uvs_;
+  Buffer<dvec3> corner_normals_;
+  Buffer<TextureView> textures_;
+  Buffer<uint8_t> texels_;
+  Buffer<double> srgb_to_linear_;
   std::vector<uint32_t> order_;
   std::vector<LightView> host_lights_;
   std::vector<Aabb> host_object_bounds_;

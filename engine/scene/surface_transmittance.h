@@ -20,6 +20,7 @@
 #include "core/hd.h"
 #include "core/math.h"
 #include "engine/scene/scene_view.h"
+#include "engine/scene/texture_sampling.h"
 
 namespace dv {
 
@@ -67,6 +68,15 @@ DV_HD inline dvec3 surface_transmittance(const ObjectView& o, double cos_to_norm
   return dvec3(1.0 - coverage) + through * tint;
 }
 
+// The coverage (opaque plus glass part) of `o` at point p of `triangle`: the material's, or its
+// texture's there.
+DV_HD inline double hit_coverage(const SceneView& s, const ObjectView& o, uint32_t triangle,
+                                 const dvec3& p) {
+  if (o.texture < 0) return material_coverage(o);
+  const SurfaceLook look = surface_look(s, o, triangle, p);
+  return look.alpha + look.transmission;
+}
+
 // Unit geometric normal of a triangle (zero for a degenerate one).
 DV_HD inline dvec3 triangle_normal(const SceneView& s, uint32_t triangle) {
   const u32vec3 tri = s.triangles[triangle];
@@ -76,21 +86,26 @@ DV_HD inline dvec3 triangle_normal(const SceneView& s, uint32_t triangle) {
   return len > 0.0 ? n / len : dvec3(0.0);
 }
 
-// The crossing rule for a ray of unit direction `dir` through `triangle` of `o`, with the
-// material's constants (the normal is computed only for transmissive surfaces).
+// The crossing rule for a ray of unit direction `dir` through `triangle` of `o` at point p: the
+// material's constants, or where a base-colour texture decides them, the coverage and colour
+// of its texel at p (engine/scene/texture_sampling.h). The normal is computed only for
+// transmissive surfaces.
 DV_HD inline dvec3 crossing_transmittance(const SceneView& s, const ObjectView& o,
-                                          uint32_t triangle, const dvec3& dir) {
+                                          uint32_t triangle, const dvec3& dir, const dvec3& p) {
   const double cos_to_normal =
       o.transmission > 0.0 ? glm::dot(triangle_normal(s, triangle), dir) : 1.0;
-  return surface_transmittance(o, cos_to_normal, material_coverage(o), o.color);
+  if (o.texture < 0) return surface_transmittance(o, cos_to_normal, material_coverage(o), o.color);
+  const SurfaceLook look = surface_look(s, o, triangle, p);
+  return surface_transmittance(o, cos_to_normal, look.alpha + look.transmission, look.color);
 }
 
 // The light one crossing removes, as the scalar opacity the storages and maps carry: 1 minus
-// the crossing's luminance transmittance (alpha itself for a surface without transmission).
+// the crossing's luminance transmittance (the surface's alpha at p for a surface without
+// transmission).
 DV_HD inline double crossing_opacity(const SceneView& s, const ObjectView& o, uint32_t triangle,
-                                     const dvec3& dir) {
-  if (o.transmission <= 0.0) return o.alpha;
-  return 1.0 - luminance(crossing_transmittance(s, o, triangle, dir));
+                                     const dvec3& dir, const dvec3& p) {
+  if (o.transmission <= 0.0) return o.texture < 0 ? o.alpha : surface_look(s, o, triangle, p).alpha;
+  return 1.0 - luminance(crossing_transmittance(s, o, triangle, dir, p));
 }
 
 }  // namespace dv

@@ -47,28 +47,35 @@ struct ShadePayload {
   // on any background), and lets through what the crossing rule says. The shaded
   // point is the crossing moved onto its triangle (a rasterized crossing can lie just outside
   // it, on the plane's extension behind a neighbour, and would shadow itself), and its shadow
-  // receiver carries the geometric normal.
+  // receiver carries the geometric normal; shading uses the interpolated vertex normal, and a
+  // textured surface its texel's colour and coverage (engine/scene/texture_sampling.h).
   DV_HD void surface(const RayHit& h, int32_t object) {
     const ObjectView& o = s.objects[object];
     if (o.alpha <= 0.0 && o.transmission <= 0.0) return;
     const u32vec3 tri = s.triangles[h.triangle];
     const dvec3 p0 = s.vertices[tri.x], p1 = s.vertices[tri.y], p2 = s.vertices[tri.z];
+    const dvec3 point = nearest_point_on_triangle(origin + dir * h.t, p0, p1, p2);
+    const SurfaceLook look = surface_look(s, o, h.triangle, point);
+    if (look.alpha <= 0.0 && look.transmission <= 0.0) return;
     dvec3 n = glm::cross(p1 - p0, p2 - p0);
     const double len = glm::length(n);
     n = len > 0.0 ? n / len : -dir;
     if (glm::dot(n, dir) > 0.0) n = -n;  // two-sided: face the viewer
-    const ShadowReceiver at{nearest_point_on_triangle(origin + dir * h.t, p0, p1, p2), n};
-    if (o.alpha > 0.0) {
-      const dvec3 c = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir);
-      color += transmittance * o.alpha * c;
+    const ShadowReceiver at{point, n};
+    const dvec3 shading = shading_normal(s, h.triangle, point, n);
+    if (look.alpha > 0.0) {
+      const dvec3 c = shade_phong(s, shadows, cursor, o, look.color, at, shading, -dir);
+      color += transmittance * look.alpha * c;
     }
     const double cos_to_normal = glm::dot(n, dir);
-    if (o.transmission > 0.0) {
-      const dvec3 highlight = shade_phong(s, shadows, cursor, o, o.color, at, n, -dir, true);
+    if (look.transmission > 0.0) {
+      const dvec3 highlight =
+          shade_phong(s, shadows, cursor, o, look.color, at, shading, -dir, true);
       const double reflected = fresnel_schlick(o.ior, cos_to_normal) * o.ambient;
-      color += transmittance * o.transmission * (highlight + dvec3(reflected));
+      color += transmittance * look.transmission * (highlight + dvec3(reflected));
     }
-    transmittance *= surface_transmittance(o, cos_to_normal, material_coverage(o), o.color);
+    transmittance *=
+        surface_transmittance(o, cos_to_normal, look.alpha + look.transmission, look.color);
   }
 
   // Media over [t0, t1], stepped by march_media (engine/raster/media_march.h); volume steps in

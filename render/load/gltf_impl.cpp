@@ -1,8 +1,9 @@
 // The tinygltf implementation, compiled once here from Debian's header so no deepvox binary
-// links libtinygltf.so. Images are never decoded (deepvox reads no textures): no stb_image,
-// no external image files; render/load/gltf_import.cpp installs a loader that skips embedded ones.
+// links libtinygltf.so. Images (embedded, data: URIs and external files) are decoded by
+// stb_image, compiled here with private linkage (STB_IMAGE_STATIC) so that other users of
+// stb_image (tests) keep their own copy; deepvox writes no images through tinygltf.
 #define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
 #include <tiny_gltf.h>

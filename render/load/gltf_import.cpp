@@ -3,9 +3,7 @@
 // dv::Scene as documented in render/load/gltf_import.h.
 #include "render/load/gltf_import.h"
 
-#define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -16,6 +14,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -45,12 +44,6 @@ double degrees(double radians) {
 std::string quoted_name(const std::string& name, const char* kind, int index) {
   return name.empty() ? std::string(kind) + " " + std::to_string(index)
                       : std::string(kind) + " " + std::to_string(index) + " '" + name + "'";
-}
-
-// Embedded images are accepted unread: deepvox has no textures.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                const unsigned char*, int, void*) {
-  return true;
 }
 
 void warn_lines(const std::string& file, const std::string& text) {
@@ -102,7 +95,6 @@ Model parse_model(const std::string& path) {
   std::string base_dir = std::filesystem::path(path).parent_path().string();
   if (base_dir.empty()) base_dir = ".";
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skip_image, nullptr);
   Model model;
   std::string err, warn;
   bool ok = false;
@@ -173,18 +165,34 @@ int component_size(int component_type) {
   }
 }
 
+// What an accessor holds, for the type checks of checked_accessor.
+enum class AccessorKind { position, indices, normal, texcoord };
+
 // Validates accessor `index` completely (indices, types, byte ranges) before anything is read.
 AccessorView checked_accessor(const Model& model, int index, const std::string& role,
-                              const std::string& path, bool is_position) {
+                              const std::string& path, AccessorKind kind) {
   std::string where = path + ": accessor " + std::to_string(index) + " (" + role + ")";
   if (index < 0 || size_t(index) >= model.accessors.size())
     throw InputError(where, "accessor index out of range (the file has " +
                                 std::to_string(model.accessors.size()) + " accessors)");
   const tinygltf::Accessor& acc = model.accessors[size_t(index)];
   if (acc.sparse.isSparse) throw InputError(where, "sparse accessors are not supported");
-  if (is_position) {
+  int components = 1;
+  if (kind == AccessorKind::position || kind == AccessorKind::normal) {
+    components = 3;
     if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || acc.type != TINYGLTF_TYPE_VEC3)
-      throw InputError(where, "POSITION must be a FLOAT VEC3 accessor");
+      throw InputError(where, std::string(kind == AccessorKind::normal ? "NORMAL" : "POSITION") +
+                                  " must be a FLOAT VEC3 accessor");
+  } else if (kind == AccessorKind::texcoord) {
+    components = 2;
+    const int type = acc.componentType;
+    if (acc.type != TINYGLTF_TYPE_VEC2 ||
+        !(type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+          (acc.normalized && (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                              type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))))
+      throw InputError(where,
+                       "TEXCOORD must be a VEC2 accessor of FLOAT or normalized UNSIGNED_BYTE or "
+                       "UNSIGNED_SHORT");
   } else if (acc.type != TINYGLTF_TYPE_SCALAR || component_size(acc.componentType) == 0 ||
              acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
     throw InputError(where,
@@ -206,7 +214,7 @@ AccessorView checked_accessor(const Model& model, int index, const std::string& 
                                 ", byteLength " + std::to_string(view.byteLength) +
                                 ") runs past the end of buffer " + std::to_string(view.buffer) +
                                 " (" + std::to_string(data.size()) + " bytes)");
-  size_t element = size_t(component_size(acc.componentType)) * (is_position ? 3 : 1);
+  size_t element = size_t(component_size(acc.componentType)) * size_t(components);
   size_t stride = view.byteStride ? view.byteStride : element;
   if (stride < element)
     throw InputError(where, view_name + " byteStride " + std::to_string(stride) +
@@ -227,16 +235,45 @@ AccessorView checked_accessor(const Model& model, int index, const std::string& 
   return out;
 }
 
-std::vector<dvec3> read_positions(const AccessorView& view) {
-  std::vector<dvec3> positions(view.count);
+// FLOAT VEC3 elements (positions, normals); `what` names one in messages.
+std::vector<dvec3> read_vec3s(const AccessorView& view, const char* what) {
+  std::vector<dvec3> values(view.count);
   for (size_t i = 0; i < view.count; ++i) {
     float xyz[3];
     std::memcpy(xyz, view.first + i * view.stride, sizeof xyz);
-    positions[i] = dvec3(xyz[0], xyz[1], xyz[2]);
+    values[i] = dvec3(xyz[0], xyz[1], xyz[2]);
     if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
-      throw InputError(view.where, "position " + std::to_string(i) + " is not finite (NaN or Inf)");
+      throw InputError(view.where,
+                       std::string(what) + " " + std::to_string(i) + " is not finite (NaN or Inf)");
   }
-  return positions;
+  return values;
+}
+
+// VEC2 texture coordinates: FLOAT, or normalized unsigned integers mapped to [0, 1].
+std::vector<dvec2> read_texcoords(const AccessorView& view) {
+  std::vector<dvec2> values(view.count);
+  for (size_t i = 0; i < view.count; ++i) {
+    const unsigned char* p = view.first + i * view.stride;
+    for (int c = 0; c < 2; ++c) {
+      double v;
+      if (view.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+        float f;
+        std::memcpy(&f, p + 4 * c, 4);
+        v = f;
+      } else if (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+        uint16_t u;
+        std::memcpy(&u, p + 2 * c, 2);
+        v = u / 65535.0;
+      } else {
+        v = p[c] / 255.0;
+      }
+      if (!std::isfinite(v))
+        throw InputError(view.where,
+                         "texture coordinate " + std::to_string(i) + " is not finite (NaN or Inf)");
+      values[i][c] = v;
+    }
+  }
+  return values;
 }
 
 std::vector<uint32_t> read_indices(const AccessorView& view, size_t vertex_count) {
@@ -313,10 +350,14 @@ dmat4 local_transform(const tinygltf::Node& node, const std::string& where) {
   return m;
 }
 
-// Phong material and interior of one glTF material (mapping documented in gltf_import.h).
+// Phong material and interior of one glTF material (mapping documented in gltf_import.h); a
+// base-colour texture by its glTF index (the importer turns it into a scene texture) and the
+// TEXCOORD set it reads.
 struct MappedMaterial {
   Material material;
   Interior interior;
+  int gltf_texture = -1;
+  int texcoord = 0;
 };
 
 const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& extensions, const char* name) {
@@ -374,6 +415,38 @@ Interior volume_interior(const tinygltf::Value& volume, const std::string& where
   return interior;
 }
 
+// A 2-number array field of an extension object, or `fallback` when absent.
+dvec2 pair_field(const tinygltf::Value& object, const char* key, dvec2 fallback,
+                 const std::string& where) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& array = object.Get(key);
+  bool ok = array.IsArray() && array.ArrayLen() == 2;
+  for (int i = 0; ok && i < 2; ++i) {
+    ok = array.Get(i).IsNumber() && std::isfinite(array.Get(i).GetNumberAsDouble());
+    if (ok) fallback[i] = array.Get(i).GetNumberAsDouble();
+  }
+  require(ok, where, std::string(key) + " must be 2 finite numbers");
+  return fallback;
+}
+
+// KHR_texture_transform on the base-colour texture: uv' = T(offset) R(rotation) S(scale) uv
+// (the extension's matrix, column-major like glm), and its texCoord override.
+void read_texture_transform(const tinygltf::Value& ext, const std::string& where,
+                            MappedMaterial& out) {
+  const dvec2 offset = pair_field(ext, "offset", dvec2(0.0), where);
+  const dvec2 scale = pair_field(ext, "scale", dvec2(1.0), where);
+  const double rotation = number_field(ext, "rotation", 0.0, where);
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  const glm::dmat3 translate(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
+  const glm::dmat3 rotate(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
+  const glm::dmat3 scaling(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
+  out.material.uv_transform = translate * rotate * scaling;
+  const double texcoord = number_field(ext, "texCoord", double(out.texcoord), where);
+  require(texcoord >= 0.0 && texcoord == std::floor(texcoord) && texcoord < 64.0, where,
+          "texCoord must be a small integer >= 0");
+  out.texcoord = int(texcoord);
+}
+
 MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string& where) {
   MappedMaterial out;
   const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
@@ -390,10 +463,25 @@ MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string&
   double coverage = 1.0;
   if (m.alphaMode == "BLEND") {
     coverage = base[3];
+    out.material.alpha_mode = AlphaMode::blend;
   } else if (m.alphaMode == "MASK") {
+    require(std::isfinite(m.alphaCutoff) && m.alphaCutoff >= 0.0, where,
+            "alphaCutoff must be a finite number >= 0");
     coverage = base[3] >= m.alphaCutoff ? 1.0 : 0.0;
+    out.material.alpha_mode = AlphaMode::mask;
   } else {
     require(m.alphaMode == "OPAQUE", where, "alphaMode must be OPAQUE, MASK or BLEND");
+  }
+  out.material.alpha_cutoff = m.alphaCutoff;
+  const tinygltf::TextureInfo& texture = m.pbrMetallicRoughness.baseColorTexture;
+  if (texture.index >= 0) {
+    // Coverage comes per point from the factor times the texel's alpha (texture_sampling.h).
+    out.gltf_texture = texture.index;
+    out.texcoord = texture.texCoord;
+    out.material.coverage_factor = base[3];
+    coverage = 1.0;
+    if (const tinygltf::Value* ext = find_extension(texture.extensions, "KHR_texture_transform"))
+      read_texture_transform(*ext, where + ": KHR_texture_transform", out);
   }
   double transmission = 0.0;
   if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_transmission")) {
@@ -423,7 +511,10 @@ class Importer {
 
  private:
   int scene_mesh(int mesh_index, int primitive_index);
+  void read_corner_attributes(const tinygltf::Primitive& prim, const std::string& of,
+                              TriangleMesh& out, size_t vertex_count);
   const MappedMaterial& material(int index);
+  int texture(int gltf_index, const std::string& where);
   void add_node(int node_index, const dmat4& world);
   void add_light(const tinygltf::Node& node, const std::string& where, const dmat4& world);
   void finish_camera();
@@ -435,6 +526,8 @@ class Importer {
   Scene scene_;
   std::map<std::pair<int, int>, int> primitive_meshes_;  // (mesh, primitive) -> scene mesh or -1
   std::map<int, MappedMaterial> materials_;
+  std::map<int, int> textures_;  // glTF texture -> scene texture
+  bool warned_normal_maps_ = false;
   bool has_camera_ = false;
   dmat4 camera_world_{1.0};
   int camera_index_ = -1;
@@ -460,10 +553,12 @@ int Importer::scene_mesh(int mesh_index, int primitive_index) {
   auto position = prim.attributes.find("POSITION");
   if (position == prim.attributes.end()) throw InputError(where, "primitive has no POSITION");
   std::string of = " of " + mesh_name + " primitive " + std::to_string(primitive_index);
-  AccessorView pos_view = checked_accessor(model_, position->second, "POSITION" + of, path_, true);
+  AccessorView pos_view =
+      checked_accessor(model_, position->second, "POSITION" + of, path_, AccessorKind::position);
   std::vector<uint32_t> indices;
   if (prim.indices >= 0) {
-    AccessorView idx_view = checked_accessor(model_, prim.indices, "indices" + of, path_, false);
+    AccessorView idx_view =
+        checked_accessor(model_, prim.indices, "indices" + of, path_, AccessorKind::indices);
     indices = read_indices(idx_view, pos_view.count);
   } else {
     indices.resize(pos_view.count);
@@ -472,8 +567,9 @@ int Importer::scene_mesh(int mesh_index, int primitive_index) {
   TriangleMesh out;
   out.name = (mesh.name.empty() ? "mesh" + std::to_string(mesh_index) : mesh.name) +
              (mesh.primitives.size() > 1 ? "#" + std::to_string(primitive_index) : "");
-  out.positions = read_positions(pos_view);
+  out.positions = read_vec3s(pos_view, "position");
   out.triangles = assemble_triangles(indices, prim.mode);
+  read_corner_attributes(prim, of, out, pos_view.count);
   if (prim.mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0)
     log_warning(where + ": " + std::to_string(indices.size()) +
                 " indices is not a multiple of 3; the last ones are ignored");
@@ -487,6 +583,96 @@ int Importer::scene_mesh(int mesh_index, int primitive_index) {
   return result;
 }
 
+// The triangle corners' NORMALs, and their texture coordinates where the primitive's material
+// has a base-colour texture (the TEXCOORD set it names); out.triangles index the primitive's
+// vertices.
+void Importer::read_corner_attributes(const tinygltf::Primitive& prim, const std::string& of,
+                                      TriangleMesh& out, size_t vertex_count) {
+  auto attribute = [&](const std::string& name, AccessorKind kind) {
+    std::optional<AccessorView> view;
+    auto found = prim.attributes.find(name);
+    if (found == prim.attributes.end()) return view;
+    view = checked_accessor(model_, found->second, name + of, path_, kind);
+    if (view->count != vertex_count)
+      throw InputError(view->where, name + " has " + std::to_string(view->count) +
+                                        " elements but POSITION has " +
+                                        std::to_string(vertex_count));
+    return view;
+  };
+  if (const std::optional<AccessorView> normals = attribute("NORMAL", AccessorKind::normal)) {
+    const std::vector<dvec3> n = read_vec3s(*normals, "normal");
+    for (const u32vec3& t : out.triangles)
+      for (int k = 0; k < 3; ++k) out.corner_normals.push_back(n[t[k]]);
+  }
+  const MappedMaterial& mapped = material(prim.material);
+  if (mapped.gltf_texture < 0) return;
+  const std::string set = "TEXCOORD_" + std::to_string(mapped.texcoord);
+  const std::optional<AccessorView> uvs = attribute(set, AccessorKind::texcoord);
+  if (!uvs)
+    throw InputError(
+        at("material " + std::to_string(prim.material)),
+        "its base-colour texture reads " + set + ", which the primitive" + of + " does not have");
+  const std::vector<dvec2> uv = read_texcoords(*uvs);
+  for (const u32vec3& t : out.triangles)
+    for (int k = 0; k < 3; ++k) out.corner_uvs.push_back(uv[t[k]]);
+}
+
+// The scene texture of glTF texture `gltf_index`: its image decoded to RGBA8 (16-bit images
+// keep their high bytes) and its sampler's wrap modes and magnification filter (no mipmaps:
+// minification filters are read as the magnification filter).
+int Importer::texture(int gltf_index, const std::string& where) {
+  auto found = textures_.find(gltf_index);
+  if (found != textures_.end()) return found->second;
+  if (gltf_index < 0 || size_t(gltf_index) >= model_.textures.size())
+    throw InputError(where, "base-colour texture " + std::to_string(gltf_index) +
+                                " does not exist (the file has " +
+                                std::to_string(model_.textures.size()) + " textures)");
+  const tinygltf::Texture& src = model_.textures[size_t(gltf_index)];
+  std::string texture_where = at(quoted_name(src.name, "texture", gltf_index));
+  if (src.source < 0 || size_t(src.source) >= model_.images.size())
+    throw InputError(texture_where, "image " + std::to_string(src.source) + " does not exist");
+  const tinygltf::Image& image = model_.images[size_t(src.source)];
+  std::string image_where =
+      at(quoted_name(image.name.empty() ? image.uri : image.name, "image", src.source));
+  if (image.image.empty() || image.width < 1 || image.height < 1)
+    throw InputError(image_where, "image could not be read (missing file or undecodable data)");
+  const size_t texels = size_t(image.width) * size_t(image.height);
+  const size_t bytes_per = size_t(image.bits / 8);
+  if (image.component != 4 || (image.bits != 8 && image.bits != 16) ||
+      image.image.size() != texels * 4 * bytes_per)
+    throw InputError(image_where, "image decoded to an unexpected layout");
+  Texture t;
+  t.name = image.uri.empty() ? "image " + std::to_string(src.source) : image.uri;
+  t.width = image.width;
+  t.height = image.height;
+  t.rgba.resize(texels * 4);
+  for (size_t i = 0; i < texels * 4; ++i)
+    t.rgba[i] = image.image[i * bytes_per + (bytes_per - 1)];  // little-endian: high byte last
+  if (src.sampler >= 0) {
+    if (size_t(src.sampler) >= model_.samplers.size())
+      throw InputError(texture_where, "sampler " + std::to_string(src.sampler) + " does not exist");
+    const tinygltf::Sampler& sampler = model_.samplers[size_t(src.sampler)];
+    auto wrap = [&](int mode) {
+      if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::clamp;
+      if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::mirror;
+      require(mode == TINYGLTF_TEXTURE_WRAP_REPEAT, texture_where,
+              "unknown wrap mode " + std::to_string(mode));
+      return TextureWrap::repeat;
+    };
+    t.wrap_s = wrap(sampler.wrapS);
+    t.wrap_t = wrap(sampler.wrapT);
+    const int filter = sampler.magFilter >= 0 ? sampler.magFilter : sampler.minFilter;
+    const bool nearest = filter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+                         filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                         filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+    t.filter = nearest ? TextureFilter::nearest : TextureFilter::bilinear;
+  }
+  const int index = int(scene_.textures.size());
+  scene_.textures.push_back(std::move(t));
+  textures_.emplace(gltf_index, index);
+  return index;
+}
+
 const MappedMaterial& Importer::material(int index) {
   auto found = materials_.find(index);
   if (found != materials_.end()) return found->second;
@@ -495,7 +681,15 @@ const MappedMaterial& Importer::material(int index) {
   tinygltf::Material fallback;  // glTF's default material: white, rough, opaque
   const tinygltf::Material& m = index >= 0 ? model_.materials[size_t(index)] : fallback;
   std::string where = at(quoted_name(m.name, "material", index));
-  return materials_.emplace(index, map_gltf_material(m, where)).first->second;
+  MappedMaterial mapped = map_gltf_material(m, where);
+  if (mapped.gltf_texture >= 0) mapped.material.base_texture = texture(mapped.gltf_texture, where);
+  if (m.normalTexture.index >= 0 && !warned_normal_maps_) {
+    warned_normal_maps_ = true;
+    log_warning(where +
+                ": normalTexture is ignored (deepvox does not read normal maps); the "
+                "surface is shaded with its vertex normals");
+  }
+  return materials_.emplace(index, std::move(mapped)).first->second;
 }
 
 void Importer::add_node(int root, const dmat4& root_world) {

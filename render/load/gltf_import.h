@@ -11,8 +11,7 @@
 //     URI: dv::InputError naming the file. tinygltf's own warnings become dv::log_warning.
 //   - extensionsRequired may only name KHR_lights_punctual, KHR_materials_transmission,
 //     KHR_materials_volume, KHR_materials_ior, KHR_materials_emissive_strength and
-//     KHR_texture_transform (the last two change nothing here: deepvox has no emission and
-//     reads no textures). Any other
+//     KHR_texture_transform (emission changes nothing here: deepvox has no emission). Any other
 //     (KHR_mesh_quantization, KHR_draco_mesh_compression, ...) is an InputError naming it.
 //     Unknown names in extensionsUsed only warn.
 // Nodes and meshes
@@ -24,7 +23,10 @@
 //     POSITION accessor, triangles from the indices accessor or 0..n-1; strips and fans are
 //     converted to triangles and triangles that repeat a vertex index are dropped. The node's
 //     world matrix goes into Object::transform. Vertices at identical positions are merged
-//     (glTF splits them at normal seams) so closed shapes are closed by index. A primitive
+//     (glTF splits them at normal seams) so closed shapes are closed by index; NORMAL and the
+//     base-colour texture's TEXCOORD_n (FLOAT, or normalized UNSIGNED_BYTE/SHORT VEC2) are kept
+//     per triangle corner (TriangleMesh::corner_normals, corner_uvs), so seams survive the
+//     merge. Normals are interpolated for shading (not for shadows). A primitive
 //     used by several nodes shares one TriangleMesh. POINTS and LINES primitives (modes 0-3)
 //     and primitives without triangles are skipped with a warning.
 //   - Every accessor is validated before it is read: indices of accessor, buffer view and
@@ -67,6 +69,17 @@
 //   - Phong from PBR roughness r: specular = 0.2 * (1 - r) + 0.04 (a dielectric's 4 % plus a
 //     gloss term that fades with roughness); shininess = 2 / max(r^4, 1e-4) - 2 clamped to
 //     [1, 512] (the Blinn-Phong exponent whose lobe matches a GGX lobe of alpha = r^2).
+//   - baseColorTexture: its image (PNG or JPEG via stb_image: a data: URI, an external file
+//     beside the .gltf, or a .glb buffer view; unreadable or missing: InputError naming the
+//     image) becomes a dv::Texture (8-bit RGBA, 16-bit images keep their high byte; RGB is
+//     sRGB and decoded to linear when sampled), with its sampler's wrapS/wrapT (REPEAT,
+//     CLAMP_TO_EDGE, MIRRORED_REPEAT) and magFilter (NEAREST, else bilinear; no mipmaps).
+//     KHR_texture_transform (offset, rotation, scale, texCoord) on it becomes
+//     Material::uv_transform. The colour is baseColorFactor times the texel; the coverage a
+//     below is computed per point from baseColorFactor alpha times the texel's alpha
+//     (engine/scene/texture_sampling.h), in the oracle, the camera pass and every shadow
+//     method. A primitive whose material has a texture but lacks its TEXCOORD set is an
+//     InputError. normalTexture is ignored with one warning per file (vertex normals shade).
 //   - Coverage a = 1 for OPAQUE, the baseColorFactor alpha for BLEND, and 1 or 0 for MASK
 //     (alpha >= alphaCutoff or not); t = KHR_materials_transmission transmissionFactor (0
 //     without the extension). Material::alpha = a (1 - t) (the opaque part), ::transmission =

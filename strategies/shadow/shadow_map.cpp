@@ -100,7 +100,7 @@ void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& fa
             return;
           }
           nearest_glass = min_value(nearest_glass, depth);
-          filter *= crossing_transmittance(s, o, tri, ray.direction);
+          filter *= crossing_transmittance(s, o, tri, ray.direction, ray.origin + ray.direction * t);
         });
         depths[face.offset + i] = nearest >= 1e300 ? INFINITY : float(nearest);
         if (!glass) return;

@@ -1,6 +1,7 @@
 // CPU/CUDA parity of the shared code: oracle answers, reference (ray-walk) renders and
 // rasterized renders on scenes with translucent surfaces, constant media, volumes and many
-// objects. Tolerance: the backends run the
+// objects, and on the textured stand-ins (texture alpha, base colour, vertex normals; also
+// every shadow method's answers there). Tolerance: the backends run the
 // same double-precision code without FMA contraction; exp/pow/cos of the two math libraries
 // differ by an ulp or so, so transmittances agree to 1e-12 and 8-bit-relevant image values to
 // 1e-6 (float output), and integer counters exactly. Skipped, with the reason, without a GPU.
@@ -26,8 +27,14 @@ class Parity : public ::testing::TestWithParam<const char*> {
   }
 };
 
+// Scenes under experiments/scenes/, glTF stand-ins under tests/data/textured/.
+std::string scene_path(const std::string& name) {
+  const bool gltf = name.find(".gl") != std::string::npos;
+  return test::source_dir() + (gltf ? "/tests/data/textured/" : "/experiments/scenes/") + name;
+}
+
 TEST_P(Parity, OracleAndRenderAgree) {
-  Scene scene = load_scene(test::source_dir() + "/experiments/scenes/" + GetParam());
+  Scene scene = load_scene(scene_path(GetParam()));
   scene.camera.width = 96;
   scene.camera.height = 72;
   const SceneData host(scene, Memory::host), device(scene, Memory::device);
@@ -82,6 +89,29 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Parity,
                                            "intersecting-volumes.json", "translucent-boxes.json",
                                            "many-objects.json"),
                          test::SceneFileName());
+INSTANTIATE_TEST_SUITE_P(Textured, Parity,
+                         ::testing::Values("alpha_mask_quad.gltf", "textured_sphere.glb"),
+                         test::SceneFileName());
+
+// Texture alpha in every shadow method's maps (depth maps, deep shadow maps, slicemap grids):
+// the backends give the same answers on a grid of floor points of the cut-out stand-in.
+TEST(TexturedParity, ShadowMethodsAgree) {
+  std::string why;
+  if (!cuda_device_available(&why)) GTEST_SKIP() << "CPU/CUDA parity needs a GPU: " << why;
+  const Scene scene = load_scene(scene_path("alpha_mask_quad.gltf"));
+  const SceneData host(scene, Memory::host), device(scene, Memory::device);
+  std::vector<dvec3> points;
+  for (int i = 0; i < 40; ++i)
+    for (int k = 0; k < 10; ++k) points.push_back({-2.0 + 0.1 * i, 0.0, -0.5 + 0.1 * k});
+  for (const char* name : {"shadowmap", "dsm", "transmittance-slicemap", "auto"}) {
+    SCOPED_TRACE(name);
+    auto on_cpu = shadow_registry().create(name), on_gpu = shadow_registry().create(name);
+    const ProbeResults c = probe_transmittance(Backend::cpu, host, *on_cpu, points);
+    const ProbeResults g = probe_transmittance(Backend::cuda, device, *on_gpu, points);
+    for (size_t i = 0; i < c.transmittance.size(); ++i)
+      EXPECT_NEAR(c.transmittance[i], g.transmittance[i], 1e-12) << i;
+  }
+}
 
 }  // namespace
 }  // namespace dv
