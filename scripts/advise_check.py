@@ -46,11 +46,12 @@ def main():
     ap.add_argument("--width", type=int, default=0, help="image width (0: advise's default)")
     ap.add_argument("--probes", type=int, default=2000)
     ap.add_argument("--max-res", type=int, default=0)
+    ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--scenes", nargs="*", default=BUILTIN + HELDOUT)
     ap.add_argument("--bounds", nargs="*", type=float, default=BOUNDS)
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    common = ["--backend", a.backend, "--probes", str(a.probes)]
+    common = ["--backend", a.backend, "--probes", str(a.probes), "--repeat", str(a.repeat)]
     if a.width:
         common += ["--width", str(a.width)]
     if a.max_res:
