@@ -1,6 +1,7 @@
 // Shadow configuration files (shadow_config.h).
 #include "strategies/shadow/shadow_config.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 
@@ -28,7 +29,9 @@ nlohmann::json ShadowConfig::to_json(const nlohmann::json& notes) const {
     // Numbers as numbers, so the file reads as a suite file's params do.
     char* end = nullptr;
     const double number = std::strtod(value.c_str(), &end);
-    if (!value.empty() && end && *end == '\0')
+    const bool numeric = !value.empty() && value.find_first_of("xXnN") == std::string::npos &&
+                         end && *end == '\0' && std::isfinite(number);
+    if (numeric)
       p[key] = value.find_first_of(".eE") == std::string::npos ? nlohmann::json(long(number))
                                                                : nlohmann::json(number);
     else

@@ -147,6 +147,8 @@ TEST_F(AdviseFiles, ShadowConfigRoundTripAndRefusals) {
   EXPECT_EQ(back.params, c.params);
   const nlohmann::json j = parse_json_file(path);
   EXPECT_EQ(j["shadows"]["params"]["res"], 256);  // numbers stay numbers
+  EXPECT_EQ(j["shadows"]["params"]["eps"], 0.01);
+  EXPECT_EQ(j["shadows"]["params"]["storage"], "avsm");  // and names names
   EXPECT_EQ(j["advice"]["scene"], "s.json");
   EXPECT_EQ(c.param_line(),
             "--shadows dsm --param eps=0.01 --param res=256 --param storage=avsm "
