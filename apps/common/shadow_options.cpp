@@ -2,16 +2,26 @@
 #include "apps/common/shadow_options.h"
 
 #include <iostream>
+#include "core/error.h"
 #include "strategies/shadow/effect_planner.h"
+#include "strategies/shadow/shadow_config.h"
 #include "strategies/storage/dsm_storage.h"
 
 namespace dv::cli {
 
 void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
-  cmd->add_option("--shadows", o.name,
-                  "shadow method (see `deepvox list`); auto: per light what its casters need, "
-                  "a named method: that method for every light")
-      ->capture_default_str();
+  o.shadows_option =
+      cmd->add_option("--shadows", o.name,
+                      "shadow method (see `deepvox list`); auto: per light what its casters need, "
+                      "a named method: that method for every light")
+          ->capture_default_str();
+  cmd->add_option("--config", o.config,
+                  "shadow config JSON (what `deepvox advise` writes): its method and parameters; "
+                  "--param and the dsm shortcuts override its parameters");
+  cmd->add_option("--error-budget", o.error_budget,
+                  "auto: per light the cheapest configuration predicted (calibrated model, else "
+                  "measured as advise does) to keep the camera-visible p95 |T' - T| within E")
+      ->check(CLI::Range(1e-6, 1.0));
   cmd->add_flag("--explain", o.explain,
                 "print the shadow planner's decisions (auto: per light method, maps, skips)");
   cmd->add_option("--param", o.params, "shadow-method parameter key=value (repeatable)");
@@ -28,7 +38,16 @@ void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
 }
 
 std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& o) {
-  std::vector<std::string> params = o.params;
+  std::string name = o.name;
+  std::vector<std::string> params;
+  if (!o.config.empty()) {
+    if (o.shadows_option && o.shadows_option->count() > 0)
+      throw InputError("--config", "names the method itself; leave --shadows out");
+    const ShadowConfig config = read_shadow_config(o.config);
+    name = config.name;
+    params = config.param_items();
+  }
+  params.insert(params.end(), o.params.begin(), o.params.end());
   if (!o.storage.empty()) params.push_back("storage=" + o.storage);
   if (o.dsm_res) params.push_back("res=" + std::to_string(*o.dsm_res));
   if (o.eps) {
@@ -38,7 +57,7 @@ std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& o) {
   }
   if (!o.filter.empty()) params.push_back("filter=" + o.filter);
   if (!o.voxelizer.empty()) params.push_back("voxelizer=" + o.voxelizer);
-  return shadow_registry().create(o.name, StrategyParams::parse(params));
+  return shadow_registry().create(name, StrategyParams::parse(params));
 }
 
 }  // namespace dv::cli
@@ -48,6 +67,7 @@ namespace dv::cli {
 void explain_shadows(const ShadowOptions& o, const ShadowMethod& method, const std::string& label) {
   if (!o.explain) return;
   const nlohmann::json plan = method.plan();
+  for (const std::string& line : o.budget_explanation) std::cout << label << ": " << line << "\n";
   std::cout << label << ": ";
   if (plan.is_null())
     std::cout << "shadow method " << method.name()

@@ -2,7 +2,12 @@
 // the deep-shadow-map shortcuts --storage, --dsm-res, --eps, --filter (the dsm method's
 // storage, res, eps and filter parameters; any other method rejects them as unknown) and
 // --voxelizer (the transmittance-slicemap method's voxelizer parameter). The default method is
-// `auto` (the effect planner); --explain prints its decisions.
+// `auto` (the effect planner); --explain prints its decisions. --config FILE takes the method and
+// its parameters from a shadow config file (strategies/shadow/shadow_config.h: what `deepvox
+// advise` writes);
+// --param and the shortcuts given beside it override its parameters. --error-budget E asks
+// `auto` for the cheapest configuration predicted to keep the camera-visible p95 error within E
+// (apps/common/error_budget.h resolves it once the scene is loaded).
 #pragma once
 
 #include <memory>
@@ -24,9 +29,16 @@ struct ShadowOptions {
   std::optional<int> dsm_res;
   std::optional<double> eps;
   bool explain = false;  // --explain: print the planner's decisions
+  std::string config;    // --config FILE
+  std::optional<double> error_budget;
+  const CLI::Option* shadows_option = nullptr;  // whether --shadows was given
+  // Lines apps/common/error_budget.h adds for --explain: what the budget chose and why.
+  std::vector<std::string> budget_explanation;
 };
 
 void add_shadow_options(CLI::App* cmd, ShadowOptions& options);
+// The method the options name (--error-budget: auto's parameters once
+// apps/common/error_budget.h chose them).
 std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& options);
 // With --explain, prints the method's last plan in plain words to stdout (headed `label`); a
 // method that does not plan says so.

@@ -1,9 +1,10 @@
 // `deepvox probe SCENE --points P.csv --out T.csv [--shadows NAME --param k=v ...] [--backend
-// cpu|cuda]` (dsm: --storage --dsm-res --eps --filter):
+// cpu|cuda]` (dsm: --storage --dsm-res --eps --filter; --config FILE, --error-budget E):
 // the transmittance of every light at every point. Points whose answer raised an oracle flag
 // are still written (nothing computed is lost), reported, and make the exit code 3.
 #include <cstdio>
 
+#include "apps/common/error_budget.h"
 #include "apps/common/shadow_options.h"
 #include "apps/deepvox/commands.h"
 #include "core/log.h"
@@ -40,6 +41,10 @@ Runner add_probe(CLI::App& app) {
     require_backend(backend);
     auto method = make_shadow_method(opt->shadows);
     const Scene scene = load_scene(opt->scene);
+    if (opt->shadows.error_budget) {  // the budget chooses auto's parameters for this scene
+      resolve_error_budget(opt->shadows, opt->scene, backend);
+      method = make_shadow_method(opt->shadows);
+    }
     const std::vector<dvec3> points = read_points_csv(opt->points);
     const SceneData data(scene, memory_of(backend));
     const ProbeResults r = probe_transmittance(backend, data, *method, points);

@@ -1,12 +1,14 @@
 // `deepvox render SCENE --out img.png [--backend cpu|cuda] [--renderer raster|raytrace]
 //  [--shadows NAME] [--stats s.json] [--frames N --orbit DEG] [--width W --height H]
-//  [--exposure EV] [--tonemap none|reinhard|aces] [--ground] [--view YAW,PITCH,DOLLY,PX,PY]`:
+//  [--exposure EV] [--tonemap none|reinhard|aces] [--ground] [--view YAW,PITCH,DOLLY,PX,PY]
+//  [--config FILE] [--error-budget E]`:
 // the rasterizing renderer (or the BVH ray-walk reference) with a shadow method, the camera
 // moved as the viewer moves it (--view), PNG (exposed and tone-mapped) or EXR (linear) out,
 // per-frame pass timings and counters in a stats JSON.
 #include <filesystem>
 #include <fstream>
 
+#include "apps/common/error_budget.h"
 #include "apps/common/shadow_options.h"
 #include "apps/deepvox/commands.h"
 #include "core/log.h"
@@ -97,6 +99,10 @@ Runner add_render(CLI::App& app) {
       if (!(opt->view[2] > 0.0)) throw InputError("--view", "the dolly factor must be positive");
       scene.camera = moved_camera(
           scene.camera, {opt->view[0], opt->view[1], opt->view[2], opt->view[3], opt->view[4]});
+    }
+    if (opt->shadows.error_budget) {  // the budget chooses auto's parameters for this scene
+      resolve_error_budget(opt->shadows, opt->scene, backend);
+      method = make_shadow_method(opt->shadows);
     }
     const SceneData data(scene, memory_of(backend));
     mark_wall_phase("scene data built");

@@ -2,6 +2,7 @@
 //  [--exposure EV] [--tonemap T] [--ground] [--view YAW,PITCH,DOLLY,PX,PY] [--frames N]
 //  [--screenshot out.png] [--screenshot-window win.png] [--script keys.txt] [--save-prefix P]`:
 // the interactive viewer (apps/viewer), built into the full binary where GLFW and OpenGL are.
+#include "apps/common/error_budget.h"
 #include "apps/common/shadow_options.h"
 #include "apps/deepvox/commands.h"
 #include "apps/viewer/viewer.h"
@@ -48,6 +49,9 @@ Runner add_view(CLI::App& app) {
       if (!(v[2] > 0.0)) throw InputError("--view", "the dolly factor must be positive");
       run->setup.start = {v[0], v[1], v[2], v[3], v[4]};
     }
+    viewer::ViewerSetup& setup = run->setup;
+    resolve_error_budget(setup.shadows, setup.scene_path,
+                         setup.backend.empty() ? default_backend() : parse_backend(setup.backend));
     return viewer::run_viewer(*run);
   };
 }

@@ -19,6 +19,7 @@ Runner add_dsm(CLI::App& app);
 Runner add_suite(CLI::App& app);
 Runner add_merge(CLI::App& app);
 Runner add_report(CLI::App& app);
+Runner add_advise(CLI::App& app);
 Runner add_view(CLI::App& app);  // only where the viewer is built (DEEPVOX_WITH_VIEWER)
 Runner add_help(CLI::App& app);  // after the others: it prints theirs
 

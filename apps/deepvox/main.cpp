@@ -24,7 +24,8 @@ namespace {
 // Whether the parsed subcommand may run on the GPU: it has a --backend option that is unset
 // (cuda when a GPU is present) or says cuda.
 bool may_use_cuda(CLI::App& sub) {
-  static const std::set<std::string> kDeviceCommands{"render", "voxelize", "dsm", "probe"};
+  static const std::set<std::string> kDeviceCommands{"render", "voxelize", "dsm", "probe",
+                                                     "advise"};
   if (!kDeviceCommands.count(sub.get_name())) return false;
   const CLI::Option* backend = sub.get_option_no_throw("--backend");
   if (!backend || backend->count() == 0) return true;
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
   runners["suite"] = dv::cli::add_suite(app);
   runners["merge"] = dv::cli::add_merge(app);
   runners["report"] = dv::cli::add_report(app);
+  runners["advise"] = dv::cli::add_advise(app);
 #if DEEPVOX_WITH_VIEWER
   runners["view"] = dv::cli::add_view(app);
 #endif

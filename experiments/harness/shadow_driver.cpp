@@ -63,19 +63,6 @@ ShadowSettings read_settings(const RunItem& item, const Scene& scene) {
   return s;
 }
 
-// The canonical memory figure: the DSM storage's bytes allocated, else the method's "bytes"
-// and "*_bytes" figures summed (0 for methods that keep nothing).
-double method_bytes(const nlohmann::json& stats) {
-  if (stats.contains("storage") && stats["storage"].contains("bytes_allocated"))
-    return stats["storage"]["bytes_allocated"].get<double>();
-  double sum = 0.0;
-  for (const auto& [key, v] : stats.items())
-    if (v.is_number() &&
-        (key == "bytes" || (key.size() > 6 && key.compare(key.size() - 6, 6, "_bytes") == 0)))
-      sum += v.get<double>();
-  return sum;
-}
-
 bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
@@ -146,43 +133,34 @@ class ShadowDriver : public Driver {
     camera.height = s.height;
     const StrategyParams params = StrategyParams::parse(item.param_items());
 
-    // Generation: a fresh method per repetition, the first one a warm-up.
+    // A fresh method per generation and timed frames, each after a warm-up.
+    TimedRepeats timed = timed_repeats(item.strategy, params, data, ctx.backend, camera,
+                                       scene.background, ctx.repeat);
     PassTimes generation;
-    std::vector<double> generate_samples, render_samples;
-    TimedGeneration timed;
-    for (int rep = 0; rep <= ctx.repeat; ++rep) {
-      timed = timed_generation(item.strategy, params, data, ctx.backend, camera);
-      if (rep == 0) continue;
-      generation.add("generate", timed.milliseconds);
-      generate_samples.push_back(timed.milliseconds);
-      collect_stats(timed.stats, "generate", &generation, nullptr);
+    for (size_t k = 0; k < timed.generate_ms.size(); ++k) {
+      generation.add("generate", timed.generate_ms[k]);
+      collect_stats(timed.generate_stats[k], "generate", &generation, nullptr);
     }
     generation.emit(rows, "");
-    ShadowMethod& method = *timed.method;
-    const nlohmann::json& stats = timed.stats;
+    ShadowMethod& method = *timed.last.method;
+    const nlohmann::json& stats = timed.last.stats;
     rows.add("bytes", "value", method_bytes(stats), "bytes");
     std::vector<std::pair<std::string, double>> figures;
     collect_stats(stats, "", nullptr, &figures);
     for (const auto& [name, value] : figures) rows.add("stats." + name, "value", value, "");
 
-    // Rendering: one warm-up, then timed repetitions (raster binning + fragment pass).
     PassTimes render;
-    RasterRenderResult last;
-    for (int rep = 0; rep <= ctx.repeat; ++rep) {
-      TimedFrame frame = timed_frame(ctx.backend, data, camera, method, scene.background);
-      last = std::move(frame.result);
-      if (rep == 0) continue;
-      render.add("render", frame.milliseconds);
-      render_samples.push_back(frame.milliseconds);
-      render.add("render.raster", last.raster_ms);
-      render.add("render.fragment", last.fragment_ms);
+    for (size_t k = 0; k < timed.render_ms.size(); ++k) {
+      render.add("render", timed.render_ms[k]);
+      render.add("render.raster", timed.raster_ms[k]);
+      render.add("render.fragment", timed.fragment_ms[k]);
     }
     render.emit(rows, "");
-    rows.add("frame_ms", "value",
-             spread_of(generate_samples).median + spread_of(render_samples).median, "ms");
+    const RasterRenderResult& last = timed.frame;
+    rows.add("frame_ms", "value", timed.frame_ms(), "ms");
     std::vector<double> frame_samples;
-    for (size_t k = 0; k < generate_samples.size(); ++k)
-      frame_samples.push_back(generate_samples[k] + render_samples[k]);
+    for (size_t k = 0; k < timed.generate_ms.size(); ++k)
+      frame_samples.push_back(timed.generate_ms[k] + timed.render_ms[k]);
     rows.samples()["timings"]["frame_ms"] = frame_samples;
     rows.add("render_flagged_pixels", "value",
              double(last.render.counters.overflow_pixels + last.render.counters.oracle_flag_pixels),

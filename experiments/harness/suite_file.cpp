@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "experiments/harness/driver.h"
+#include "strategies/shadow/shadow_config.h"
 
 namespace dv {
 
@@ -49,7 +50,8 @@ std::map<std::string, std::string> value_map(JsonReader& r, const std::string& k
   return out;
 }
 
-// "name", or an array of "name" and {"name": ..., "params": {...}, "scenes": [...]} items.
+// "name", or an array of "name" and {"name": ..., "params": {...}, "scenes": [...]} items; an
+// item may name a shadow config file instead ({"config": "pick.json", "scenes": [...]}).
 std::vector<StrategySpec> strategy_list(JsonReader& r) {
   const Json& v = r.raw("strategy");
   std::vector<StrategySpec> out;
@@ -62,7 +64,16 @@ std::vector<StrategySpec> strategy_list(JsonReader& r) {
     if (!v[i].is_object())
       r.fail("strategy", "expected names or {\"name\", \"params\", \"scenes\"} objects");
     JsonReader item(v[i], r.file(), r.path() + "/strategy/" + std::to_string(i));
-    StrategySpec spec{item.string("name"), value_map(item, "params"), {}};
+    StrategySpec spec;
+    if (item.has("config")) {  // a shadow config file (what `deepvox advise` writes)
+      if (item.has("name") || item.has("params"))
+        item.fail("config", "names the method and its parameters; leave name and params out");
+      const ShadowConfig config =
+          read_shadow_config(resolve_data_file(item.string("config"), r.file()));
+      spec = {config.name, config.params, {}};
+    } else {
+      spec = {item.string("name"), value_map(item, "params"), {}};
+    }
     if (item.has("scenes")) spec.scenes = one_or_many(item, "scenes");
     item.finish();
     out.push_back(std::move(spec));

@@ -231,6 +231,69 @@ TEST_F(Cli, AutoShadowsAreTheDefaultAndExplainTheirPlan) {
       << forced.output;
 }
 
+// kSmallScene with a floor whose edges lie outside the view: the thin front face of a small
+// floor faces away from the light, and a map's receiver bias lights it (|T' - T| = 1 at the
+// few percent of camera-visible points on it, a known limit of map methods on surface probes).
+const std::string kAdviseScene = R"({
+  "camera": {"position": [0, 1, 4], "target": [0, 0.3, 0], "width": 40, "height": 30},
+  "lights": [{"type": "omni", "position": [0.5, 3, 0.5], "intensity": 9}],
+  "objects": [
+    {"mesh": {"generator": "box", "min": [-6, -0.1, -6], "max": [6, 0, 6]}},
+    {"name": "glass", "mesh": {"generator": "box", "size": 0.6}, "transform": {"translate": [0, 0.6, 0]},
+     "material": {"alpha": 0.4}, "interior": {"type": "constant", "sigma": 1.5}}
+  ]
+})";
+
+// advise (issue 41) writes a shadow config of its pick that render and probe take with
+// --config (and --param overrides it); a bad config or one beside --shadows is refused.
+TEST_F(Cli, AdvisePickIsAConfigRenderAndProbeTake) {
+  const std::string scene = write("scene.json", kAdviseScene);
+  const CommandResult advised =
+      run("advise " + scene + " --backend cpu --error 0.05 --width 32 --probes 100 --repeat 1 " +
+          "--max-evaluations 6 --max-res 256 --out " + path("advice"));
+  ASSERT_EQ(advised.exit_code, 0) << advised.output;
+  EXPECT_NE(advised.output.find("Pareto front"), std::string::npos) << advised.output;
+  EXPECT_NE(advised.output.find("param line: --shadows "), std::string::npos) << advised.output;
+  EXPECT_TRUE(fs::exists(path("advice/front.svg")));
+  std::ifstream in(path("advice/pick.json"));
+  const nlohmann::json pick = nlohmann::json::parse(in);
+  EXPECT_LE(pick["advice"]["verified"]["error_p95"].get<double>(), 0.05);
+  const CommandResult rendered =
+      run("render " + scene + " --backend cpu --config " + path("advice/pick.json") + " --out " +
+          path("a.png") + " --stats " + path("s.json"));
+  ASSERT_EQ(rendered.exit_code, 0) << rendered.output;
+  std::ifstream stats_in(path("s.json"));
+  const nlohmann::json stats = nlohmann::json::parse(stats_in);
+  EXPECT_EQ(stats["shadows"]["name"], pick["shadows"]["name"]);
+  for (const auto& [key, value] : pick["shadows"]["params"].items())
+    if (key.find('.') == std::string::npos)
+      EXPECT_EQ(stats["shadows"]["params"][key], value) << key;
+  write("points.csv", "x,y,z\n0,0.3,0\n");
+  const CommandResult probed =
+      run("probe " + scene + " --points " + path("points.csv") + " --out " + path("t.csv") +
+          " --config " + path("advice/pick.json") + " --param res=64");
+  EXPECT_EQ(probed.exit_code, 0) << probed.output;
+  expect_error("render " + scene + " --config " + path("advice/pick.json") +
+                   " --shadows dsm --out " + path("b.png"),
+               {"--config", "--shadows"});
+  const std::string bad = write("bad.json", R"({"format": "deepvox-shadow-config", "version": 9,
+                                              "shadows": {"name": "dsm"}})");
+  expect_error("render " + scene + " --config " + bad + " --out " + path("b.png"),
+               {"bad.json", "version"});
+}
+
+// --error-budget chooses auto's parameters for the scene and --explain says how and why.
+TEST_F(Cli, ErrorBudgetChoosesAutosParametersAndExplains) {
+  const std::string scene = write("scene.json", kAdviseScene);
+  const CommandResult r = run("render " + scene + " --backend cpu --error-budget 0.05 --explain " +
+                              "--width 32 --height 24 --out " + path("a.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("error budget 0.05"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("light 0 (media"), std::string::npos) << r.output;
+  expect_error("render " + scene + " --error-budget 0.05 --shadows dsm --out " + path("b.png"),
+               {"--error-budget", "auto"});
+}
+
 TEST_F(Cli, RenderViewMovesTheCameraAndRejectsBadMoves) {
   const std::string scene = write("scene.json", kSmallScene);
   const std::string common =

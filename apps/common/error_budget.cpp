@@ -1,0 +1,80 @@
+// Resolving --error-budget for the auto method (error_budget.h).
+#include "apps/common/error_budget.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "experiments/harness/advise.h"
+#include "experiments/harness/error_model.h"
+#include "experiments/harness/scene_cache.h"
+
+namespace dv::cli {
+
+namespace {
+
+// The measured fallback: a short advise search over what auto takes.
+constexpr int kFallbackEvaluations = 24;
+constexpr int kFallbackProbes = 1000;
+
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+}  // namespace
+
+void resolve_error_budget(ShadowOptions& o, const std::string& scene_path, Backend backend) {
+  if (!o.error_budget) return;
+  if (!o.params.empty() || !o.storage.empty() || o.dsm_res || o.eps || !o.filter.empty() ||
+      !o.config.empty())
+    throw InputError("--error-budget",
+                     "chooses the parameters itself; leave --param, --config and the dsm "
+                     "shortcuts out");
+  if (o.name != "auto")
+    throw InputError("--error-budget",
+                     "only the auto method takes an error budget (got " + o.name + ")");
+  const double budget = *o.error_budget;
+  SceneCache cache(backend);
+  const std::vector<LightStats> stats = light_stats(cache.host_data(scene_path));
+  const ErrorModel model = read_error_model(default_error_model_path());
+  const BudgetPrediction p = predict_budget(model, stats, budget);
+  std::vector<std::string>& why = o.budget_explanation;
+  why.push_back("error budget " + number_text(budget) + " (p95 |T' - T| at camera-visible points)");
+  for (size_t l = 0; l < stats.size(); ++l)
+    why.push_back("  light " + std::to_string(l) + " (" + to_string(stats[l].kind) + ", " +
+                  std::to_string(stats[l].casters) + " casters, smallest " +
+                  number_text(stats[l].smallest_caster) + " of its field): " + p.lights[l].why +
+                  (p.confident ? ", predicted p95 " + number_text(p.lights[l].predicted) : ""));
+  o.error_budget.reset();  // resolved: the viewer may switch methods freely afterwards
+  if (p.confident) {
+    o.params = p.pick.param_items();
+    why.push_back("model (" + model.source.value("run", std::string("?")) + "): " + p.why + ": " +
+                  p.pick.param_line());
+    return;
+  }
+  why.push_back("model: " + p.why + "; measuring on the scene as `deepvox advise` does");
+  log_info("--error-budget: the error model cannot predict this scene; measuring (" +
+           std::to_string(kFallbackEvaluations) + " configurations at most)");
+  AdviseOptions a;
+  a.scene = scene_path;
+  a.budgets.error = budget;
+  a.settings.probes = kFallbackProbes;
+  a.max_evaluations = kFallbackEvaluations;
+  a.auto_only = true;
+  const Advice advice = advise(cache, a);
+  if (!advice.pick)
+    throw InputError("--error-budget", "no configuration of auto measured within " +
+                                           number_text(budget) + " on " + scene_path +
+                                           " (run `deepvox advise` for the front)");
+  const AdviseResult& pick = advice.results[*advice.pick];
+  o.params = pick.config.param_items();
+  why.push_back("measured " + std::to_string(advice.results.size()) +
+                " configurations: the cheapest within the budget, " + pick.config.param_line() +
+                ", p95 " + number_text(pick.measurement.error_p95) + " (verified " +
+                number_text(advice.verified.error_p95) + " at fresh points), " +
+                number_text(pick.measurement.frame_ms) + " ms");
+}
+
+}  // namespace dv::cli

@@ -1,0 +1,23 @@
+// `--shadows auto --error-budget E` (issue 41): before the method is made, the auto method's
+// parameters are chosen for the scene: the cheapest configuration the calibrated error model
+// (experiments/harness/error_model.h) predicts keeps every light's camera-visible p95 |T' - T|
+// within E, from the scene's light statistics (caster kinds, how many, the smallest caster as
+// the light sees it); when the model cannot predict a light, the configurations auto takes are
+// measured on the scene as `deepvox advise` does (a short search, the pick verified at fresh
+// points). --explain prints the choice and why (ShadowOptions::budget_explanation).
+#pragma once
+
+#include <string>
+
+#include "apps/common/shadow_options.h"
+#include "cuda/execute.h"
+
+namespace dv::cli {
+
+// Sets `options.params` to the chosen configuration (auto's dsm parameters) for the scene file
+// `scene_path` rendered on `backend` and clears the budget (resolved); no-op without one.
+// InputError when --param or the dsm shortcuts are given beside it (the budget chooses them), or
+// when neither the model nor the measurement finds a configuration within E.
+void resolve_error_budget(ShadowOptions& options, const std::string& scene_path, Backend backend);
+
+}  // namespace dv::cli

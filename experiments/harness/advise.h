@@ -1,0 +1,59 @@
+// `deepvox advise` as a library (issue 41): on the user's scene, the coarse-to-fine search
+// (advise_search.h) over shadow configurations measured against the exact oracle
+// (advise_measure.h), the Pareto front, the cheapest configuration that meets the error bound
+// and the budgets, verified on fresh probe points (another seed than the search's: a pick
+// whose verified error misses the bound gives way to the next cheapest, at most three tries),
+// and the outputs: a table, JSON, a shadow config file and an SVG plot (advise_report.h).
+// `--shadows auto --error-budget` runs it too, over the configurations `auto` takes, for a
+// scene its error model cannot predict. Ctrl-C (interrupt.h) ends the search; what was
+// measured is kept and the pick is made from it.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cuda/execute.h"
+#include "experiments/harness/advise_measure.h"
+#include "experiments/harness/advise_search.h"
+
+namespace dv {
+
+class SceneCache;
+
+// The verification's points: the search's seed plus this (a seed the search never uses).
+inline constexpr uint64_t kVerifySeedOffset = 1000003;
+
+struct AdviseOptions {
+  std::string scene;
+  AdviseBudgets budgets;
+  AdviseSettings settings;
+  int max_evaluations = 60;
+  bool exhaustive = false;  // measure every point of the space (the search's check)
+  bool auto_only = false;   // only what the auto method takes (its dsm parameters)
+  int max_res = 0;          // > 0: no map resolution above it (small machines)
+  // A line per measurement ("[12] dsm compact res=512 ...: p95 0.004, 1.2 ms"), for progress.
+  std::function<void(const std::string&)> progress;
+};
+
+struct Advice {
+  std::vector<AdviseResult> results;  // in measuring order
+  std::vector<size_t> front;          // advise_front(results)
+  std::optional<size_t> pick;         // the verified pick, when one is
+  std::optional<size_t> tried;        // the last candidate verified (pick or not)
+  AdviseMeasurement verified;         // its measurement at fresh points
+  uint64_t verify_seed = 0;
+  int light_count = 0;
+  int width = 0, height = 0;
+  bool interrupted = false;
+  double seconds = 0.0;
+};
+
+// The search's space on `measurer`'s scene (auto_only: the families as the auto method with the
+// same parameters; max_res > 0: the res axes cut there).
+std::vector<AdviseFamily> advise_space_for(const AdviseMeasurer& measurer, bool auto_only,
+                                           int max_res);
+Advice advise(SceneCache& cache, const AdviseOptions& options);
+
+}  // namespace dv

@@ -1,0 +1,119 @@
+// Measuring a shadow configuration for `deepvox advise` (advise_measure.h).
+#include "experiments/harness/advise_measure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/error.h"
+#include "experiments/harness/error_summary.h"
+#include "experiments/harness/image_metrics.h"
+#include "experiments/harness/shadow_measure.h"
+#include "strategies/shadow/effect_planner.h"
+#include "strategies/shadow/probe.h"
+
+namespace dv {
+
+namespace {
+
+constexpr int kDefaultWidth = 320;
+
+// Per light the summary of |T' - T| over `set`'s points of class `only`.
+std::vector<ErrorSummary> light_errors(const ProbeResults& r, const ProbeSet& set,
+                                       ProbeClass only) {
+  std::vector<std::vector<double>> errors(size_t(std::max(r.light_count, 0)));
+  for (size_t i = 0; i < r.transmittance.size(); ++i)
+    if (set.points.classes[i / size_t(r.light_count)] == only)
+      errors[i % size_t(r.light_count)].push_back(std::abs(r.transmittance[i] - set.exact[i]));
+  std::vector<ErrorSummary> out;
+  for (std::vector<double>& e : errors) out.push_back(summarize_errors(std::move(e)));
+  return out;
+}
+
+}  // namespace
+
+AdviseMeasurer::AdviseMeasurer(SceneCache& cache, std::string scene_path, AdviseSettings s)
+    : cache_(cache), path_(std::move(scene_path)), settings_(s) {
+  const Camera& camera = cache_.scene(path_).camera;
+  if (settings_.width <= 0) settings_.width = std::min(camera.width, kDefaultWidth);
+  if (settings_.height <= 0)
+    settings_.height = std::max(
+        1, int(std::lround(double(settings_.width) * camera.height / std::max(camera.width, 1))));
+  const AdviseSceneKind k = kind();
+  media_ = k.media;
+}
+
+AdviseSceneKind AdviseMeasurer::kind() const {
+  const SceneData& host = cache_.host_data(path_);
+  AdviseSceneKind k;
+  for (int l = 0; l < int(host.host_lights().size()); ++l) {
+    const LightReach r = light_reach(host, l);
+    k.translucent = k.translucent || r.translucent > 0;
+    k.media = k.media || r.media > 0 || r.volumes > 0;
+  }
+  return k;
+}
+
+int AdviseMeasurer::light_count() const {
+  return int(cache_.host_data(path_).host_lights().size());
+}
+
+double AdviseMeasurer::oracle_ms() {
+  const ProbeSet& visible = cache_.visible_probes(path_, settings_.width, settings_.height,
+                                                  settings_.probes, settings_.seed);
+  return visible.oracle_ms +
+         cache_.reference(path_, settings_.width, settings_.height).milliseconds;
+}
+
+AdviseMeasurement AdviseMeasurer::measure(const ShadowConfig& config) {
+  return measure_with(config, settings_.seed);
+}
+
+AdviseMeasurement AdviseMeasurer::verify(const ShadowConfig& config, uint64_t seed) {
+  return measure_with(config, seed);
+}
+
+AdviseMeasurement AdviseMeasurer::measure_with(const ShadowConfig& config, uint64_t seed) {
+  AdviseMeasurement m;
+  const Scene& scene = cache_.scene(path_);
+  const SceneData& data = cache_.data(path_);
+  Camera camera = scene.camera;
+  camera.width = settings_.width;
+  camera.height = settings_.height;
+  try {
+    TimedRepeats timed =
+        timed_repeats(config.name, StrategyParams(config.params), data, cache_.backend(), camera,
+                      scene.background, settings_.repeat);
+    m.frame_ms = timed.frame_ms();
+    m.bytes = method_bytes(timed.last.stats);
+    ShadowMethod& method = *timed.last.method;
+    const ProbeSet& visible =
+        cache_.visible_probes(path_, settings_.width, settings_.height, settings_.probes, seed);
+    const std::vector<ErrorSummary> errors = light_errors(
+        probe_transmittance(cache_.backend(), data, method, visible.points.points, &camera),
+        visible, ProbeClass::visible);
+    for (const ErrorSummary& e : errors) {
+      m.light_p95.push_back(e.p95);
+      m.light_max.push_back(e.max);
+      m.error_p95 = std::max(m.error_p95, e.p95);
+      m.error_max = std::max(m.error_max, e.max);
+    }
+    if (media_) {
+      const ProbeSet& medium = cache_.probes(path_, settings_.probes, 1.0, seed);
+      for (const ErrorSummary& e : light_errors(
+               probe_transmittance(cache_.backend(), data, method, medium.points.points, &camera),
+               medium, ProbeClass::medium))
+        m.light_medium_p95.push_back(e.p95);
+    }
+    m.image_rmse = image_error(timed.frame.render.image,
+                               cache_.reference(path_, settings_.width, settings_.height).image)
+                       .rmse;
+    m.ok = true;
+  } catch (const Error& e) {  // a storage's limit, a backend it does not run on: not a pick
+    m.ok = false;
+    m.failure = e.what();
+  }
+  return m;
+}
+
+}  // namespace dv

@@ -1,0 +1,53 @@
+// How `deepvox advise` measures one shadow configuration on the user's scene (issue 41), with
+// the suite harness's own pieces (SceneCache's probes with the exact oracle and reference
+// render, shadow_measure.h's timed repetitions and memory figure, error_summary.h, image
+// error): per light the p95 and max of |T' - T| at camera-visible probe points (and the p95 at
+// points inside media where the scene has them, reported beside), the image RMSE at a small
+// size against the oracle's render, the warm frame time (median generation + median render on
+// the chosen backend) and the method's bytes. The budget is checked against the worst light's
+// camera-visible p95: what the image weights (probe_points.h says why medium points along the
+// camera rays are left out; the world-uniform medium points are shown, not budgeted).
+// verify() repeats the error measurement on fresh probe points (another seed) for the pick.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "cuda/execute.h"
+#include "experiments/harness/advise_search.h"
+#include "experiments/harness/scene_cache.h"
+
+namespace dv {
+
+struct AdviseSettings {
+  int width = 0, height = 0;  // the small image; 0: the camera's, scaled to at most 320 wide
+  int probes = 2000;          // camera-visible probe points (and as many inside media)
+  uint64_t seed = 1;          // the search's points; verify() takes another
+  int repeat = 3;             // timed repetitions after a warm-up
+};
+
+class AdviseMeasurer {
+ public:
+  AdviseMeasurer(SceneCache& cache, std::string scene_path, AdviseSettings settings);
+  // The search's measurement of `config` (a failure, such as a storage's limit, comes back as
+  // ok = false with its message).
+  AdviseMeasurement measure(const ShadowConfig& config);
+  // The error of `config` at fresh points (seed `seed`), its time and bytes measured anew.
+  AdviseMeasurement verify(const ShadowConfig& config, uint64_t seed);
+  // Which casters the lights reach (advise_space's families).
+  AdviseSceneKind kind() const;
+  int width() const { return settings_.width; }
+  int height() const { return settings_.height; }
+  int light_count() const;
+  // The exact oracle's time for the search's probe points and reference render, ms.
+  double oracle_ms();
+
+ private:
+  AdviseMeasurement measure_with(const ShadowConfig& config, uint64_t seed);
+  SceneCache& cache_;
+  std::string path_;
+  AdviseSettings settings_;
+  bool media_ = false;
+};
+
+}  // namespace dv

@@ -1,0 +1,177 @@
+// Tables, JSON and the SVG plot of an advice (advise_report.h).
+#include "experiments/harness/advise_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace dv {
+
+namespace {
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+}  // namespace
+
+nlohmann::json measurement_json(const AdviseMeasurement& m) {
+  if (!m.ok) return {{"ok", false}, {"failure", m.failure}};
+  nlohmann::json j = {{"ok", true},
+                      {"error_p95", m.error_p95},
+                      {"error_max", m.error_max},
+                      {"light_p95", m.light_p95},
+                      {"light_max", m.light_max},
+                      {"image_rmse", m.image_rmse},
+                      {"frame_ms", m.frame_ms},
+                      {"bytes", m.bytes}};
+  if (!m.light_medium_p95.empty()) j["light_medium_p95"] = m.light_medium_p95;
+  return j;
+}
+
+std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
+  std::ostringstream out;
+  out << "Pareto front (" << a.front.size() << " of " << a.results.size()
+      << " measured; p95/max |T' - T| at camera-visible probes, worst light; image RMSE at "
+      << a.width << "x" << a.height << "):\n";
+  out << "   p95       max     image    frame ms   MB       configuration\n";
+  for (size_t i : a.front) {
+    const AdviseResult& r = a.results[i];
+    const AdviseMeasurement& m = r.measurement;
+    const bool pick = a.pick && *a.pick == i;
+    out << (pick                ? "=> "
+            : budgets.met_by(m) ? " + "
+                                : "   ")
+        << format("%-9.4g ", m.error_p95) << format("%-9.3g ", m.error_max)
+        << format("%-8.4f ", m.image_rmse) << format("%-10.3f ", m.frame_ms)
+        << format("%-8.2f ", m.bytes / 1e6) << r.config.param_line() << "\n";
+  }
+  out << "(=> the pick, + meets the bound " << budgets.error;
+  if (budgets.frame_ms) out << " and " << *budgets.frame_ms << " ms";
+  if (budgets.bytes) out << " and " << *budgets.bytes / 1e6 << " MB";
+  out << ")\n";
+  if (a.pick) {
+    const AdviseMeasurement& m = a.results[*a.pick].measurement;
+    out << "pick: " << a.results[*a.pick].config.param_line() << "\n  search p95 "
+        << format("%.4g", m.error_p95) << ", verified p95 at fresh points (seed " << a.verify_seed
+        << ") " << format("%.4g", a.verified.error_p95) << " <= " << budgets.error << ", "
+        << format("%.3f", m.frame_ms) << " ms, " << format("%.2f", m.bytes / 1e6) << " MB\n";
+  } else if (a.tried) {
+    out << "no pick: the cheapest candidates' verified p95 ("
+        << format("%.4g", a.verified.error_p95) << " for "
+        << a.results[*a.tried].config.param_line() << ") misses " << budgets.error << "\n";
+  } else {
+    out << "no pick: no measured configuration meets the bound and budgets\n";
+  }
+  if (a.interrupted) out << "(interrupted: the front holds what was measured)\n";
+  return out.str();
+}
+
+nlohmann::json pick_notes(const Advice& a, const AdviseOptions& o) {
+  nlohmann::json advice = {{"scene", o.scene},
+                           {"error_bound", o.budgets.error},
+                           {"metric", "p95 |T' - T| at camera-visible probes, worst light"}};
+  if (a.pick) {
+    advice["search"] = measurement_json(a.results[*a.pick].measurement);
+    advice["verified"] = measurement_json(a.verified);
+    advice["verify_seed"] = a.verify_seed;
+  }
+  return {{"advice", advice}};
+}
+
+nlohmann::json advice_json(const Advice& a, const AdviseOptions& o) {
+  nlohmann::json j = {{"scene", o.scene},
+                      {"image", {a.width, a.height}},
+                      {"lights", a.light_count},
+                      {"error_bound", o.budgets.error},
+                      {"exhaustive", o.exhaustive},
+                      {"interrupted", a.interrupted},
+                      {"seconds", a.seconds},
+                      {"probes", o.settings.probes},
+                      {"seed", o.settings.seed},
+                      {"results", nlohmann::json::array()},
+                      {"front", a.front}};
+  if (o.budgets.frame_ms) j["budget_ms"] = *o.budgets.frame_ms;
+  if (o.budgets.bytes) j["budget_bytes"] = *o.budgets.bytes;
+  for (const AdviseResult& r : a.results)
+    j["results"].push_back({{"shadows", r.config.to_json()["shadows"]},
+                            {"param_line", r.config.param_line()},
+                            {"measured", measurement_json(r.measurement)}});
+  j["pick"] = a.pick ? nlohmann::json(*a.pick) : nlohmann::json();
+  if (a.tried) {
+    j["verified"] = measurement_json(a.verified);
+    j["verified_index"] = *a.tried;
+    j["verify_seed"] = a.verify_seed;
+  }
+  return j;
+}
+
+std::string advice_svg(const Advice& a, const AdviseBudgets& budgets) {
+  constexpr double kW = 640, kH = 400, kLeft = 70, kRight = 20, kTop = 30, kBottom = 50;
+  // Log axes: frame ms and error (p95 floored at 1e-5 so exact points show).
+  constexpr double kFloor = 1e-5;
+  double x0 = 1e300, x1 = 0, y0 = budgets.error, y1 = budgets.error;
+  for (const AdviseResult& r : a.results)
+    if (r.measurement.ok) {
+      x0 = std::min(x0, r.measurement.frame_ms);
+      x1 = std::max(x1, r.measurement.frame_ms);
+      y0 = std::min(y0, std::max(r.measurement.error_p95, kFloor));
+      y1 = std::max(y1, std::max(r.measurement.error_p95, kFloor));
+    }
+  if (x1 <= 0) x0 = 0.1, x1 = 1;
+  x0 = std::max(x0, 1e-4) / 1.2, x1 = x1 * 1.2, y0 /= 1.5, y1 *= 1.5;
+  const auto px = [&](double x) {
+    return kLeft + (std::log(std::max(x, 1e-4)) - std::log(x0)) / (std::log(x1) - std::log(x0)) *
+                       (kW - kLeft - kRight);
+  };
+  const auto py = [&](double y) {
+    return kH - kBottom -
+           (std::log(std::max(y, kFloor)) - std::log(y0)) / (std::log(y1) - std::log(y0)) *
+               (kH - kTop - kBottom);
+  };
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kW << "\" height=\"" << kH
+    << "\" font-family=\"sans-serif\" font-size=\"11\">\n"
+    << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    << "<text x=\"" << kLeft << "\" y=\"18\" font-size=\"13\">deepvox advise: p95 |T' - T| "
+    << "(camera-visible probes) against frame time, log-log</text>\n"
+    << "<line x1=\"" << kLeft << "\" y1=\"" << kH - kBottom << "\" x2=\"" << kW - kRight
+    << "\" y2=\"" << kH - kBottom << "\" stroke=\"black\"/>\n"
+    << "<line x1=\"" << kLeft << "\" y1=\"" << kTop << "\" x2=\"" << kLeft << "\" y2=\""
+    << kH - kBottom << "\" stroke=\"black\"/>\n"
+    << "<text x=\"" << (kW / 2) << "\" y=\"" << kH - 12 << "\">frame ms (" << format("%.3g", x0)
+    << " .. " << format("%.3g", x1) << ")</text>\n"
+    << "<text x=\"8\" y=\"" << kTop + 10 << "\">" << format("%.2g", y1) << "</text>\n"
+    << "<text x=\"8\" y=\"" << kH - kBottom << "\">" << format("%.2g", y0) << "</text>\n"
+    << "<line x1=\"" << kLeft << "\" x2=\"" << kW - kRight << "\" y1=\"" << py(budgets.error)
+    << "\" y2=\"" << py(budgets.error) << "\" stroke=\"#c00\" stroke-dasharray=\"5,4\"/>\n"
+    << "<text x=\"" << kW - kRight - 90 << "\" y=\"" << py(budgets.error) - 4
+    << "\" fill=\"#c00\">bound " << budgets.error << "</text>\n";
+  for (const AdviseResult& r : a.results)
+    if (r.measurement.ok)
+      s << "<circle cx=\"" << px(r.measurement.frame_ms) << "\" cy=\""
+        << py(r.measurement.error_p95) << "\" r=\"3\" fill=\"#999\"><title>"
+        << r.config.param_line() << "</title></circle>\n";
+  s << "<polyline fill=\"none\" stroke=\"#06c\" stroke-width=\"1.5\" points=\"";
+  for (size_t i : a.front)
+    s << px(a.results[i].measurement.frame_ms) << "," << py(a.results[i].measurement.error_p95)
+      << " ";
+  s << "\"/>\n";
+  for (size_t i : a.front)
+    s << "<circle cx=\"" << px(a.results[i].measurement.frame_ms) << "\" cy=\""
+      << py(a.results[i].measurement.error_p95) << "\" r=\"4\" fill=\"#06c\"/>\n";
+  if (a.pick) {
+    const AdviseMeasurement& m = a.results[*a.pick].measurement;
+    s << "<circle cx=\"" << px(m.frame_ms) << "\" cy=\"" << py(m.error_p95)
+      << "\" r=\"8\" fill=\"none\" stroke=\"#c00\" stroke-width=\"2\"/>\n"
+      << "<text x=\"" << px(m.frame_ms) + 10 << "\" y=\"" << py(m.error_p95) + 14
+      << "\" fill=\"#c00\">pick: " << a.results[*a.pick].config.param_line() << "</text>\n";
+  }
+  s << "</svg>\n";
+  return s.str();
+}
+
+}  // namespace dv

@@ -1,0 +1,180 @@
+// The search space, the coarse-to-fine walk, the front and the pick (advise_search.h).
+#include "experiments/harness/advise_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace dv {
+
+ShadowConfig config_at(const std::vector<AdviseFamily>& space, const AdvisePoint& point) {
+  const AdviseFamily& f = space.at(size_t(point.family));
+  ShadowConfig c{f.method, f.fixed};
+  for (size_t a = 0; a < f.axes.size(); ++a)
+    c.params[f.axes[a].key] = f.axes[a].values.at(size_t(point.at.at(a)));
+  return c;
+}
+
+bool AdviseBudgets::within_cost(const AdviseMeasurement& m) const {
+  return (!frame_ms || m.frame_ms <= *frame_ms) && (!bytes || m.bytes <= *bytes);
+}
+
+bool AdviseBudgets::met_by(const AdviseMeasurement& m) const {
+  return m.ok && m.error_p95 <= error && within_cost(m);
+}
+
+bool dominates(const AdviseMeasurement& a, const AdviseMeasurement& b) {
+  if (!a.ok || !b.ok) return false;
+  const bool no_worse =
+      a.error_p95 <= b.error_p95 && a.frame_ms <= b.frame_ms && a.bytes <= b.bytes;
+  const bool better = a.error_p95 < b.error_p95 || a.frame_ms < b.frame_ms || a.bytes < b.bytes;
+  return no_worse && better;
+}
+
+std::vector<size_t> advise_front(const std::vector<AdviseResult>& results) {
+  std::vector<size_t> front;
+  for (size_t i = 0; i < results.size(); ++i) {
+    const AdviseMeasurement& m = results[i].measurement;
+    if (!m.ok || !std::isfinite(m.error_p95) || !std::isfinite(m.frame_ms)) continue;
+    bool dominated = false;
+    for (size_t j = 0; j < results.size() && !dominated; ++j)
+      dominated = j != i && dominates(results[j].measurement, m);
+    if (!dominated) front.push_back(i);
+  }
+  std::stable_sort(front.begin(), front.end(), [&](size_t a, size_t b) {
+    return results[a].measurement.frame_ms < results[b].measurement.frame_ms;
+  });
+  return front;
+}
+
+std::vector<size_t> advise_picks(const std::vector<AdviseResult>& results,
+                                 const AdviseBudgets& budgets) {
+  std::vector<size_t> picks;
+  for (size_t i = 0; i < results.size(); ++i)
+    if (budgets.met_by(results[i].measurement)) picks.push_back(i);
+  std::stable_sort(picks.begin(), picks.end(), [&](size_t a, size_t b) {
+    const AdviseMeasurement &x = results[a].measurement, &y = results[b].measurement;
+    return x.frame_ms != y.frame_ms ? x.frame_ms < y.frame_ms : x.bytes < y.bytes;
+  });
+  return picks;
+}
+
+namespace {
+
+bool should_stop(const AdviseSearchLimits& limits, size_t measured) {
+  return int(measured) >= limits.max_evaluations || (limits.stop && limits.stop());
+}
+
+AdviseResult measured(const std::vector<AdviseFamily>& space, const AdvisePoint& p,
+                      const AdviseMeasure& measure) {
+  AdviseResult r{p, config_at(space, p), {}};
+  r.measurement = measure(r.config);
+  return r;
+}
+
+// The neighbours of `p` one step along one axis: coarser (-1) and, when `finer`, finer (+1).
+std::vector<AdvisePoint> neighbours(const std::vector<AdviseFamily>& space, const AdvisePoint& p,
+                                    bool finer) {
+  std::vector<AdvisePoint> out;
+  const AdviseFamily& f = space[size_t(p.family)];
+  for (size_t a = 0; a < f.axes.size(); ++a)
+    for (int step : {-1, 1}) {
+      if (step > 0 && !finer) continue;
+      AdvisePoint q = p;
+      q.at[a] += step;
+      if (q.at[a] >= 0 && q.at[a] < int(f.axes[a].values.size())) out.push_back(q);
+    }
+  return out;
+}
+
+}  // namespace
+
+std::vector<AdviseResult> advise_search(const std::vector<AdviseFamily>& space,
+                                        const AdviseBudgets& budgets, const AdviseMeasure& measure,
+                                        const AdviseSearchLimits& limits,
+                                        const AdviseProgress& progress) {
+  std::vector<AdviseResult> results;
+  std::set<AdvisePoint> seen;
+  std::vector<AdvisePoint> queue;
+  for (size_t f = 0; f < space.size(); ++f) queue.push_back({int(f), space[f].start});
+  while (!queue.empty()) {
+    for (const AdvisePoint& p : queue) {
+      if (!seen.insert(p).second) continue;
+      if (should_stop(limits, results.size())) return results;
+      results.push_back(measured(space, p, measure));
+      if (progress) progress(results);
+    }
+    queue.clear();
+    // Expand the front only: a dominated point's branch ends here.
+    for (size_t i : advise_front(results)) {
+      const AdviseMeasurement& m = results[i].measurement;
+      const bool finer = m.error_p95 > budgets.error && budgets.within_cost(m);
+      for (const AdvisePoint& q : neighbours(space, results[i].point, finer))
+        if (!seen.count(q)) queue.push_back(q);
+    }
+  }
+  return results;
+}
+
+std::vector<AdviseResult> advise_sweep(const std::vector<AdviseFamily>& space,
+                                       const AdviseMeasure& measure,
+                                       const AdviseSearchLimits& limits,
+                                       const AdviseProgress& progress) {
+  std::vector<AdviseResult> results;
+  for (size_t f = 0; f < space.size(); ++f) {
+    AdvisePoint p{int(f), std::vector<int>(space[f].axes.size(), 0)};
+    while (true) {  // every index vector of the family, odometer order
+      if (should_stop(limits, results.size())) return results;
+      results.push_back(measured(space, p, measure));
+      if (progress) progress(results);
+      size_t a = 0;
+      for (; a < p.at.size(); ++a) {
+        if (++p.at[a] < int(space[f].axes[a].values.size())) break;
+        p.at[a] = 0;
+      }
+      if (a == p.at.size()) break;
+    }
+  }
+  return results;
+}
+
+std::vector<AdviseFamily> advise_space(const AdviseSceneKind& kind) {
+  const AdviseAxis res{"res", {"128", "256", "512", "1024", "2048"}};
+  if (!kind.translucent && !kind.media)
+    return {{"shadowmap", "shadowmap", {}, {res, {"pcf", {"1", "3"}}}, {1, 0}}};
+  const AdviseAxis eps{"eps", {"0.2", "0.05", "0.02", "0.01", "0.005", "0.002"}};
+  const AdviseAxis filter{"filter", {"none", "bilinear"}};
+  const AdviseAxis clusters{"clusters", {"1", "4"}};
+  const std::map<std::string, std::string> basis_eps{{"eps", "0.01"}};
+  std::vector<AdviseFamily> space{
+      {"dsm compact", "dsm", {{"storage", "compact"}}, {res, eps, filter, clusters}, {1, 1, 0, 0}},
+      {"dsm avsm",
+       "dsm",
+       {{"storage", "avsm"}, {"eps", "0.01"}},
+       {res, {"storage.nodes", {"4", "8", "16", "32"}}},
+       {1, 1}},
+      {"dsm moments",
+       "dsm",
+       {{"storage", "moments"}, {"eps", "0.01"}},
+       {res, {"storage.moments", {"4", "6"}}},
+       {1, 0}},
+      {"dsm fourier",
+       "dsm",
+       {{"storage", "fourier"}, {"eps", "0.01"}},
+       {res, {"storage.frequencies", {"4", "8", "16", "32"}}},
+       {1, 1}},
+      {"dsm occupancy",
+       "dsm",
+       {{"storage", "occupancy"}, {"eps", "0.01"}},
+       {res, {"storage.slices", {"32", "64", "128"}}},
+       {1, 1}},
+      {"dsm beer", "dsm", {{"storage", "beer"}}, {res}, {1}},
+      {"transmittance-slicemap",
+       "transmittance-slicemap",
+       {},
+       {{"res", {"256", "512", "1024"}}, {"slices", {"32", "64", "128"}}},
+       {0, 0}}};
+  return space;
+}
+
+}  // namespace dv

@@ -1,0 +1,116 @@
+// The search of `deepvox advise` (issue 41), independent of how a configuration is measured:
+// the space of shadow configurations (per family a method with fixed parameters and ordered
+// axes, coarse to fine: resolution, eps, filter, clusters, a basis storage's size), a
+// coarse-to-fine walk over it that stops a branch once it is dominated, the Pareto front of the
+// measured points and the pick under an error bound and budgets.
+// The walk starts at each family's coarse start point, measures, and expands only the
+// unmeasured neighbours (one axis one step) of the points on the front (error, frame time,
+// bytes): a dominated point's branch ends. A front point that meets the error bound and the
+// budgets is refined only towards coarser (cheaper) neighbours; one that breaks the time or
+// memory budget likewise; the others both ways. It ends when nothing is left to expand, after
+// `max_evaluations`, or when `stop` says so (Ctrl-C, a deadline): what was measured is kept.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "strategies/shadow/shadow_config.h"
+
+namespace dv {
+
+struct AdviseAxis {
+  std::string key;                  // a parameter of the family's method
+  std::vector<std::string> values;  // coarse (cheap, less accurate) to fine
+};
+
+struct AdviseFamily {
+  std::string name;    // "dsm compact", "shadowmap", ...
+  std::string method;  // a shadow method
+  std::map<std::string, std::string> fixed;
+  std::vector<AdviseAxis> axes;
+  std::vector<int> start;  // per axis, the coarse start
+};
+
+// A point of a family's space: one value index per axis.
+struct AdvisePoint {
+  int family = 0;
+  std::vector<int> at;
+  bool operator<(const AdvisePoint& o) const {
+    return family != o.family ? family < o.family : at < o.at;
+  }
+  bool operator==(const AdvisePoint& o) const { return family == o.family && at == o.at; }
+};
+
+ShadowConfig config_at(const std::vector<AdviseFamily>& space, const AdvisePoint& point);
+
+// What measuring one configuration gives (advise_measure.h fills it).
+struct AdviseMeasurement {
+  bool ok = false;                          // false: it failed (failure says why), never on a front
+  std::string failure;                      // e.g. a storage's limit
+  double error_p95 = 0.0, error_max = 0.0;  // over the lights: the worst light's p95 and max
+  std::vector<double> light_p95, light_max;  // per light, camera-visible probes
+  std::vector<double> light_medium_p95;      // per light, probes inside media (empty: none)
+  double image_rmse = 0.0;
+  double frame_ms = 0.0;  // median generation + median render, warm
+  double bytes = 0.0;
+};
+
+struct AdviseResult {
+  AdvisePoint point;
+  ShadowConfig config;
+  AdviseMeasurement measurement;
+};
+
+struct AdviseBudgets {
+  double error = 0.02;             // p95 |T' - T| at the camera-visible probes, worst light
+  std::optional<double> frame_ms;  // --budget-ms
+  std::optional<double> bytes;     // --memory-mb, in bytes
+  bool within_cost(const AdviseMeasurement& m) const;
+  bool met_by(const AdviseMeasurement& m) const;  // ok, error and costs
+};
+
+// Whether `a` dominates `b`: both measured, a no worse in error (p95), frame time and bytes and
+// better in one.
+bool dominates(const AdviseMeasurement& a, const AdviseMeasurement& b);
+// Indices of the results no other result dominates (failures excluded), by frame time.
+std::vector<size_t> advise_front(const std::vector<AdviseResult>& results);
+// The indices of the results that meet `budgets`, cheapest first (frame time, then bytes): the
+// pick is the first one its verification confirms.
+std::vector<size_t> advise_picks(const std::vector<AdviseResult>& results,
+                                 const AdviseBudgets& budgets);
+
+struct AdviseSearchLimits {
+  int max_evaluations = 60;
+  std::function<bool()> stop;  // checked before each measurement; may be empty
+};
+
+using AdviseMeasure = std::function<AdviseMeasurement(const ShadowConfig&)>;
+// Called after each measurement: the results so far and the one just added.
+using AdviseProgress = std::function<void(const std::vector<AdviseResult>&)>;
+
+// The coarse-to-fine walk (see the file comment); results in measuring order.
+std::vector<AdviseResult> advise_search(const std::vector<AdviseFamily>& space,
+                                        const AdviseBudgets& budgets, const AdviseMeasure& measure,
+                                        const AdviseSearchLimits& limits,
+                                        const AdviseProgress& progress = {});
+// Every point of the space measured (the exhaustive sweep `advise --exhaustive` runs as the
+// search's check), within the same limits.
+std::vector<AdviseResult> advise_sweep(const std::vector<AdviseFamily>& space,
+                                       const AdviseMeasure& measure,
+                                       const AdviseSearchLimits& limits,
+                                       const AdviseProgress& progress = {});
+
+// What kind of casters a scene's lights reach decides the families worth searching.
+struct AdviseSceneKind {
+  bool translucent = false;  // some light reaches a caster with 0 < alpha < 1
+  bool media = false;        // some light reaches a constant medium or a volume
+};
+// The search space: shadow maps when every reached caster is opaque; otherwise the DSM storages
+// (compact over resolution, eps, filter and clusters; avsm, moments, fourier, occupancy over
+// resolution and their size; beer over resolution) and the transmittance slice map.
+std::vector<AdviseFamily> advise_space(const AdviseSceneKind& kind);
+
+}  // namespace dv

@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""The check of `deepvox advise` and `--shadows auto --error-budget` (issue 41), run by
+scripts/advise-check.sh: per scene (built-in ones and the held-out ones the error model never
+saw) the exhaustive sweep once (`advise --exhaustive`), then per error bound E: `advise` (timed;
+its pick verified at fresh points) and `advise --auto-budget` (what auto --error-budget picks,
+measured at the same fresh points). Writes OUT/summary.json and OUT/summary.md with pass/fail
+per criterion: the pick's verified p95 <= E; its frame time (as the sweep measured that
+configuration) within 1.25x of the sweep's cheapest configuration meeting E; auto's p95 <= E;
+advise on knecht-fig56 within 60 s (cuda) or 300 s (cpu)."""
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+
+BUILTIN = ["experiments/scenes/knecht-fig56.json", "experiments/scenes/knecht-quick.json",
+           "experiments/scenes/ct-phantom.json", "experiments/scenes/smoke-translucent-boxes.json",
+           "experiments/scenes/translucent-boxes.json"]
+HELDOUT = ["experiments/scenes/heldout/smoke-ring.json",
+           "experiments/scenes/heldout/glass-stack.json",
+           "experiments/scenes/heldout/opaque-bunnies.json"]
+BOUNDS = [0.005, 0.02, 0.05]
+TIME_RATIO = 1.25
+
+
+def run(deepvox, args, log):
+    start = time.monotonic()
+    proc = subprocess.run([deepvox] + args, capture_output=True, text=True)
+    seconds = time.monotonic() - start
+    with open(log, "w") as f:
+        f.write("$ deepvox " + " ".join(args) + "\n" + proc.stdout + proc.stderr)
+    return proc.returncode, seconds
+
+
+def stem(scene):
+    return os.path.splitext(os.path.basename(scene))[0]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--deepvox", default="build/bin/deepvox")
+    ap.add_argument("--backend", default="cuda")
+    ap.add_argument("--out", default="out/advise-check")
+    ap.add_argument("--width", type=int, default=0, help="image width (0: advise's default)")
+    ap.add_argument("--probes", type=int, default=2000)
+    ap.add_argument("--max-res", type=int, default=0)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--scenes", nargs="*", default=BUILTIN + HELDOUT)
+    ap.add_argument("--bounds", nargs="*", type=float, default=BOUNDS)
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    common = ["--backend", a.backend, "--probes", str(a.probes), "--repeat", str(a.repeat)]
+    if a.width:
+        common += ["--width", str(a.width)]
+    if a.max_res:
+        common += ["--max-res", str(a.max_res)]
+    limit_s = 60 if a.backend == "cuda" else 300
+    rows = []
+    for scene in a.scenes:
+        name = stem(scene)
+        sweep_dir = os.path.join(a.out, name, "sweep")
+        rc, sweep_s = run(a.deepvox, ["advise", scene, "--exhaustive", "--out", sweep_dir] + common,
+                          os.path.join(a.out, name + "-sweep.log"))
+        sweep = json.load(open(os.path.join(sweep_dir, "advice.json")))
+        measured = {r["param_line"]: r["measured"] for r in sweep["results"]}
+        print(f"{name}: sweep of {len(measured)} configurations in {sweep_s:.0f} s", flush=True)
+        for bound in a.bounds:
+            row = {"scene": scene, "held_out": scene in HELDOUT, "E": bound}
+            meeting = [(m["frame_ms"], line) for line, m in measured.items()
+                       if m.get("ok") and m["error_p95"] <= bound]
+            row["sweep_cheapest"] = min(meeting)[1] if meeting else None
+            row["sweep_cheapest_ms"] = min(meeting)[0] if meeting else None
+            advise_dir = os.path.join(a.out, name, f"advise-{bound}")
+            rc, seconds = run(a.deepvox, ["advise", scene, "--error", str(bound), "--out",
+                                          advise_dir] + common,
+                              os.path.join(a.out, f"{name}-advise-{bound}.log"))
+            advice = json.load(open(os.path.join(advise_dir, "advice.json")))
+            row["advise_s"] = seconds
+            row["advise_measured"] = len(advice["results"])
+            pick = advice.get("pick")
+            if pick is not None:
+                line = advice["results"][pick]["param_line"]
+                row["pick"] = line
+                row["pick_search_p95"] = advice["results"][pick]["measured"]["error_p95"]
+                row["pick_verified_p95"] = advice["verified"]["error_p95"]
+                row["pick_ms"] = measured.get(line, advice["results"][pick]["measured"])["frame_ms"]
+            auto_dir = os.path.join(a.out, name, f"auto-{bound}")
+            rc, _ = run(a.deepvox, ["advise", scene, "--auto-budget", "--error", str(bound),
+                                    "--out", auto_dir] + common,
+                        os.path.join(a.out, f"{name}-auto-{bound}.log"))
+            auto_file = os.path.join(auto_dir, "auto.json")
+            if os.path.exists(auto_file):
+                auto = json.load(open(auto_file))
+                row["auto"] = auto["shadows"]["params"]
+                row["auto_p95"] = auto["auto_budget"]["verified"].get("error_p95")
+                row["auto_ms"] = auto["auto_budget"]["verified"].get("frame_ms")
+                row["auto_by"] = "model" if any(l.startswith("model (") for l in
+                                                auto["auto_budget"]["explanation"]) else "measured"
+            feasible = row["sweep_cheapest"] is not None
+            row["pass_verified"] = (row.get("pick_verified_p95") is not None and
+                                    row["pick_verified_p95"] <= bound) if feasible else None
+            row["pass_time"] = (row.get("pick_ms") is not None and
+                                row["pick_ms"] <= TIME_RATIO * row["sweep_cheapest_ms"]) \
+                if feasible else None
+            row["pass_auto"] = (row.get("auto_p95") is not None and row["auto_p95"] <= bound) \
+                if feasible else None
+            if name == "knecht-fig56":
+                row["pass_advise_time"] = seconds <= limit_s
+            rows.append(row)
+            print(json.dumps(row), flush=True)
+    meta = {"backend": a.backend, "host": platform.node(), "cpus": os.cpu_count(),
+            "load_average": os.getloadavg(), "command": " ".join(sys.argv),
+            "advise_time_limit_s": limit_s}
+    json.dump({"meta": meta, "rows": rows}, open(os.path.join(a.out, "summary.json"), "w"),
+              indent=1)
+    verdict = lambda v: "n/a" if v is None else ("pass" if v else "FAIL")
+    with open(os.path.join(a.out, "summary.md"), "w") as f:
+        f.write(f"# advise check ({a.backend}, {meta['cpus']} CPUs, load {meta['load_average']})\n\n"
+                "| scene | E | pick | verified p95 | ms (sweep) | sweep cheapest ms | auto p95 "
+                "(by) | advise s | verified | time | auto |\n|" + " --- |" * 11 + "\n")
+        for r in rows:
+            f.write(f"| {stem(r['scene'])}{' (held out)' if r['held_out'] else ''} | {r['E']} | "
+                    f"{r.get('pick', '-')} | {r.get('pick_verified_p95', '-')} | "
+                    f"{r.get('pick_ms', '-')} | {r.get('sweep_cheapest_ms', '-')} | "
+                    f"{r.get('auto_p95', '-')} ({r.get('auto_by', '-')}) | "
+                    f"{r['advise_s']:.1f} | {verdict(r['pass_verified'])} | "
+                    f"{verdict(r['pass_time'])} | {verdict(r['pass_auto'])} |\n")
+        f.write("\nn/a: no configuration of the sweep meets E on this scene.\n")
+    failed = [r for r in rows for k in ("pass_verified", "pass_time", "pass_auto",
+                                        "pass_advise_time") if r.get(k) is False]
+    print(f"{len(rows)} rows, {len(failed)} with a failed criterion -> {a.out}/summary.md")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
