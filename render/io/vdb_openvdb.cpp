@@ -41,7 +41,8 @@ void require_readable_file(const std::string& path) {
 // "density (float), temperature (float)": the grids a file holds, for the error that names none.
 std::string grid_listing(openvdb::io::File& file) {
   std::string listing;
-  for (const openvdb::GridBase::Ptr& grid : *file.readAllGridMetadata()) {
+  const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();  // alive through the loop
+  for (const openvdb::GridBase::Ptr& grid : *grids) {
     if (!listing.empty()) listing += ", ";
     listing += "'" + grid->getName() + "' (" + grid->valueType() + ")";
   }
@@ -113,9 +114,10 @@ VolumeGrid load_vdb_volume(const std::string& path, const std::string& grid_name
   openvdb::FloatGrid::Ptr grid;
   try {
     grid = read_float_grid(path, grid_name);
-  } catch (const openvdb::Exception& e) {
-    throw InputError(path, std::string("not a readable OpenVDB file: ") + e.what());
-  } catch (const std::ios_base::failure& e) {
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // OpenVDB's own errors, and what a damaged file makes of its sizes (std::bad_alloc).
     throw InputError(path, std::string("not a readable OpenVDB file: ") + e.what());
   }
 
