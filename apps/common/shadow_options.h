@@ -2,7 +2,8 @@
 // the deep-shadow-map shortcuts --storage, --dsm-res, --eps, --filter (the dsm method's
 // storage, res, eps and filter parameters; any other method rejects them as unknown) and
 // --voxelizer (the transmittance-slicemap method's voxelizer parameter). The default method is
-// `auto` (the effect planner); --explain prints its decisions.
+// `auto` (the effect planner); --explain prints its decisions and what the method drops of the
+// scene's effects.
 #pragma once
 
 #include <memory>
@@ -12,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "engine/scene/scene.h"
 #include "strategies/shadow/shadow_method.h"
 
 namespace dv::cli {
@@ -32,5 +34,9 @@ std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& options);
 // method that does not plan says so.
 void explain_shadows(const ShadowOptions& options, const ShadowMethod& method,
                      const std::string& label);
+// With --explain, prints the effects the scene holds (translucent and glass casters, media,
+// volumes, tints) and what the method drops or approximates of each
+// (strategies/shadow/effect_losses.h).
+void explain_effects(const ShadowOptions& options, const Scene& scene, const ShadowMethod& method);
 
 }  // namespace dv::cli

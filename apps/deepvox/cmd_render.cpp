@@ -100,6 +100,7 @@ Runner add_render(CLI::App& app) {
     }
     const SceneData data(scene, memory_of(backend));
     mark_wall_phase("scene data built");
+    explain_effects(opt->shadows, scene, *method);
     nlohmann::json stats = {
         // Run metadata (a git call, the device query) only for a stats file that holds it.
         {"meta", opt->stats.empty() ? nlohmann::json::object() : run_metadata(backend)},

@@ -195,6 +195,12 @@ TEST_F(Cli, AutoShadowsAreTheDefaultAndExplainTheirPlan) {
             std::string::npos)
       << planned.output;
   EXPECT_NE(planned.output.find("map built (no map yet)"), std::string::npos) << planned.output;
+  EXPECT_NE(planned.output.find("effects in the scene and what auto shadows do with them:\n"
+                                "  1 translucent caster (0 < alpha < 1): kept as dsm keeps it"),
+            std::string::npos)
+      << planned.output;
+  EXPECT_NE(planned.output.find("  1 constant medium: kept as dsm keeps it"), std::string::npos)
+      << planned.output;
   write("points.csv", "x,y,z\n0,0,0\n");
   const CommandResult forced =
       run("probe " + scene + " --points " + path("points.csv") + " --out " + path("t.csv") +
@@ -203,6 +209,12 @@ TEST_F(Cli, AutoShadowsAreTheDefaultAndExplainTheirPlan) {
   EXPECT_NE(forced.output.find("shadow method dsm was named, so it runs for every light"),
             std::string::npos)
       << forced.output;
+  const CommandResult mapped = run("probe " + scene + " --points " + path("points.csv") +
+                                   " --out " + path("m.csv") + " --shadows shadowmap --explain");
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.output;
+  EXPECT_NE(mapped.output.find("  1 constant medium: dropped: only its boundary casts, opaque"),
+            std::string::npos)
+      << mapped.output;
 }
 
 TEST_F(Cli, RenderViewMovesTheCameraAndRejectsBadMoves) {
