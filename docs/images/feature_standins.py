@@ -94,7 +94,8 @@ def ellipsoid(radii, centre=(0, 0, 0), segments=32, rings=16):
         theta = math.pi * i / rings
         for s in range(segments + 1 if 0 < i < rings else 1):
             phi = 2 * math.pi * s / segments
-            unit = (math.sin(theta) * math.cos(phi), math.cos(theta), -math.sin(theta) * math.sin(phi))
+            unit = (math.sin(theta) * math.cos(phi), math.cos(theta),
+                    -math.sin(theta) * math.sin(phi))
             pos.append(tuple(c + r * u for c, r, u in zip(centre, radii, unit)))
             normals.append(normalize(tuple(u / r for u, r in zip(unit, radii))))
             uvs.append((s / segments if 0 < i < rings else 0.5, i / rings))
@@ -264,7 +265,8 @@ def damaged_helmet(path):
         grey = 60 if seam else 170 if scuff else 225
         return (grey, grey, grey - 8 if grey > 100 else grey, 255)
     helmet = g.material((1, 1, 1), roughness=0.5,
-                        fields={"pbr": {"baseColorTexture": {"index": g.texture(png(64, 64, shell))}}})
+                        fields={"pbr": {"baseColorTexture": {
+                            "index": g.texture(png(64, 64, shell))}}})
     visor = g.material((0.08, 0.08, 0.1), roughness=0.1,
                        fields={"emissiveFactor": [1.0, 0.6, 0.2]})
     g.node(name="helmet", mesh=surface(g, ellipsoid((0.9, 1.0, 0.95)), helmet))
@@ -279,14 +281,16 @@ def duck(path):
         shade = 20 if (x + 2 * y) % 16 < 3 else 0
         return (250 - shade, 215 - shade, 40, 255)
     yellow = g.material((1, 1, 1), roughness=0.5,
-                        fields={"pbr": {"baseColorTexture": {"index": g.texture(png(32, 32, feathers))}}})
+                        fields={"pbr": {"baseColorTexture": {
+                            "index": g.texture(png(32, 32, feathers))}}})
     g.node(name="body", mesh=surface(g, ellipsoid((0.9, 0.55, 0.65), (0.0, 0.55, 0.0)), yellow))
     g.node(name="head", mesh=surface(g, ellipsoid((0.38, 0.38, 0.38), (-0.6, 1.25, 0.0)), yellow))
     g.node(name="beak", mesh=surface(g, ellipsoid((0.25, 0.08, 0.18), (-1.0, 1.2, 0.0)),
                                     g.material((0.95, 0.45, 0.1))))
     eye = g.material((0.02, 0.02, 0.02), roughness=0.2)
     for side in (-1, 1):
-        g.node(mesh=surface(g, ellipsoid((0.06, 0.06, 0.06), (-0.82, 1.38, 0.2 * side), 12, 6), eye))
+        g.node(mesh=surface(g, ellipsoid((0.06, 0.06, 0.06), (-0.82, 1.38, 0.2 * side), 12, 6),
+                            eye))
     # Like the real file's camera: from behind and to the side of the duck, above it.
     g.doc["cameras"] = [{"type": "perspective", "perspective": {
         "yfov": 0.66, "aspectRatio": 1.5, "znear": 0.1, "zfar": 100.0}}]
@@ -332,6 +336,8 @@ if __name__ == "__main__":
     if args[:1] == ["--samples"] and len(args) == 2:
         write_all(SAMPLES, args[1])
     elif len(args) <= 1 and not (args and args[0].startswith("-")):
-        write_all(FEATURES, args[0] if args else os.path.join(ROOT, "experiments", "assets", "gltf"))
+        default = os.path.join(ROOT, "experiments", "assets", "gltf")
+        write_all(FEATURES, args[0] if args else default)
     else:
-        sys.exit(__doc__)
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
