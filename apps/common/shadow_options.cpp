@@ -2,7 +2,9 @@
 #include "apps/common/shadow_options.h"
 
 #include <iostream>
+
 #include "core/error.h"
+#include "strategies/shadow/effect_losses.h"
 #include "strategies/shadow/effect_planner.h"
 #include "strategies/shadow/shadow_config.h"
 #include "strategies/storage/dsm_storage.h"
@@ -23,7 +25,8 @@ void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
                   "measured as advise does) to keep the camera-visible p95 |T' - T| within E")
       ->check(CLI::Range(1e-6, 1.0));
   cmd->add_flag("--explain", o.explain,
-                "print the shadow planner's decisions (auto: per light method, maps, skips)");
+                "print what the shadow method drops or approximates of the scene's effects and "
+                "the planner's decisions (auto: per light method, maps, skips)");
   cmd->add_option("--param", o.params, "shadow-method parameter key=value (repeatable)");
   std::string storages;
   for (const std::string& name : storage_registry().names())
@@ -75,6 +78,10 @@ void explain_shadows(const ShadowOptions& o, const ShadowMethod& method, const s
   else
     std::cout << "shadow plan\n" << explain_plan(plan);
   std::cout << std::flush;
+}
+
+void explain_effects(const ShadowOptions& o, const Scene& scene, const ShadowMethod& method) {
+  if (o.explain) std::cout << explain_effects(scene, method.name()) << std::flush;
 }
 
 }  // namespace dv::cli

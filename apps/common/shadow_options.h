@@ -2,12 +2,12 @@
 // the deep-shadow-map shortcuts --storage, --dsm-res, --eps, --filter (the dsm method's
 // storage, res, eps and filter parameters; any other method rejects them as unknown) and
 // --voxelizer (the transmittance-slicemap method's voxelizer parameter). The default method is
-// `auto` (the effect planner); --explain prints its decisions. --config FILE takes the method and
-// its parameters from a shadow config file (strategies/shadow/shadow_config.h: what `deepvox
-// advise` writes);
-// --param and the shortcuts given beside it override its parameters. --error-budget E asks
-// `auto` for the cheapest configuration predicted to keep the camera-visible p95 error within E
-// (apps/common/error_budget.h resolves it once the scene is loaded).
+// `auto` (the effect planner); --explain prints its decisions and what the method drops of the
+// scene's effects. --config FILE takes the method and its parameters from a shadow config file
+// (strategies/shadow/shadow_config.h: what `deepvox advise` writes); --param and the shortcuts
+// given beside it override its parameters. --error-budget E asks `auto` for the cheapest
+// configuration predicted to keep the camera-visible p95 error within E (apps/common/error_budget.h
+// resolves it once the scene is loaded).
 #pragma once
 
 #include <memory>
@@ -17,6 +17,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "engine/scene/scene.h"
 #include "strategies/shadow/shadow_method.h"
 
 namespace dv::cli {
@@ -44,5 +45,9 @@ std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& options);
 // method that does not plan says so.
 void explain_shadows(const ShadowOptions& options, const ShadowMethod& method,
                      const std::string& label);
+// With --explain, prints the effects the scene holds (translucent and glass casters, media,
+// volumes, tints) and what the method drops or approximates of each
+// (strategies/shadow/effect_losses.h).
+void explain_effects(const ShadowOptions& options, const Scene& scene, const ShadowMethod& method);
 
 }  // namespace dv::cli

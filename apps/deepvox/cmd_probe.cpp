@@ -49,6 +49,7 @@ Runner add_probe(CLI::App& app) {
     const SceneData data(scene, memory_of(backend));
     const ProbeResults r = probe_transmittance(backend, data, *method, points);
     write_transmittance_csv(opt->out, points, r.transmittance, r.rgb, r.light_count);
+    explain_effects(opt->shadows, scene, *method);
     explain_shadows(opt->shadows, *method, "probe");
     int flagged = 0;
     for (uint32_t f : r.flags) flagged += f != 0;

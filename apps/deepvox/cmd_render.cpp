@@ -1,21 +1,22 @@
 // `deepvox render SCENE --out img.png [--backend cpu|cuda] [--renderer raster|raytrace]
 //  [--shadows NAME] [--stats s.json] [--frames N --orbit DEG] [--width W --height H]
-//  [--exposure EV] [--tonemap none|reinhard|aces] [--ground] [--view YAW,PITCH,DOLLY,PX,PY]
-//  [--config FILE] [--error-budget E]`:
-// the rasterizing renderer (or the BVH ray-walk reference) with a shadow method, the camera
-// moved as the viewer moves it (--view), PNG (exposed and tone-mapped) or EXR (linear) out,
-// per-frame pass timings and counters in a stats JSON.
+//  [--exposure EV] [--tonemap none|reinhard|aces] [--ground|--no-ground]
+//  [--view YAW,PITCH,DOLLY,PX,PY] [--config FILE] [--error-budget E]`: the rasterizing renderer
+// (or the BVH ray-walk reference) with a shadow method, the camera moved as the viewer moves it
+// (--view), PNG (exposed and tone-mapped, ACES by default so a white model under the staged key
+// light keeps its shading) or EXR (linear) out, per-frame pass timings and counters in a stats
+// JSON.
 #include <filesystem>
 #include <fstream>
 
 #include "apps/common/error_budget.h"
 #include "apps/common/shadow_options.h"
+#include "apps/common/staging_options.h"
 #include "apps/deepvox/commands.h"
 #include "core/log.h"
 #include "core/wall_phases.h"
 #include "cuda/kernel_timing.h"
 #include "engine/raster/camera_rays.h"
-#include "engine/scene/default_staging.h"
 #include "experiments/harness/run_metadata.h"
 #include "render/frame/raster_render.h"
 #include "render/frame/reference_render.h"
@@ -40,12 +41,13 @@ std::string frame_path(const std::string& path, int frame, int frames) {
 
 Runner add_render(CLI::App& app) {
   struct Options {
-    std::string scene, out, stats, backend, renderer = "raster", tonemap = "none";
+    std::string scene, out, stats, backend, renderer = "raster",
+                                            tonemap = to_string(kDefaultToneCurve);
     ShadowOptions shadows;
     std::vector<double> view;
     int frames = 1, width = 0, height = 0;
     double orbit = 0.0, exposure = 0.0;
-    bool ground = false;
+    StagingOptions staging;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd =
@@ -79,19 +81,17 @@ Runner add_render(CLI::App& app) {
                   "dolly factor, pan right and up in target distances")
       ->delimiter(',')
       ->expected(5);
-  cmd->add_flag("--ground", opt->ground,
-                "add an opaque ground plane just below the scene bounds (if none is named ground)");
+  add_staging_options(cmd, opt->staging);
   return [opt] {
     check_image_path(opt->out);  // before any work: an unwritable output would lose the render
     if (!opt->stats.empty()) check_output_path(opt->stats, {".json"}, "stats JSON");
     auto method = make_shadow_method(opt->shadows);
     // The scene loads first, while the CUDA driver starts in the background (main.cpp): the
     // backend query below waits for the driver.
-    Scene scene = load_scene(opt->scene);
+    Scene scene = load_scene(opt->scene, opt->staging);
     mark_wall_phase("scene loaded");
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
-    if (opt->ground) add_ground_plane(scene);
     const DisplayTransform display{opt->exposure, parse_tone_curve(opt->tonemap)};
     if (opt->width) scene.camera.width = opt->width;
     if (opt->height) scene.camera.height = opt->height;
@@ -106,6 +106,7 @@ Runner add_render(CLI::App& app) {
     }
     const SceneData data(scene, memory_of(backend));
     mark_wall_phase("scene data built");
+    explain_effects(opt->shadows, scene, *method);
     nlohmann::json stats = {
         // Run metadata (a git call, the device query) only for a stats file that holds it.
         {"meta", opt->stats.empty() ? nlohmann::json::object() : run_metadata(backend)},

@@ -1,9 +1,10 @@
 // `deepvox view SCENE [--backend cpu|cuda] [shadow options] [--width W --height H]
-//  [--exposure EV] [--tonemap T] [--ground] [--view YAW,PITCH,DOLLY,PX,PY] [--frames N]
+//  [--exposure EV] [--tonemap T] [--ground|--no-ground] [--view YAW,PITCH,DOLLY,PX,PY] [--frames N]
 //  [--screenshot out.png] [--screenshot-window win.png] [--script keys.txt] [--save-prefix P]`:
 // the interactive viewer (apps/viewer), built into the full binary where GLFW and OpenGL are.
 #include "apps/common/error_budget.h"
 #include "apps/common/shadow_options.h"
+#include "apps/common/staging_options.h"
 #include "apps/deepvox/commands.h"
 #include "apps/viewer/viewer.h"
 #include "apps/viewer/viewer_keys.h"
@@ -28,8 +29,9 @@ Runner add_view(CLI::App& app) {
   cmd->add_option("--exposure", s.exposure, "multiply linear values by 2^EV (as render's PNG)")
       ->check(CLI::Range(-64.0, 64.0));
   cmd->add_option("--tonemap", s.tonemap, "tone curve after the exposure (as render's PNG)")
-      ->check(CLI::IsMember({"none", "reinhard", "aces"}));
-  cmd->add_flag("--ground", s.ground, "add an opaque ground plane just below the scene bounds");
+      ->check(CLI::IsMember({"none", "reinhard", "aces"}))
+      ->capture_default_str();
+  add_staging_options(cmd, s.staging);
   cmd->add_option("--view", *view, "start camera move: yaw, pitch, dolly, pan x, pan y")
       ->delimiter(',')
       ->expected(5);

@@ -12,7 +12,6 @@
 #include "core/error.h"
 #include "cuda/buffer.h"
 #include "engine/raster/raster_projection.h"
-#include "engine/scene/default_staging.h"
 #include "engine/scene/scene_view.h"
 #include "render/frame/raster_render.h"
 #include "render/io/display_encoding.h"
@@ -68,8 +67,7 @@ ViewerState::ViewerState(const ViewerSetup& setup)
       shadows_(setup.shadows) {
   require_backend(backend_);
   method_ = cli::make_shadow_method(shadows_);
-  scene_ = load_scene(setup.scene_path);
-  if (setup.ground) add_ground_plane(scene_);
+  scene_ = load_scene(setup.scene_path, setup.staging);
   camera_ = scene_.camera;
   if (setup.width) camera_.width = setup.width;
   if (setup.height) camera_.height = setup.height;
@@ -358,8 +356,8 @@ std::string ViewerState::render_command(const std::string& out) const {
   cmd +=
       " --width " + std::to_string(camera_.width) + " --height " + std::to_string(camera_.height);
   if (setup_.exposure != 0.0) cmd += " --exposure " + number_text(setup_.exposure);
-  if (setup_.tonemap != "none") cmd += " --tonemap " + setup_.tonemap;
-  if (setup_.ground) cmd += " --ground";
+  if (setup_.tonemap != ViewerSetup{}.tonemap) cmd += " --tonemap " + setup_.tonemap;
+  cmd += cli::staging_flag(setup_.staging);
   const CameraMove& m = move_;
   if (m.yaw_deg != 0.0 || m.pitch_deg != 0.0 || m.dolly != 1.0 || m.pan_x != 0.0 || m.pan_y != 0.0)
     cmd += " --view " + number_text(m.yaw_deg) + "," + number_text(m.pitch_deg) + "," +

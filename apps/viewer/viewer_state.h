@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/common/shadow_options.h"
+#include "apps/common/staging_options.h"
 #include "apps/viewer/viewer_error_view.h"
 #include "apps/viewer/viewer_script.h"
 #include "apps/viewer/viewer_voxel_overlay.h"
@@ -32,8 +33,8 @@ struct ViewerSetup {
   std::string backend;  // "" = default_backend()
   int width = 0, height = 0;
   double exposure = 0.0;
-  std::string tonemap = "none";
-  bool ground = false;
+  std::string tonemap = to_string(kDefaultToneCurve);  // render's default
+  StagingOptions staging;
   CameraMove start;  // the camera R returns to is the scene's; this is where the viewer starts
 };
 

@@ -9,7 +9,9 @@ into a folder, for the before/after thumbnails in docs/images (scripts/make-look
   attenuation.gltf   like AttenuationTest: KHR_materials_volume blocks with attenuationColor and
                      thickness over a checker cloth, no camera or lights.
 
-Pure standard library: geometry is generated here, packed into one base64 buffer per file.
+Pure standard library: geometry is generated here, packed into one base64 buffer per file. The
+Gltf writer (normals, texture coordinates, PNG textures from png()) also serves
+feature_standins.py beside it.
 Usage: look_standins.py OUT_DIR
 """
 import base64
@@ -18,6 +20,7 @@ import math
 import os
 import struct
 import sys
+import zlib
 
 
 class Gltf:
@@ -35,26 +38,52 @@ class Gltf:
         self.bin += data
         return len(self.doc["bufferViews"]) - 1
 
-    def mesh(self, positions, triangles, material):
-        flat = [c for p in positions for c in p]
-        pos = self._view(struct.pack("<%df" % len(flat), *flat))
-        lo = [min(p[i] for p in positions) for i in range(3)]
-        hi = [max(p[i] for p in positions) for i in range(3)]
-        self.doc["accessors"].append({"bufferView": pos, "componentType": 5126,
-                                      "count": len(positions), "type": "VEC3",
-                                      "min": lo, "max": hi})
+    def _floats(self, rows, kind, bounds=False):
+        flat = [c for r in rows for c in r]
+        accessor = {"bufferView": self._view(struct.pack("<%df" % len(flat), *flat)),
+                    "componentType": 5126, "count": len(rows), "type": kind}
+        if bounds:
+            accessor["min"] = [min(r[i] for r in rows) for i in range(len(rows[0]))]
+            accessor["max"] = [max(r[i] for r in rows) for i in range(len(rows[0]))]
+        self.doc["accessors"].append(accessor)
+        return len(self.doc["accessors"]) - 1
+
+    def mesh(self, positions, triangles, material, normals=None, uvs=None):
+        """A mesh of one primitive; NORMAL and TEXCOORD_0 when given (one per position)."""
+        attributes = {"POSITION": self._floats(positions, "VEC3", bounds=True)}
+        if normals:
+            attributes["NORMAL"] = self._floats(normals, "VEC3")
+        if uvs:
+            attributes["TEXCOORD_0"] = self._floats(uvs, "VEC2")
         idx = [i for t in triangles for i in t]
         iv = self._view(struct.pack("<%dI" % len(idx), *idx))
         self.doc["accessors"].append({"bufferView": iv, "componentType": 5125,
                                       "count": len(idx), "type": "SCALAR"})
-        n = len(self.doc["accessors"])
         self.doc["meshes"].append({"primitives": [
-            {"attributes": {"POSITION": n - 2}, "indices": n - 1, "material": material}]})
+            {"attributes": attributes, "indices": len(self.doc["accessors"]) - 1,
+             "material": material}]})
         return len(self.doc["meshes"]) - 1
 
-    def material(self, color, roughness=0.6, **extensions):
-        m = {"pbrMetallicRoughness": {"baseColorFactor": list(color) + [1.0],
+    def texture(self, png_bytes):
+        """A texture of an embedded PNG (a data: URI), sampled linearly with repeat."""
+        self.doc.setdefault("images", []).append(
+            {"uri": "data:image/png;base64," + base64.b64encode(png_bytes).decode()})
+        if "samplers" not in self.doc:
+            self.doc["samplers"] = [{"magFilter": 9729, "minFilter": 9729}]
+        self.doc.setdefault("textures", []).append(
+            {"source": len(self.doc["images"]) - 1, "sampler": 0})
+        return len(self.doc["textures"]) - 1
+
+    def material(self, color, roughness=0.6, alpha=1.0, fields=None, **extensions):
+        """A dielectric PBR material; `fields` adds top-level material keys (alphaMode,
+        normalTexture, ...) and pbrMetallicRoughness keys under "pbr"."""
+        m = {"pbrMetallicRoughness": {"baseColorFactor": list(color) + [alpha],
                                       "metallicFactor": 0.0, "roughnessFactor": roughness}}
+        for key, value in (fields or {}).items():
+            if key == "pbr":
+                m["pbrMetallicRoughness"].update(value)
+            else:
+                m[key] = value
         if extensions:
             m["extensions"] = extensions
             for name in extensions:
@@ -84,6 +113,27 @@ class Gltf:
                                 base64.b64encode(bytes(self.bin)).decode()}]
         with open(path, "w") as f:
             json.dump(self.doc, f)
+
+
+def png(width, height, pixel):
+    """An 8-bit RGBA PNG of pixel(x, y) -> (r, g, b, a) bytes, rows from the top. The zlib
+    stream holds stored (uncompressed) deflate blocks, so the bytes are the same with every
+    zlib build (compressed streams differ between zlib versions)."""
+    raw = b"".join(b"\0" + bytes(c for x in range(width) for c in pixel(x, y))
+                   for y in range(height))
+    stream = bytearray(b"\x78\x01")
+    for start in range(0, max(len(raw), 1), 65535):
+        block = raw[start:start + 65535]
+        last = start + 65535 >= len(raw)
+        stream += struct.pack("<BHH", last, len(block), len(block) ^ 0xFFFF) + block
+    stream += struct.pack(">I", zlib.adler32(raw))
+
+    def chunk(kind, body):
+        return (struct.pack(">I", len(body)) + kind + body +
+                struct.pack(">I", zlib.crc32(kind + body)))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0,
+                                                              0, 0)) +
+            chunk(b"IDAT", bytes(stream)) + chunk(b"IEND", b""))
 
 
 def box(lo, hi):

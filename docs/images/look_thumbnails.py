@@ -1,15 +1,20 @@
 #!/usr/bin/env python3
-"""Regenerates the before/after thumbnails in docs/images (200x150 PNG) from the stand-ins of
-look_standins.py (beside it) and the bunny from experiments/assets/, and prints the fraction
-of pure-white pixels of each render, of the whole image and of the pixels that are not background (the
-lamp's was the issue's symptom). --size 640x480 measures at the default resolution.
+"""Regenerates the before/after thumbnails in docs/images (200x150 PNG) and prints the fraction
+of pure-white pixels of each render, of the whole image and of the pixels that are not
+background. --size 640x480 measures at the default resolution. Two sets:
 
-  before: a deepvox binary built from the code before the appearance work (commit c79d56e),
-          at its defaults;
-  after:  this tree's binary at its defaults (the bunny with --ground, a flag the old
-          binary lacks).
+  --set looks (the default): the stand-ins of look_standins.py (beside it) and the bunny from
+          experiments/assets/ (the lamp's clipping was the symptom of the appearance work);
+          before: a binary built from the code before that work (commit c79d56e), at its
+          defaults; after: this tree's binary at its defaults (the bunny with --ground, a
+          flag the old binary lacks);
+  --set samples: the sample-model stand-ins of feature_standins.py (TransmissionTest,
+          GlassVaseFlowers, DamagedHelmet, Duck), both binaries at their defaults (issue 39:
+          before = the code before it, after = this tree).
 
-Usage: look_thumbnails.py BEFORE_DEEPVOX AFTER_DEEPVOX [--size WxH] [--out docs/images]
+Usage: look_thumbnails.py BEFORE_DEEPVOX AFTER_DEEPVOX [--set looks|samples] [--size WxH]
+                          [--out docs/images]
+(scripts/make-look-thumbnails.sh runs it.)
 """
 import argparse
 import os
@@ -22,6 +27,7 @@ import zlib
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
+import feature_standins  # noqa: E402
 import look_standins  # noqa: E402
 
 
@@ -79,6 +85,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("before")
     parser.add_argument("after")
+    parser.add_argument("--set", default="looks", choices=("looks", "samples"))
     parser.add_argument("--size", default="200x150")
     parser.add_argument("--out", default=os.path.join(ROOT, "docs", "images"))
     args = parser.parse_args()
@@ -92,6 +99,10 @@ def main():
                   ("transmission", os.path.join(tmp, "transmission.gltf"), ()),
                   ("attenuation", os.path.join(tmp, "attenuation.gltf"), ()),
                   ("bunny", bunny, ("--ground",))]
+        if args.set == "samples":
+            feature_standins.write_all(feature_standins.SAMPLES, tmp)
+            scenes = [(name[:-len(".gltf")], os.path.join(tmp, name), ())
+                      for name in feature_standins.SAMPLES]
         for name, scene, after_flags in scenes:
             for when, binary, flags in (("before", args.before, ()),
                                         ("after", args.after, after_flags)):

@@ -40,29 +40,53 @@ Camera default_camera(const Aabb& bounds) {
   return c;
 }
 
-std::vector<Light> default_lights(const Aabb& bounds) {
-  const dvec3 centre = centre_of(bounds);
-  const double radius = bounding_radius(bounds);
+std::vector<Light> default_lights(const Aabb& casters, const Camera& camera,
+                                  std::optional<double> ground_y) {
+  const dvec3 centre = centre_of(casters);
+  const double radius = bounding_radius(casters);
+  const dvec3 from_centre = camera.position - centre;
+  const bool looks_down = std::hypot(from_centre.x, from_centre.z) <= 1e-9 * radius;
+  const double camera_azimuth =
+      looks_down ? kDefaultViewAzimuthDeg : std::atan2(from_centre.x, from_centre.z) / kDeg;
   Light key;
   key.type = LightType::spot;
-  const double distance = 4.0 * radius;
-  key.position = centre + distance * direction_from(kDefaultViewAzimuthDeg - 60.0, 55.0);
+  const double distance = kKeyDistanceRadii * radius;
+  key.position = centre + distance * direction_from(camera_azimuth + kKeyAzimuthFromCameraDeg,
+                                                    kKeyElevationDeg);
   key.direction = glm::normalize(centre - key.position);
-  // The cone reaches 2.5 radii from the centre at the light's distance: the model and the
-  // ground plane's lit area around it.
-  key.penumbra_deg = 12.0;
-  key.cutoff_deg = std::atan(2.5 * radius / distance) / kDeg + key.penumbra_deg;
   key.intensity = distance * distance;  // irradiance 1 at the centre
+  // The widest tangent from the axis over the points the core must light.
+  double widest = 0.0;
+  auto include = [&](const dvec3& p) {
+    const dvec3 d = p - key.position;
+    const double along = glm::dot(d, key.direction);
+    if (along > 0.0) widest = std::max(widest, glm::length(d - along * key.direction) / along);
+  };
+  const Aabb box = casters.empty() ? Aabb{centre - dvec3(radius), centre + dvec3(radius)} : casters;
+  for (int corner = 0; corner < 8; ++corner) {
+    const dvec3 c(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
+                  corner & 4 ? box.hi.z : box.lo.z);
+    include(c);
+    // The corner's shadow on the ground (the key stands above the casters' bounds).
+    if (ground_y && c.y < key.position.y) {
+      const double t = (key.position.y - *ground_y) / (key.position.y - c.y);
+      include(key.position + t * (c - key.position));
+    }
+  }
+  // 3 % beyond the model; 30 % of lit ground around the model and its shadow.
+  const double core_deg = std::atan(widest * (ground_y ? 1.3 : 1.03)) / kDeg;
+  key.penumbra_deg = std::max(1.0, 0.1 * core_deg);
+  key.cutoff_deg = std::min(core_deg + key.penumbra_deg, 89.0);
   Light fill;
   fill.type = LightType::directional;
-  fill.direction = -direction_from(kDefaultViewAzimuthDeg, kDefaultViewElevationDeg);
+  fill.direction = glm::normalize(camera.target - camera.position);
   fill.intensity = 0.25;
   return {key, fill};
 }
 
-void add_ground_plane(Scene& scene) {
+std::optional<double> add_ground_plane(Scene& scene) {
   for (const Object& o : scene.objects)
-    if (o.name == "ground") return;
+    if (o.name == "ground") return std::nullopt;
   const Aabb bounds = world_bounds(scene);
   const dvec3 centre = centre_of(bounds);
   const double half = 3.0 * bounding_radius(bounds);
@@ -82,6 +106,17 @@ void add_ground_plane(Scene& scene) {
   ground.material.specular = 0.0;
   scene.meshes.push_back(std::move(mesh));
   scene.objects.push_back(std::move(ground));
+  return y;
+}
+
+bool stage_scene(Scene& scene, const StagingOptions& options) {
+  const bool staged = scene.lights.empty();
+  const bool ground =
+      options.ground == GroundPlane::on || (options.ground == GroundPlane::staged && staged);
+  const Aabb casters = world_bounds(scene);
+  const std::optional<double> ground_y = ground ? add_ground_plane(scene) : std::nullopt;
+  if (staged) scene.lights = default_lights(casters, scene.camera, ground_y);
+  return staged;
 }
 
 }  // namespace dv

@@ -27,6 +27,11 @@ DV_HD inline double apply_tone_curve(ToneCurve curve, double x) {
   return x;
 }
 
+// The curve render's and view's PNGs go through unless --tonemap says otherwise: aces, which
+// keeps shading up to about 5.7 (byte 255 from there; a white model under the staged key light
+// reaches about 2), where `none` clips every value above 1 to white.
+inline constexpr ToneCurve kDefaultToneCurve = ToneCurve::aces;
+
 ToneCurve parse_tone_curve(const std::string& name);  // none | reinhard | aces
 const char* to_string(ToneCurve curve);
 

@@ -843,11 +843,10 @@ Scene Importer::run() {
   for (int mesh : with_interior) {
     if (is_closed(scene_.meshes[size_t(mesh)])) orient_outward(scene_.meshes[size_t(mesh)]);
   }
-  if (scene_.lights.empty() && options_.default_lights) {
-    scene_.lights = default_lights(world_bounds(scene_));
-    log_info(path_ + ": no lights in the file; added the default key and fill lights");
-  }
   finish_camera();
+  if (options_.default_lights && stage_scene(scene_, options_.staging))
+    log_info(path_ + ": no lights in the file; added the default key and fill lights" +
+             (scene_.objects.back().name == "ground" ? " and a ground plane" : ""));
   scene_.source = path_;
   validate_scene(scene_);
   return std::move(scene_);

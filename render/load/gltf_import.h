@@ -60,10 +60,13 @@
 //     surface to 400 / 683 = 0.59. The original value and unit are kept for `info`.
 //   - range (point and spot, 0 = none) multiplies the 1/d^2 falloff by the spec's window
 //     clamp(1 - (d / range)^4, 0, 1).
-//   - No light at all: dv::default_lights (engine/scene/default_staging.h): a key spot light from
-//     above and beside the default view, irradiance 1 at the bounds' centre, and a dim fill
-//     (log_info); not when GltfImportOptions::default_lights is false (a JSON scene that
-//     imports the file adds its own).
+//   - No light at all: dv::stage_scene (engine/scene/default_staging.h) once the camera is
+//     set: a ground plane under the model when GltfImportOptions::staging asks for one,
+//     a key spot light from above and to the left of the camera (the file's camera, else the
+//     default one), irradiance 1 at the bounds' centre, its cone fitted to the model and its
+//     shadow, and a dim fill along the view (log_info); not when
+//     GltfImportOptions::default_lights is false (a JSON scene that imports the file stages it
+//     itself).
 // Materials (one per primitive; no material means glTF's default white material)
 //   - color = baseColorFactor rgb; diffuse = 0.8; ambient stays 0.1.
 //   - Phong from PBR roughness r: specular = 0.2 * (1 - r) + 0.04 (a dielectric's 4 % plus a
@@ -107,7 +110,7 @@
 
 #include <string>
 
-#include "engine/scene/scene.h"
+#include "engine/scene/default_staging.h"
 
 namespace dv {
 
@@ -119,7 +122,10 @@ inline constexpr double kLumensPerWatt = 683.0;
 double photometric_to_radiometric(double photometric);
 
 struct GltfImportOptions {
-  bool default_lights = true;  // add dv::default_lights when the file has no light
+  bool default_lights = true;  // stage the scene (dv::stage_scene) when the file has no light
+  // The staged scene's ground plane: none here; load_scene passes the command's choice (a
+  // ground by default).
+  StagingOptions staging{.ground = GroundPlane::off};
 };
 
 // Loads a .gltf or .glb file as described above; throws InputError naming the file.

@@ -118,6 +118,7 @@ struct Loader {
   Scene& scene;
   fs::path dir;
   std::string assets;
+  StagingOptions staging;
   std::map<std::string, int> mesh_files;  // path -> mesh index (loaded once)
   std::map<std::string, int> volume_names;
 
@@ -288,24 +289,31 @@ struct Loader {
       int i = 0;
       for (JsonReader& o : r.children("objects")) read_object(o, i++);
     }
-    const bool ground = r.boolean("ground", false);
+    // "ground": true|false decides unless the command line does (--ground, --no-ground);
+    // absent: a ground when the lights are staged.
+    StagingOptions staged = staging;
+    if (r.has("ground")) {
+      const GroundPlane file_choice =
+          r.boolean("ground", false) ? GroundPlane::on : GroundPlane::off;
+      if (staging.ground == GroundPlane::staged) staged.ground = file_choice;
+    }
     r.finish();
     if (scene.objects.empty()) throw InputError(file, "scene has no objects");
     if (scene.lights.empty() && !imports) throw InputError(file, "scene has no lights");
-    if (scene.lights.empty()) scene.lights = default_lights(world_bounds(scene));
-    if (ground) add_ground_plane(scene);
+    stage_scene(scene, staged);
   }
 };
 
 }  // namespace
 
-Scene load_scene(const std::string& path, const std::string& assets_dir) {
+Scene load_scene(const std::string& path, const StagingOptions& staging,
+                 const std::string& assets_dir) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path, "file not found");
   Scene scene;
   scene.source = path;
   if (is_gltf_file(path)) {
-    scene = load_gltf_scene(path);
+    scene = load_gltf_scene(path, {.staging = staging});
   } else if (is_mesh_file(path)) {
     TriangleMesh mesh = load_mesh_file(path);
     scene.meshes.push_back(std::move(mesh));
@@ -313,13 +321,13 @@ Scene load_scene(const std::string& path, const std::string& assets_dir) {
     o.name = fs::path(path).stem().string();
     o.mesh = 0;
     scene.objects.push_back(o);
-    const Aabb b = world_bounds(scene);
-    scene.camera = default_camera(b);
-    scene.lights = default_lights(b);
+    scene.camera = default_camera(world_bounds(scene));
+    stage_scene(scene, staging);
   } else if (lowercase_extension(path) == ".json") {
     Loader loader{scene,
                   fs::path(path).parent_path(),
                   assets_dir.empty() ? find_assets_dir() : assets_dir,
+                  staging,
                   {},
                   {}};
     loader.read(parse_json_file(path), path);

@@ -221,6 +221,12 @@ TEST_F(Cli, AutoShadowsAreTheDefaultAndExplainTheirPlan) {
             std::string::npos)
       << planned.output;
   EXPECT_NE(planned.output.find("map built (no map yet)"), std::string::npos) << planned.output;
+  EXPECT_NE(planned.output.find("effects in the scene and what auto shadows do with them:\n"
+                                "  1 translucent caster (0 < alpha < 1): kept as dsm keeps it"),
+            std::string::npos)
+      << planned.output;
+  EXPECT_NE(planned.output.find("  1 constant medium: kept as dsm keeps it"), std::string::npos)
+      << planned.output;
   write("points.csv", "x,y,z\n0,0,0\n");
   const CommandResult forced =
       run("probe " + scene + " --points " + path("points.csv") + " --out " + path("t.csv") +
@@ -229,6 +235,12 @@ TEST_F(Cli, AutoShadowsAreTheDefaultAndExplainTheirPlan) {
   EXPECT_NE(forced.output.find("shadow method dsm was named, so it runs for every light"),
             std::string::npos)
       << forced.output;
+  const CommandResult mapped = run("probe " + scene + " --points " + path("points.csv") +
+                                   " --out " + path("m.csv") + " --shadows shadowmap --explain");
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.output;
+  EXPECT_NE(mapped.output.find("  1 constant medium: dropped: only its boundary casts, opaque"),
+            std::string::npos)
+      << mapped.output;
 }
 
 // kSmallScene with a floor whose edges lie outside the view: the thin front face of a small
@@ -355,14 +367,15 @@ TEST_F(Cli, DsmExportsDeepExrHeatmapAndStats) {
   expect_error("dsm " + path("none.json") + " --heatmap " + path("h.png"), {"none.json"});
 }
 
-TEST_F(Cli, MeshFileIsASceneOfOneObject) {
+TEST_F(Cli, MeshFileIsASceneOfOneObjectStagedOnAGround) {
   const std::string mesh =
       test::source_dir() + "/experiments/assets/meshes/stanford-bunny-lowres.obj";
   const CommandResult r = run("info " + mesh + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(r.output);
-  EXPECT_EQ(j["objects"].size(), 1u);
-  EXPECT_EQ(j["triangles"].get<int>(), 3674);
+  ASSERT_EQ(j["objects"].size(), 2u);  // the model and the staged ground
+  EXPECT_EQ(j["objects"][1]["name"], "ground");
+  EXPECT_EQ(j["triangles"].get<int>(), 3674 + 2);
   EXPECT_EQ(j["lights"].size(), 2u);  // the default key and fill lights
 }
 
@@ -440,6 +453,23 @@ TEST_F(Cli, ExposureAndToneCurveChangePngsOnlyAndGroundAddsAPlane) {
   ASSERT_EQ(g.exit_code, 0) << g.output;
   std::ifstream gin(path("g.json"));
   EXPECT_EQ(nlohmann::json::parse(gin)["triangles"].get<int>(), 3674 + 2);
+  // A staged mesh gets the ground without --ground; --no-ground drops it.
+  const std::string small = " --backend cpu --width 32 --height 24 --out ";
+  ASSERT_EQ(run("render " + mesh + small + path("d.png") + " --stats " + path("d.json")).exit_code,
+            0);
+  std::ifstream din(path("d.json"));
+  EXPECT_EQ(nlohmann::json::parse(din)["triangles"].get<int>(), 3674 + 2);
+  ASSERT_EQ(run("render " + mesh + small + path("n.png") + " --no-ground --stats " + path("n.json"))
+                .exit_code,
+            0);
+  std::ifstream nin(path("n.json"));
+  EXPECT_EQ(nlohmann::json::parse(nin)["triangles"].get<int>(), 3674);
+  EXPECT_EQ(run("render " + mesh + small + path("x.png") + " --ground --no-ground").exit_code, 2);
+  // The default tone curve is aces (no clipping of a white model under the staged key).
+  ASSERT_EQ(run("render " + mesh + small + path("a.png") + " --tonemap aces").exit_code, 0);
+  EXPECT_EQ(file_bytes(path("d.png")), file_bytes(path("a.png")));
+  ASSERT_EQ(run("render " + mesh + small + path("c.png") + " --tonemap none").exit_code, 0);
+  EXPECT_NE(file_bytes(path("d.png")), file_bytes(path("c.png")));
   const CommandResult bad = run(base + path("x.png") + " --tonemap filmic");
   EXPECT_NE(bad.exit_code, 0) << bad.output;  // CLI11 rejects it, naming the value
   EXPECT_LT(bad.exit_code, 128) << bad.output;

@@ -66,7 +66,9 @@ TEST(ViewerErrorView, EqualsAnIndependentProbeOfTheVisibleSurface) {
   state.key("E");
   state.update();
   EXPECT_EQ(state.error_view(), nullptr);
-  EXPECT_EQ(state.display().rgb, state.image().rgb);
+  // The rendered image through the display transform (render's default tone curve, aces).
+  EXPECT_EQ(state.display().rgb,
+            apply_display_transform(state.image(), state.display_transform()).rgb);
 }
 
 TEST(ViewerErrorView, ReferenceAgainstItselfIsZero) {

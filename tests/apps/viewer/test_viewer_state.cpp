@@ -74,6 +74,11 @@ TEST(ViewerState, ImageIsRenderRasterOfTheMovedCamera) {
 
   state.key("R");
   EXPECT_FALSE(contains(state.render_command("o.png"), "--view"));
+  EXPECT_FALSE(contains(state.render_command("o.png"), "--tonemap"));  // render's default
+  EXPECT_FALSE(contains(state.render_command("o.png"), "ground"));
+  ViewerSetup bare = small_dsm_setup();
+  bare.staging.ground = GroundPlane::off;
+  EXPECT_TRUE(contains(ViewerState(bare).render_command("o.png"), " --no-ground"));
 }
 
 TEST(ViewerState, CoarseImageIsRefinedByTheNextFullUpdate) {

@@ -12,11 +12,14 @@
 #include <vector>
 
 #include "engine/raster/camera_rays.h"
+#include "engine/raster/light_faces.h"
 #include "engine/scene/default_staging.h"
+#include "render/frame/raster_render.h"
 #include "render/frame/shading.h"
 #include "render/io/display_encoding.h"
 #include "render/io/image.h"
 #include "render/io/tone_mapping.h"
+#include "strategies/shadow/shadow_method.h"
 #include "tests/support/scene_builder.h"
 #include "tests/support/scratch_dir.h"
 
@@ -187,7 +190,7 @@ TEST(DefaultStaging, ThreeQuarterViewSeesTheWholeBounds) {
 TEST(DefaultStaging, KeyLightIsAboveAndBesideTheCameraAndCoversTheBounds) {
   const Aabb box{{4, 0, -1}, {5, 3, 0}};
   const Camera cam = default_camera(box);
-  const std::vector<Light> lights = default_lights(box);
+  const std::vector<Light> lights = default_lights(box, cam);
   ASSERT_EQ(lights.size(), 2u);
   const Light& key = lights[0];
   ASSERT_EQ(key.type, LightType::spot);
@@ -206,14 +209,78 @@ TEST(DefaultStaging, KeyLightIsAboveAndBesideTheCameraAndCoversTheBounds) {
   EXPECT_GT(glm::dot(-lights[1].direction, to_cam), 0.999);
 }
 
+// Texels of the key light's map (1024 x 1024, the shadow map's default) across the model: the
+// smaller of the extents of its projected corners along the map's two axes.
+double key_map_texels_across(const Light& key, const Aabb& model, const Aabb& casters) {
+  constexpr int kRes = 1024;
+  const std::vector<ShadowFace> faces =
+      light_map_faces(make_light_view(key), casters, glm::length(casters.extent()), kRes);
+  EXPECT_EQ(faces.size(), 1u);
+  double lo_u = 1e30, hi_u = -1e30, lo_v = 1e30, hi_v = -1e30;
+  for (const dvec3& c : corners(model)) {
+    FacePoint p;
+    EXPECT_TRUE(project_to_face(faces[0], kRes, c, p));
+    EXPECT_TRUE(p.u >= 0.0 && p.u <= kRes - 1 && p.v >= 0.0 && p.v <= kRes - 1);  // on the map
+    lo_u = std::min(lo_u, p.u), hi_u = std::max(hi_u, p.u);
+    lo_v = std::min(lo_v, p.v), hi_v = std::max(hi_v, p.v);
+  }
+  return std::min(hi_u - lo_u, hi_v - lo_v);
+}
+
+TEST(DefaultStaging, KeyConeSpendsItsMapOnTheCastersAndTheirShadow) {
+  // Before the cone was fitted it reached 2.5 radii around the model whether or not there was a
+  // ground (44 degrees): 231 texels across the cube, 130 across the tall box's narrow side.
+  struct Case {
+    Aabb box;
+    double without_ground, with_ground;  // texels across at least
+  };
+  for (const Case& c : {Case{{{-0.5, 0, -0.5}, {0.5, 1, 0.5}}, 700.0, 550.0},
+                        Case{{{4, 0, -1}, {5, 3, 0}}, 400.0, 300.0}}) {
+    SceneBuilder b;
+    b.add(make_box(c.box.lo, c.box.hi));
+    b.scene.camera = default_camera(c.box);
+    Scene bare = b.scene;
+    ASSERT_TRUE(stage_scene(bare, {.ground = GroundPlane::off}));
+    ASSERT_EQ(bare.objects.size(), 1u);
+    EXPECT_GT(key_map_texels_across(bare.lights[0], c.box, c.box), c.without_ground);
+    ASSERT_TRUE(stage_scene(b.scene, {}));
+    ASSERT_EQ(b.scene.objects.size(), 2u);
+    EXPECT_GT(key_map_texels_across(b.scene.lights[0], c.box, world_bounds(b.scene)),
+              c.with_ground);
+    // The ground's cone is wider: it also lights the model's shadow on the ground (checked by
+    // the next tests), so its map spends fewer texels on the model.
+    EXPECT_GT(b.scene.lights[0].cutoff_deg, bare.lights[0].cutoff_deg);
+  }
+}
+
+TEST(DefaultStaging, StagedLightsStandOnTheCamerasSide) {
+  const Aabb box{{-0.5, 0, -0.5}, {0.5, 1, 0.5}};
+  for (double azimuth : {35.0, 180.0, -120.0}) {  // default view, from behind, from the left
+    Camera cam = default_camera(box);
+    const dvec3 offset = cam.position - cam.target;
+    const double a = azimuth * kDeg, horizontal = std::hypot(offset.x, offset.z);
+    cam.position = cam.target + dvec3(horizontal * std::sin(a), offset.y, horizontal * std::cos(a));
+    const std::vector<Light> lights = default_lights(box, cam);
+    const dvec3 to_key = lights[0].position - box.center();
+    const dvec3 to_cam = cam.position - box.center();
+    // Horizontally 60 degrees round from the camera: on its side of the model.
+    const double cos_apart = glm::dot(glm::normalize(dvec3(to_key.x, 0, to_key.z)),
+                                      glm::normalize(dvec3(to_cam.x, 0, to_cam.z)));
+    EXPECT_NEAR(cos_apart, 0.5, 1e-9) << azimuth;
+    EXPECT_GT(
+        glm::dot(glm::normalize(lights[1].direction), glm::normalize(cam.target - cam.position)),
+        0.999999)
+        << azimuth;  // the fill shines along the view
+  }
+}
+
 TEST(DefaultStaging, GroundPlaneLiesBelowTheBoundsAndCatchesTheKeyLightsShadow) {
   SceneBuilder b;
   b.add(make_box({-0.5, 0.0, -0.5}, {0.5, 1.0, 0.5}));
   const Aabb box = world_bounds(b.scene);
-  b.scene.lights = default_lights(box);
   b.scene.camera = default_camera(box);
-  add_ground_plane(b.scene);
-  add_ground_plane(b.scene);  // once only
+  EXPECT_TRUE(stage_scene(b.scene, {}));
+  EXPECT_FALSE(add_ground_plane(b.scene));  // once only
   ASSERT_EQ(b.scene.objects.size(), 2u);
   const Object& ground = b.scene.objects[1];
   EXPECT_EQ(ground.name, "ground");
@@ -225,20 +292,66 @@ TEST(DefaultStaging, GroundPlaneLiesBelowTheBoundsAndCatchesTheKeyLightsShadow) 
   EXPECT_LT(ground_box.lo.x, box.lo.x - 2.0);
   EXPECT_GT(ground_box.hi.z, box.hi.z + 2.0);
   const SceneData data = b.build();
-  // The key light's ray through the box's centre meets the ground in the box's shadow, a
-  // point the camera sees and the cone lights.
+  // The key light's ray through the box's centre and through its far top edge meet the ground
+  // in the box's shadow: points the camera sees and the cone lights at full intensity.
   const Light& key = b.scene.lights[0];
-  const dvec3 through = glm::normalize(box.center() - key.position);
+  const LightView& key_view = data.view().lights[0];
   const double y = b.scene.meshes[ground.mesh].positions[0].y;
-  const dvec3 shadowed = key.position + through * ((y - key.position.y) / through.y);
-  EXPECT_EQ(test::oracle_at(data, 0, shadowed), 0.0);
-  EXPECT_GT(light_arrival(data.view().lights[0], shadowed).intensity, 0.0);
-  EXPECT_TRUE(in_view(b.scene.camera, shadowed));
-  // Ground on the light's side of the box is lit.
-  const dvec3 towards_key = glm::normalize(dvec3(-through.x, 0.0, -through.z));
-  const dvec3 lit = dvec3(box.center().x, y, box.center().z) + 1.2 * towards_key;
+  const dvec3 through = glm::normalize(box.center() - key.position);
+  const dvec3 away = glm::normalize(dvec3(through.x, 0.0, through.z));
+  for (const dvec3& caster : {box.center(), box.center() + dvec3(0, 0.5, 0) + 0.45 * away}) {
+    const dvec3 ray = glm::normalize(caster - key.position);
+    const dvec3 shadowed = key.position + ray * ((y - key.position.y) / ray.y);
+    EXPECT_EQ(test::oracle_at(data, 0, shadowed), 0.0);
+    EXPECT_NEAR(light_arrival(key_view, shadowed).intensity *
+                    glm::dot(shadowed - key.position, shadowed - key.position) / key.intensity,
+                1.0, 1e-12);  // in the cone's core
+    EXPECT_TRUE(in_view(b.scene.camera, shadowed));
+  }
+  // Ground on the light's side of the box, just beyond it, is lit.
+  const dvec3 lit = dvec3(box.center().x, y, box.center().z) - 0.6 * away;
   EXPECT_EQ(test::oracle_at(data, 0, lit), 1.0);
-  EXPECT_GT(light_arrival(data.view().lights[0], lit).intensity, 0.5);
+  EXPECT_GT(light_arrival(key_view, lit).intensity, 0.5);
+  // Without a ground there is nothing to cast the shadow on.
+  SceneBuilder bare;
+  bare.add(make_box({-0.5, 0.0, -0.5}, {0.5, 1.0, 0.5}));
+  bare.scene.camera = b.scene.camera;
+  EXPECT_TRUE(stage_scene(bare.scene, {.ground = GroundPlane::off}));
+  EXPECT_EQ(bare.scene.objects.size(), 1u);
+  // A scene with its own lights gets a ground only when asked.
+  Scene lit_scene = bare.scene;
+  EXPECT_FALSE(stage_scene(lit_scene, {}));
+  EXPECT_EQ(lit_scene.objects.size(), 1u);
+  EXPECT_FALSE(stage_scene(lit_scene, {.ground = GroundPlane::on}));
+  EXPECT_EQ(lit_scene.objects.size(), 2u);
+  EXPECT_EQ(lit_scene.lights.size(), 2u);  // the lights staged before, untouched
+}
+
+TEST(DefaultStaging, WhiteModelUnderTheStagedKeyKeepsItsShadingThroughTheDefaultToneCurve) {
+  SceneBuilder b;
+  Object& model = b.add(make_icosphere(0.5, 3));
+  model.material.color = dvec3(1.0);  // glTF's default white, glossy (roughness 0)
+  model.material.specular = 0.24;
+  model.material.shininess = 512.0;
+  b.scene.camera = default_camera(world_bounds(b.scene));
+  b.scene.camera.width = 160;
+  b.scene.camera.height = 120;
+  ASSERT_TRUE(stage_scene(b.scene, {}));
+  const SceneData data = b.build();
+  auto method = shadow_registry().create("shadowmap");
+  const Image linear =
+      render_raster(Backend::cpu, data, b.scene.camera, *method, b.scene.background).render.image;
+  const auto white_channels = [&](ToneCurve curve) {
+    int n = 0;
+    for (unsigned char byte : srgb_bytes(linear, {0.0, curve})) n += byte == 255;
+    return n;
+  };
+  EXPECT_EQ(white_channels(kDefaultToneCurve), 0);
+  EXPECT_GT(white_channels(ToneCurve::none), 300);  // what the old default clipped
+  // The linear values (an EXR's) are the renderer's, untouched by any curve.
+  float brightest = 0.0f;
+  for (float v : linear.rgb) brightest = std::max(brightest, v);
+  EXPECT_GT(brightest, 1.0f);
 }
 
 }  // namespace

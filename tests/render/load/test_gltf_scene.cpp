@@ -10,6 +10,7 @@
 #include "engine/scene/default_staging.h"
 #include "engine/scene/mesh_topology.h"
 #include "render/load/gltf_import.h"
+#include "render/load/scene_loader.h"
 #include "tests/render/load/gltf_builder.h"
 
 namespace dv {
@@ -153,6 +154,30 @@ TEST(GltfScene, WithoutCameraOrLightsTheDefaultStagingFramesTheScene) {
   GltfImportOptions no_defaults;
   no_defaults.default_lights = false;
   EXPECT_TRUE(load_gltf_scene(dir.file("bare.gltf"), no_defaults).lights.empty());
+}
+
+TEST(GltfScene, StagedLightsStandOnTheSideOfTheFilesCamera) {
+  ScratchDir dir;
+  GltfBuilder b;
+  b.add_node({{"mesh", test::add_box_mesh(b)}});
+  b.doc["cameras"] =
+      json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}}});
+  // Behind the box (-Z), turned 180 degrees about +Y: it looks along +Z at the box, which the
+  // default view (from +Z) would light from the front, its back in the dark.
+  b.add_node({{"camera", 0}, {"translation", {0, 1, -6}}, {"rotation", {0, 1, 0, 0}}});
+  const Scene scene = load_gltf_scene(b.write_gltf(dir.file("behind.gltf")));
+  ASSERT_EQ(scene.lights.size(), 2u);
+  const dvec3 centre = world_bounds(scene).center();
+  const dvec3 to_key = scene.lights[0].position - centre;
+  const dvec3 to_cam = scene.camera.position - centre;
+  EXPECT_GT(glm::dot(dvec3(to_key.x, 0, to_key.z), dvec3(to_cam.x, 0, to_cam.z)), 0.0);
+  EXPECT_LT(to_key.z, 0.0);                                // behind the box, with the camera
+  expect_near(scene.lights[1].direction, dvec3(0, 0, 1));  // the fill along the view
+  // load_scene adds the staged ground under it.
+  const Scene staged = load_scene(dir.file("behind.gltf"));
+  ASSERT_EQ(staged.objects.size(), 2u);
+  EXPECT_EQ(staged.objects[1].name, "ground");
+  EXPECT_EQ(load_scene(dir.file("behind.gltf"), {.ground = GroundPlane::off}).objects.size(), 1u);
 }
 
 TEST(GltfScene, PunctualLightsMapToDeepvoxLights) {
