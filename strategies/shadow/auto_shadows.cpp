@@ -152,8 +152,8 @@ class AutoShadows final : public ShadowMethod {
     if (p.method == PlannedMethod::shadowmap) {
       const LightMapLayout layout = light_map_layout(mapped_lights(scene.host_lights(), light),
                                                      s.bounds, s.diagonal, depth_.res);
-      slot.depth =
-          render_depth_maps(backend, s, layout, depth_.res, DepthCasters::surfaces, &p.reach.faces);
+      slot.depth = render_depth_maps(backend, scene, layout, depth_.res, DepthCasters::surfaces,
+                                     &p.reach.faces);
     } else {
       DsmSettings settings = dsm_;
       settings.light = light;

@@ -14,8 +14,10 @@
 #include "cuda/pass_timer.h"
 #include "engine/raster/tile_raster.h"
 #include "engine/scene/ray_query.h"
+#include "engine/scene/texture_sampling.h"
 #include "strategies/shadow/depth_maps.h"
 #include "strategies/shadow/shadow_method.h"
+#include "strategies/shadow/translucent_casters.h"
 
 namespace dv {
 
@@ -59,11 +61,11 @@ void focus_face(ShadowFace& face, const Aabb& region) {
   face.texel_size *= 0.5 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
 }
 
-// Nearest caster depth per texel of one face.
+// Nearest caster depth per texel of one face; `medium_alphas` per object: the opacity of its
+// interior medium across it (depth_maps.h).
 void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face,
-                       DepthCasters casters, View<float> depths) {
-  const double min_alpha = casters == DepthCasters::opaque ? 1.0 : 0.0;
-  const bool inclusive = casters == DepthCasters::opaque;
+                       DepthCasters casters, View<const double> medium_alphas, View<float> depths) {
+  const double min_alpha = casters == DepthCasters::opaque ? 1.0 : kDepthMapOpaqueAlpha;
   const TileLists lists = rasterize_tiles(backend, s, face.projection);
   if (lists.stats.overflow)
     throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
@@ -77,11 +79,12 @@ void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& fa
         for_each_fragment(tiles, x, y, [&](uint32_t tri) {
           double t;
           bool entering;
-          const double alpha = s.objects[s.triangle_object[tri]].alpha;
-          if ((inclusive ? alpha < min_alpha : alpha <= min_alpha) ||
-              !triangle_plane_hit(s, tri, ray.origin, ray.direction, t, entering))
-            return;
-          nearest = min_value(nearest, shadow_depth(face, ray.origin + ray.direction * t));
+          if (!triangle_plane_hit(s, tri, ray.origin, ray.direction, t, entering)) return;
+          const dvec3 hit = ray.origin + ray.direction * t;
+          const double alpha =
+              max_value(surface_alpha(s, tri, hit), medium_alphas[s.triangle_object[tri]]);
+          if (alpha < min_alpha) return;
+          nearest = min_value(nearest, shadow_depth(face, hit));
         });
         depths[face.offset + i] = nearest >= 1e300 ? INFINITY : float(nearest);
       });
@@ -137,7 +140,7 @@ class ShadowMapMethod final : public ShadowMethod {
       for (const ShadowLight& l : layout.lights)
         if (l.face_count == 1)
           focus_face(layout.faces[l.first_face], visible_region(*focus_on, s.bounds));
-    maps_ = render_depth_maps(backend, s, layout, params_.res, DepthCasters::surfaces);
+    maps_ = render_depth_maps(backend, scene, layout, params_.res, DepthCasters::surfaces);
     source_ = maps_.source(s, params_);
     prepared_for_ = &scene;
     backend_ = backend;
@@ -195,9 +198,13 @@ ShadowMapSource DepthMaps::source(const SceneView& s, const DepthMapParams& para
           res,      params.pcf,          params.bias_for(s), params.slope};
 }
 
-DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapLayout& layout,
+DepthMaps render_depth_maps(Backend backend, const SceneData& scene, const LightMapLayout& layout,
                             int res, DepthCasters casters, const std::vector<uint8_t>* rendered) {
+  const SceneView& s = scene.view();
   const Memory memory = memory_of(backend);
+  std::vector<double> medium = medium_crossing_alphas(scene);
+  for (double& a : medium) a = 1.0 - (1.0 - a) * (1.0 - a);  // entering and leaving
+  const Buffer<double> medium_alphas(memory, medium, "depth map medium opacities");
   DepthMaps maps;
   maps.res = res;
   maps.depths = Buffer<float>(memory, layout.texel_count(), "shadow map depths");
@@ -205,7 +212,8 @@ DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapL
     if (rendered && !(*rendered)[i])
       clear_depth_face(backend, layout.faces[i], maps.depths.view());
     else
-      render_depth_face(backend, s, layout.faces[i], casters, maps.depths.view());
+      render_depth_face(backend, s, layout.faces[i], casters, medium_alphas.const_view(),
+                        maps.depths.view());
   }
   maps.faces = Buffer<ShadowFace>(memory, layout.faces, "shadow map faces");
   maps.lights = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");
@@ -213,7 +221,9 @@ DepthMaps render_depth_maps(Backend backend, const SceneView& s, const LightMapL
 }
 
 void register_shadow_maps(Registry<ShadowMethod>& registry) {
-  registry.add("shadowmap", "depth shadow maps from the tile rasterizer, PCF",
+  registry.add("shadowmap",
+               "depth shadow maps from the tile rasterizer, PCF; a surface casts where its alpha "
+               "(texture coverage; an interior medium's opacity across the object) is >= 0.5",
                join(depth_map_param_table(),
                     {integer_choice_param("focus", 0, {0, 1},
                                           "1: fit spot and directional maps to the camera's view "
