@@ -35,10 +35,16 @@ struct DepthMapParams {
 // The four parameters of DepthMapParams, as the methods that render depth maps declare them.
 const ParamTable& depth_map_param_table();
 
+// A depth map holds one caster per texel, so it decides per fragment whether the surface there
+// is opaque: by its caster opacity, the larger of the surface's alpha at that point (a texture's
+// coverage there) and, for an object with an interior medium, the opacity of the medium across
+// the object (1 - exp(-sigma d), translucent_casters.h), so media boundaries cast.
+inline constexpr double kDepthMapOpaqueAlpha = 0.5;
+
 // Which surfaces cast into a depth map.
 enum class DepthCasters {
-  surfaces,  // every surface with alpha > 0 (the shadowmap method)
-  opaque,    // only alpha >= 1
+  surfaces,  // caster opacity >= kDepthMapOpaqueAlpha (shadowmap, auto's opaque lights)
+  opaque,    // only caster opacity >= 1 (below it: the slicemap's translucent casters)
 };
 // Glass (transmission > 0) that a depth map leaves out goes into its glass layer.
 

@@ -102,8 +102,8 @@ LightReach light_reach(const SceneData& scene, int light) {
       ++r.volumes;
     else if (o.interior == InteriorKind::constant)
       ++r.media;
-    else if (o.alpha >= 1.0)
-      ++r.opaque;
+    else if (o.alpha >= 1.0 && !(o.texture >= 0 && o.alpha_mode == AlphaMode::blend))
+      ++r.opaque;  // a MASK texture leaves it opaque where covered: a depth map cuts it per texel
     else
       ++r.translucent;
     for (size_t f = 0; f < r.faces.size(); ++f)

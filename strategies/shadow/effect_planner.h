@@ -5,7 +5,8 @@
 //     volume) whose bounding box meets its cone (spot) and range window (spot, omni; directional:
 //     everything);
 //   - the method: none when it reaches no caster (no map, no lookups), `shadowmap` (one depth
-//     layer) when every caster is opaque (alpha >= 1, no interior), `dsm` otherwise, with volume
+//     layer) when every caster is opaque (alpha >= 1, no interior, no BLEND texture; a MASK
+//     texture's cut-outs are cut per texel by the depth map), `dsm` otherwise, with volume
 //     sampling in generation only when a volume is among its casters;
 //   - omni lights: the cube faces whose pyramid a caster's box may enter (a conservative test);
 //   - a content key of everything its map depends on (light geometry, the scene bounds the faces

@@ -14,8 +14,10 @@
 #include "cuda/pass_timer.h"
 #include "engine/raster/tile_raster.h"
 #include "engine/scene/ray_query.h"
+#include "engine/scene/texture_sampling.h"
 #include "strategies/shadow/depth_maps.h"
 #include "strategies/shadow/shadow_method.h"
+#include "strategies/shadow/translucent_casters.h"
 
 namespace dv {
 
@@ -59,21 +61,20 @@ void focus_face(ShadowFace& face, const Aabb& region) {
   face.texel_size *= 0.5 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
 }
 
-// Whether a surface goes into the depth map for `casters`.
-DV_HD inline bool depth_caster(const ObjectView& o, DepthCasters casters) {
-  return casters == DepthCasters::opaque ? o.alpha >= 1.0 : o.alpha > 0.0;
+// Whether a surface goes into the glass layer (when a fragment of it is not opaque enough for
+// the depth map).
+DV_HD inline bool glass_caster(const ObjectView& o) {
+  return o.transmission > 0.0;
 }
 
-// Whether a surface goes into the glass layer: glass the depth map leaves out.
-DV_HD inline bool glass_caster(const ObjectView& o, DepthCasters casters) {
-  return o.transmission > 0.0 && !depth_caster(o, casters);
-}
-
-// Nearest caster depth per texel of one face; with a glass layer (non-empty views) also the
-// nearest glass crossing's depth and the product of the crossing rule over the glass crossings.
+// Nearest caster depth per texel of one face; `medium_alphas` per object: the opacity of its
+// interior medium across it (depth_maps.h). With a glass layer (non-empty views) also the
+// nearest glass crossing's depth and the product of the crossing rule over the glass crossings
+// the depth map leaves out.
 void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face,
-                       DepthCasters casters, View<float> depths, View<float> glass_depths,
-                       View<vec3> glass_filters) {
+                       DepthCasters casters, View<const double> medium_alphas, View<float> depths,
+                       View<float> glass_depths, View<vec3> glass_filters) {
+  const double min_alpha = casters == DepthCasters::opaque ? 1.0 : kDepthMapOpaqueAlpha;
   const TileLists lists = rasterize_tiles(backend, s, face.projection);
   if (lists.stats.overflow)
     throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
@@ -89,18 +90,19 @@ void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& fa
         for_each_fragment(tiles, x, y, [&](uint32_t tri) {
           double t;
           bool entering;
-          const ObjectView& o = s.objects[s.triangle_object[tri]];
-          const bool in_glass = glass && glass_caster(o, casters);
-          if (!(depth_caster(o, casters) || in_glass) ||
-              !triangle_plane_hit(s, tri, ray.origin, ray.direction, t, entering))
-            return;
-          const double depth = shadow_depth(face, ray.origin + ray.direction * t);
-          if (!in_glass) {
+          if (!triangle_plane_hit(s, tri, ray.origin, ray.direction, t, entering)) return;
+          const dvec3 hit = ray.origin + ray.direction * t;
+          const uint32_t object = s.triangle_object[tri];
+          const double alpha = max_value(surface_alpha(s, tri, hit), medium_alphas[object]);
+          const double depth = shadow_depth(face, hit);
+          if (alpha >= min_alpha) {
             nearest = min_value(nearest, depth);
             return;
           }
+          const ObjectView& o = s.objects[object];
+          if (!glass || !glass_caster(o)) return;
           nearest_glass = min_value(nearest_glass, depth);
-          filter *= crossing_transmittance(s, o, tri, ray.direction, ray.origin + ray.direction * t);
+          filter *= crossing_transmittance(s, o, tri, ray.direction, hit);
         });
         depths[face.offset + i] = nearest >= 1e300 ? INFINITY : float(nearest);
         if (!glass) return;
@@ -233,11 +235,14 @@ DepthMaps render_depth_maps(Backend backend, const SceneData& scene, const Light
                             int res, DepthCasters casters, const std::vector<uint8_t>* rendered) {
   const SceneView& s = scene.view();
   const Memory memory = memory_of(backend);
+  std::vector<double> medium = medium_crossing_alphas(scene);
+  for (double& a : medium) a = 1.0 - (1.0 - a) * (1.0 - a);  // entering and leaving
+  const Buffer<double> medium_alphas(memory, medium, "depth map medium opacities");
   DepthMaps maps;
   maps.res = res;
   maps.depths = Buffer<float>(memory, layout.texel_count(), "shadow map depths");
   bool glass = false;
-  for (const ObjectView& o : scene.host_objects()) glass |= glass_caster(o, casters);
+  for (const ObjectView& o : scene.host_objects()) glass |= glass_caster(o);
   if (glass) {
     // +inf (no glass) on faces left empty; rendered faces overwrite theirs.
     const std::vector<float> none(size_t(layout.texel_count()), INFINITY);
@@ -248,8 +253,8 @@ DepthMaps render_depth_maps(Backend backend, const SceneData& scene, const Light
     if (rendered && !(*rendered)[i])
       clear_depth_face(backend, layout.faces[i], maps.depths.view());
     else
-      render_depth_face(backend, s, layout.faces[i], casters, maps.depths.view(),
-                        maps.glass_depths.view(), maps.glass_filters.view());
+      render_depth_face(backend, s, layout.faces[i], casters, medium_alphas.const_view(),
+                        maps.depths.view(), maps.glass_depths.view(), maps.glass_filters.view());
   }
   maps.faces = Buffer<ShadowFace>(memory, layout.faces, "shadow map faces");
   maps.lights = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");
@@ -257,7 +262,9 @@ DepthMaps render_depth_maps(Backend backend, const SceneData& scene, const Light
 }
 
 void register_shadow_maps(Registry<ShadowMethod>& registry) {
-  registry.add("shadowmap", "depth shadow maps from the tile rasterizer, PCF",
+  registry.add("shadowmap",
+               "depth shadow maps from the tile rasterizer, PCF; a surface casts where its alpha "
+               "(texture coverage; an interior medium's opacity across the object) is >= 0.5",
                join(depth_map_param_table(),
                     {integer_choice_param("focus", 0, {0, 1},
                                           "1: fit spot and directional maps to the camera's view "

@@ -5,12 +5,14 @@
 // (light_faces.h, receiver_depth: for surface points a constant plus `slope_bias` texel sizes
 // times the receiver's tangent to the light, over the PCF kernel's reach; none elsewhere); PCF
 // averages that test over pcf x pcf texels around the point's projection (Reeves et al.:
-// compare, then filter). Every surface with alpha > 0 casts a full shadow; media are not
-// represented: this is the opaque-shadow baseline. Glass the depths leave out (transmission > 0)
-// is kept, for scenes that have it, in a glass layer: a receiver beyond a texel's nearest glass
-// crossing gets the product of the crossing rule (engine/scene/surface_transmittance.h) over the
-// texel ray's glass crossings, one layer per texel (the translucent shadow maps of real-time
-// engines), per colour channel. Host and device code.
+// compare, then filter). Every surface whose caster opacity reaches kDepthMapOpaqueAlpha
+// (depth_maps.h: its alpha at that point, or an interior medium's opacity across the object)
+// casts a full shadow, the others none: this is the opaque-shadow baseline. Glass the depths
+// leave out (transmission > 0) is kept, for scenes that have it, in a glass layer: a receiver
+// beyond a texel's nearest glass crossing gets the product of the crossing rule
+// (engine/scene/surface_transmittance.h) over the texel ray's glass crossings, one layer per
+// texel (the translucent shadow maps of real-time engines), per colour channel. Host and device
+// code.
 #pragma once
 
 #include <cstdint>

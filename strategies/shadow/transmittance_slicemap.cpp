@@ -1,7 +1,8 @@
 // Shadow method "transmittance-slicemap" (Buchacher 2014 §5.1; lookup in
 // transmittance_slicemap_device.h). Per light face: a depth map of the opaque casters (alpha >=
 // 1, the shadowmap method's code, depth_maps.h), then a grid of the translucent casters (0 <
-// alpha < 1) over the face's frustum (frustum_grid.h), filled by a registered voxelizer.
+// alpha < 1; caster opacities of translucent_casters.h: media boundaries and BLEND textures
+// included) over the face's frustum (frustum_grid.h), filled by a registered voxelizer.
 // Parameters (table at the registration): voxelizer (voxelizer.KEY passes KEY on to it), slices
 // (grid depth), res, pcf, bias, slope (as shadowmap; res is also the grids' columns per side).
 // The opacity a of (1 - a)^n is the mean
@@ -58,8 +59,9 @@ class TransmittanceSlicemap final : public ShadowMethod {
     j["voxelizer_passes"] = voxelizer_passes_;
     j["voxelizer_counters"] = voxelizer_counters_;
     j["not_represented"] =
-        "interiors of objects (constant media, volumes): only surface crossings attenuate; "
-        "translucent casters in one slice of a column count once";
+        "interiors of objects (constant media, volumes): cast from their boundaries, with the "
+        "medium's opacity across the object's thinnest extent; BLEND texture alpha: the "
+        "factor's; translucent casters in one slice of a column count once";
     return j;
   }
 
@@ -154,8 +156,9 @@ class TransmittanceSlicemap final : public ShadowMethod {
 void register_transmittance_slicemap(Registry<ShadowMethod>& registry) {
   registry.add(
       kName,
-      "transmittance shadow mapping: opaque depth map, then (1 - a)^n over a voxel grid "
-      "of the translucent casters per light face, Buchacher 2014 5.1",
+      "transmittance shadow mapping: opaque depth map (alpha 1, cut per texel by texture "
+      "alpha), then (1 - a)^n over a voxel grid of the translucent casters (0 < alpha < 1, "
+      "media boundaries included) per light face, Buchacher 2014 5.1",
       join(depth_map_param_table(),
            {name_param("voxelizer", "slicemap",
                        "voxelizer filling the grids of the translucent casters"),

@@ -1,13 +1,15 @@
 // Kernel side of transmittance shadow mapping (Buchacher 2014 §5.1): per light face a depth
-// shadow map of the opaque casters (alpha >= 1), tested first, and a binary voxel grid over the
-// face's frustum (strategies/voxelizer/frustum_grid.h) of the translucent casters (0 < alpha <
-// 1). The light reaching p is the opaque map's answer times (1 - a)^n, n the set voxels of p's
-// column in the slices strictly in front of p's slice, a the casters' (mean) opacity; the
-// powers come from a table so that CPU and CUDA agree exactly. A surface point's depth is
+// shadow map of the opaque casters (alpha >= 1 at the fragment: texture cut-outs are cut per
+// texel), tested first, and a binary voxel grid over the face's frustum
+// (strategies/voxelizer/frustum_grid.h) of the translucent casters (0 < alpha < 1, media
+// boundaries included: translucent_casters.h). The light reaching p is the opaque map's
+// answer times (1 - a)^n, n the set voxels of p's column in the slices strictly in front of
+// p's slice, a the casters' (mean) opacity; the powers come from a table so that CPU and CUDA
+// agree exactly. A surface point's depth is
 // biased towards the light like the shadow map's (receiver_depth), so that the receiver's own
 // surface voxel is not counted; points not on a surface are not biased. Glass (transmission > 0)
 // is not voxelized: the opaque map's glass layer (shadow_map_device.h) carries it, in colour.
-// Interiors (media, volumes) are not represented. Host and device code.
+// Interiors (media, volumes) are represented only by their boundaries. Host and device code.
 #pragma once
 
 #include <cstdint>

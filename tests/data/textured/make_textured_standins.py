@@ -99,6 +99,7 @@ class Gltf:
         self.doc["scenes"][0]["nodes"].append(len(self.doc["nodes"]) - 1)
 
     def sun(self, intensity):
+        """A directional light straight down of `intensity` lux (683 lux: irradiance 1)."""
         self.doc["extensionsUsed"] = ["KHR_lights_punctual"]
         self.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
             {"type": "directional", "intensity": intensity, "color": [1, 1, 1]}]}}
@@ -149,7 +150,7 @@ def alpha_mask_quad(out_dir):
     for name, material, x0 in (("mask", mask, -1.5), ("blend", blend, 0.5)):
         positions, tris, uvs = quad_y(x0, x0 + 1, -0.5, 0.5, 1)
         g.node(mesh=g.mesh(positions, tris, material, uvs=uvs), name=name)
-    g.sun(3.0)
+    g.sun(1366.0)
     g.write_gltf(os.path.join(out_dir, "alpha_mask_quad.gltf"))
 
 
@@ -185,7 +186,7 @@ def textured_sphere(out_dir):
     g.doc["cameras"] = [{"type": "perspective",
                          "perspective": {"yfov": 0.7, "znear": 0.1, "aspectRatio": 1.0}}]
     g.node(camera=0, translation=[0, 0, 5])
-    g.sun(3.0)
+    g.sun(1366.0)
     g.write_glb(os.path.join(out_dir, "textured_sphere.glb"))
 
 

@@ -3,7 +3,8 @@
 // caster, a depth map when every caster is opaque, a deep map otherwise, volume sampling only
 // with a volume in reach, omni faces only where casters are), maps built once over a static
 // orbit and rebuilt only for the lights that reach an edited object, and planned answers equal
-// to the "everything on" method (`dsm` for every light) where the planner skipped work.
+// to the "everything on" method (`dsm` for every light) where the planner skipped work; MASK
+// textures planned as opaque, BLEND textures as translucent.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +12,9 @@
 #include <random>
 
 #include "engine/raster/camera_rays.h"
+#include "experiments/source_paths.h"
 #include "render/frame/raster_render.h"
+#include "render/load/gltf_import.h"
 #include "strategies/shadow/effect_planner.h"
 #include "strategies/shadow/probe.h"
 #include "tests/support/scene_builder.h"
@@ -234,6 +237,24 @@ TEST(EffectPlanner, PlannedAnswersEqualEverythingOnWhereWorkWasSkipped) {
     max_pixel_diff = std::max(max_pixel_diff, double(std::abs(x[i] - y[i])));
   RecordProperty("max_pixel_diff", std::to_string(max_pixel_diff));
   EXPECT_LE(max_pixel_diff, 1e-6);
+}
+
+// Texture alpha (issue 39): a MASK-textured opaque quad is opaque where covered, so a depth map
+// (which cuts it per texel) serves its light; a BLEND-textured one is translucent: a deep map.
+TEST(EffectPlanner, MaskTexturesAreOpaqueAndBlendTexturesTranslucent) {
+  const Scene standin =
+      load_gltf_scene(test::source_dir() + "/tests/data/textured/alpha_mask_quad.gltf");
+  for (const char* keep : {"mask", "blend"}) {
+    Scene scene = standin;
+    std::erase_if(scene.objects,
+                  [&](const Object& o) { return o.name != keep && o.name != "floor"; });
+    ASSERT_EQ(scene.objects.size(), 2u);
+    const SceneData data(scene, Memory::host);
+    const LightPlan plan = plan_light(data, 0);
+    EXPECT_EQ(plan.method,
+              std::string(keep) == "mask" ? PlannedMethod::shadowmap : PlannedMethod::dsm)
+        << keep;
+  }
 }
 
 TEST(EffectPlanner, ExplainStatesEachDecision) {

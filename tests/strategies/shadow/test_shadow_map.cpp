@@ -1,8 +1,10 @@
 // The shadowmap method against the exact oracle on opaque-only scenes, for spot, omni (six
 // faces) and directional lights: answers agree except near shadow edges (aliasing), and the
-// maps are built once however often the method is prepared.
+// maps are built once however often the method is prepared; translucent surfaces and media
+// boundaries cast by the depth map's opacity threshold.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "strategies/shadow/probe.h"
@@ -70,6 +72,31 @@ TEST(ShadowMap, DirectionalIsOrthographic) {
   const Agreement a = compare_on_floor(b, "res=1024 pcf=1");
   EXPECT_GT(a.fraction, 0.985);
   EXPECT_GT(a.shadowed, 100);
+}
+
+// A depth map holds one caster per texel, so a fragment casts when its opacity reaches
+// kDepthMapOpaqueAlpha (issue 39): a faint quad (alpha 0.3) casts nothing, a denser one (0.7) a
+// full shadow, and a glass box (alpha 0) holding a medium of opacity 1 - exp(-2) across it casts
+// from its boundary.
+TEST(ShadowMap, CastsByOpacityThresholdAndFromMediaBoundaries) {
+  SceneBuilder b;
+  b.add(make_box({-3, -0.1, -3}, {3, 0, 3}));
+  b.add(make_quad(1.0), 0.3).transform[3] = dvec4(-1.5, 1.0, 0.0, 1.0);
+  b.add(make_quad(1.0), 0.7).transform[3] = dvec4(0.0, 1.0, 0.0, 1.0);
+  b.add(make_box({1.0, 0.8, -0.5}, {2.0, 1.2, 0.5}), 0.0, InteriorKind::constant, 5.0);
+  b.directional({0.0, -1.0, 0.0});
+  const SceneData data = b.build();
+  const std::vector<dvec3> points = {{-1.5, 0.0, 0.0}, {0.0, 0.0, 0.0}, {1.5, 0.0, 0.0}};
+  auto reference = shadow_registry().create("reference");
+  auto shadowmap = test::make_shadow_method("shadowmap", "res=256 pcf=1");
+  const ProbeResults exact = probe_transmittance(Backend::cpu, data, *reference, points);
+  const ProbeResults map = probe_transmittance(Backend::cpu, data, *shadowmap, points);
+  const double oracle[] = {0.7, 0.3, std::exp(-5.0 * 0.4)};
+  const double cast[] = {1.0, 0.0, 0.0};
+  for (size_t i = 0; i < points.size(); ++i) {
+    EXPECT_NEAR(exact.transmittance[i], oracle[i], 1e-12) << i;
+    EXPECT_EQ(map.transmittance[i], cast[i]) << i;
+  }
 }
 
 TEST(ShadowMap, MapsAreBuiltOncePerScene) {

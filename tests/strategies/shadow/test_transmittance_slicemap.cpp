@@ -1,7 +1,8 @@
 // The transmittance-slicemap shadow method against the exact oracle: stacks of translucent
 // quads of equal alpha under a spot and a directional light, where (1 - a)^n is exact away from
 // slice boundaries, with every point-method voxelizer; opaque casters through the depth map;
-// the mean opacity of mixed alphas in the stats; conservative voxelizers rejecting spot faces;
+// the mean opacity of mixed alphas in the stats; media casting from their boundaries;
+// conservative voxelizers rejecting spot faces;
 // CPU/CUDA parity (skipped without a GPU).
 #include <gtest/gtest.h>
 
@@ -125,6 +126,23 @@ TEST(TransmittanceSlicemap, OpaqueCastersGoThroughTheDepthMap) {
     EXPECT_NEAR(test::oracle_at(data, 0, points[i]), expected[i], 1e-12);
     EXPECT_NEAR(r.transmittance[i], expected[i], 1e-12) << i;
   }
+}
+
+// Media boundaries cast (issue 39): a glass box (alpha 0) holding a constant medium is a
+// translucent caster whose two crossings give the medium's transmittance across it.
+TEST(TransmittanceSlicemap, MediaCastFromTheirBoundaries) {
+  SceneBuilder b;
+  b.add(make_box({-3, -0.1, -3}, {3, 0, 3}));
+  b.add(make_box({-0.5, 0.8, -0.5}, {0.5, 1.2, 0.5}), 0.0, InteriorKind::constant, 5.0);
+  b.directional({0.0, -1.0, 0.0});
+  const SceneData data = b.build();
+  const dvec3 under(0.1, 0.0, -0.1);
+  const double expected = std::exp(-5.0 * 0.4);
+  EXPECT_NEAR(test::oracle_at(data, 0, under), expected, 1e-12);
+  auto method = tsm("res=128 pcf=1");
+  const ProbeResults r = probe_transmittance(Backend::cpu, data, *method, {under});
+  EXPECT_NEAR(r.transmittance[0], expected, 1e-9);
+  EXPECT_EQ(method->stats()["casters"]["objects"], 1);
 }
 
 TEST(TransmittanceSlicemap, MixedAlphasUseAndReportTheMean) {
