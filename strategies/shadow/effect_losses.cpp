@@ -1,12 +1,18 @@
 // The effects table behind `--explain` (see effect_losses.h). Each row says how an object shows
-// the effect (from Material::alpha and transmission, Interior's kind and sigma_tint) and, per
-// shadow method, what its shadows keep, approximate or drop. Shadows are scalar everywhere
-// (engine/oracle/transmittance.h): colour is the camera pass's alone.
+// the effect (from Material::alpha, transmission, colour and base texture, Interior's kind and
+// sigma_tint) and, per shadow method, what its shadows keep, approximate or drop. Shadows are RGB
+// (docs/rendering.md): the oracle exactly, dsm through its colour side channel
+// (engine/dsm/dsm_colour.h), shadowmap and transmittance-slicemap through the glass layer of
+// their depth maps (shadow_map_device.h), whose depth maps cast a fragment when its opacity
+// reaches kDepthMapOpaqueAlpha (depth_maps.h); media reach the maps by their boundaries
+// (translucent_casters.h).
 #include "strategies/shadow/effect_losses.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+
+#include "strategies/shadow/depth_maps.h"
 
 namespace dv {
 
@@ -20,6 +26,19 @@ bool grey(const dvec3& c) {
   return std::abs(c.x - c.y) < 1e-9 && std::abs(c.y - c.z) < 1e-9;
 }
 
+// The rows' words for shadowmap and the slicemap's opaque map say 0.5.
+static_assert(kDepthMapOpaqueAlpha == 0.5);
+
+// Whether crossings of `o` tint light, as tints_light (engine/scene/surface_transmittance.h)
+// decides it: thin-walled glass of a coloured base, or a tinted constant medium.
+bool tints_shadows(const Object& o) {
+  const bool glass = o.material.transmission > 0.0 && o.interior.kind == InteriorKind::none &&
+                     !grey(o.material.color);
+  const bool medium = o.interior.kind == InteriorKind::constant && o.interior.sigma > 0.0 &&
+                      !grey(o.interior.sigma_tint);
+  return glass || medium;
+}
+
 struct EffectRow {
   const char* one;   // the effect, for one object
   const char* many;  // for several
@@ -27,60 +46,92 @@ struct EffectRow {
   std::array<const char*, kMethods.size()> treatment;  // per kMethods entry
 };
 
-// To add an effect (alpha-textured casters, coloured glass shadows, ...): one row here.
+// To add an effect: one row here.
 const EffectRow kEffects[] = {
     {"translucent caster (0 < alpha < 1)",
      "translucent casters (0 < alpha < 1)",
      [](const Object& o) {
        return o.material.alpha > 0.0 && o.material.alpha < 1.0 && o.material.transmission <= 0.0;
      },
-     {"dropped (no shadows)", "opaque: one depth layer, so any alpha > 0 casts a full shadow",
+     {"dropped (no shadows)",
+      "thresholded: one depth layer, so alpha >= 0.5 casts a full shadow and alpha < 0.5 none",
       "kept: its alpha per crossing, in visibility functions compressed to within eps",
       "approximated: voxelized into the light's slices with one alpha, the mean over the "
-      "translucent objects when theirs differ",
+      "translucent casters when theirs differ",
       "kept (exact)",
       "kept as dsm keeps it: the planner runs dsm for every light that reaches it"}},
+    {"alpha-textured caster (MASK or BLEND)",
+     "alpha-textured casters (MASK or BLEND)",
+     [](const Object& o) {
+       return o.material.base_texture >= 0 && o.material.alpha_mode != AlphaMode::opaque;
+     },
+     {"dropped (no shadows)",
+      "MASK cut per shadow-map texel; BLEND thresholded per texel: a full shadow where the "
+      "texel's alpha times the factor's reaches 0.5, none below",
+      "kept: MASK cut and BLEND alpha per crossing of each texel's ray, in visibility functions "
+      "compressed to within eps",
+      "MASK cut per texel by the opaque depth map; BLEND approximated: voxelized with the "
+      "factor's alpha everywhere, since the grid holds no texture (with a factor's alpha of 1 "
+      "only its fully opaque texels cast, through the opaque depth map)",
+      "kept (exact: the texel's coverage at every crossing)",
+      "MASK on an opaque object cut per texel by the shadowmap the planner runs where every "
+      "caster is opaque (else by dsm); BLEND kept as dsm keeps it: the planner runs dsm for "
+      "every light that reaches it"}},
     {"transmissive (glass) caster",
      "transmissive (glass) casters",
      [](const Object& o) { return o.material.transmission > 0.0; },
      {"dropped (no shadows)",
-      "opaque unless fully transmissive (then no shadow at all): alpha = 1 - transmission "
-      "is one depth layer",
-      "approximated: a thin surface of alpha 1 - transmission per crossing (no refraction, no "
-      "caustics)",
-      "approximated: a thin surface of alpha 1 - transmission, voxelized with the translucent "
-      "casters' mean alpha",
-      "approximated: a thin surface of alpha 1 - transmission per crossing (no refraction, no "
-      "caustics)",
-      "as dsm: the planner runs dsm for every light that reaches it"}},
+      "approximated: a glass layer, one per texel: the crossing rule (Fresnel at the texel "
+      "ray's angle, tint) multiplied over the texel's glass crossings, applied beyond the "
+      "nearest, so a receiver between two of them gets both (no refraction, no caustics)",
+      "kept: each crossing's opacity, 1 - the luminance of the crossing rule (Fresnel at the "
+      "texel ray's angle), in visibility functions compressed to within eps; its colour by the "
+      "colour side channel (no refraction, no caustics)",
+      "approximated as shadowmap does: the opaque depth map's glass layer, one per texel (no "
+      "refraction, no caustics)",
+      "kept (exact: the crossing rule with Fresnel at every crossing; thin-walled, no "
+      "refraction, no caustics)",
+      "kept as dsm keeps it: the planner runs dsm for every light that reaches it"}},
     {"constant medium",
      "constant media",
      [](const Object& o) { return o.interior.kind == InteriorKind::constant; },
-     {"dropped (no shadows)", "dropped: only its boundary casts, opaque when its alpha > 0",
+     {"dropped (no shadows)",
+      "thresholded at its boundary: a full shadow where the medium's opacity across the "
+      "object's thinnest extent d, 1 - exp(-sigma d), or its surface alpha reaches 0.5, else "
+      "none (inside glass: the glass layer's Fresnel alone)",
       "kept: its extinction along each chord, in the compressed visibility functions",
-      "dropped: only surfaces are voxelized (its boundary, when 0 < alpha < 1)",
+      "approximated: its boundary is voxelized, each crossing 1 - exp(-sigma d / 2) with d the "
+      "object's thinnest extent, under the translucent casters' one alpha (their mean when they "
+      "differ)",
       "kept (exact chord lengths)",
       "kept as dsm keeps it: the planner runs dsm for every light that reaches it"}},
     {"volume",
      "volumes",
      [](const Object& o) { return o.interior.kind == InteriorKind::volume; },
-     {"dropped (no shadows)", "dropped: only its boundary casts, opaque when its alpha > 0",
+     {"dropped (no shadows)",
+      "thresholded at its boundary: a full shadow where 1 - exp(-sigma_max d), sigma_max its "
+      "transfer function's largest extinction and d the object's thinnest extent, reaches 0.5, "
+      "else none",
       "approximated: sampled at the volume step when the maps are generated",
-      "dropped: only surfaces are voxelized", "kept (adaptive Simpson to 1e-9)",
+      "approximated: its boundary is voxelized, each crossing 1 - exp(-sigma_max d / 2) with "
+      "sigma_max its transfer function's largest extinction and d the object's thinnest extent, "
+      "under the translucent casters' one alpha (their mean when they differ)",
+      "kept (adaptive Simpson to 1e-9)",
       "approximated as dsm does: the planner runs dsm with volume sampling for every light "
       "that reaches it"}},
     {"tinted medium or coloured glass",
      "tinted media or coloured glass objects",
-     [](const Object& o) {
-       return (o.interior.kind == InteriorKind::constant && !grey(o.interior.sigma_tint)) ||
-              (o.material.transmission > 0.0 && !grey(o.material.color));
-     },
-     {"dropped (no shadows)", "colour dropped: shadows are grey",
-      "colour dropped: shadows are grey (the mean of the three extinctions; glass untinted)",
-      "colour dropped: shadows are grey",
-      "colour dropped: the oracle is scalar (the mean of the three extinctions; glass "
-      "untinted); only the camera's view through it is tinted",
-      "colour dropped: shadows are grey"}},
+     tints_shadows,
+     {"dropped (no shadows)",
+      "coloured glass kept in the glass layer (one colour filter per texel); a tinted medium's "
+      "colour dropped: its boundary casts grey",
+      "kept by the colour side channel: exact for one tint per texel at every depth; where "
+      "differently tinted casters share a texel, the far end's mix holds at every depth",
+      "coloured glass kept in the opaque depth map's glass layer (one colour filter per texel); "
+      "a tinted medium's colour dropped: its boundary is voxelized grey",
+      "kept (exact, per colour channel)",
+      "kept as dsm keeps it (the colour side channel): the planner runs dsm for every light "
+      "that reaches it"}},
 };
 
 }  // namespace
