@@ -29,9 +29,15 @@
 #include "core/text.h"
 #include "engine/scene/default_staging.h"
 #include "engine/scene/mesh_topology.h"
+#include "render/load/gltf_materials.h"
 
 namespace dv {
 namespace {
+
+using gltf::find_extension;
+using gltf::map_gltf_material;
+using gltf::MappedMaterial;
+using gltf::require;
 
 using tinygltf::Model;
 
@@ -348,158 +354,6 @@ dmat4 local_transform(const tinygltf::Node& node, const std::string& where) {
     m = glm::scale(m, glm::make_vec3(node.scale.data()));
   }
   return m;
-}
-
-// Phong material and interior of one glTF material (mapping documented in gltf_import.h); a
-// base-colour texture by its glTF index (the importer turns it into a scene texture) and the
-// TEXCOORD set it reads.
-struct MappedMaterial {
-  Material material;
-  Interior interior;
-  int gltf_texture = -1;
-  int texcoord = 0;
-};
-
-const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& extensions, const char* name) {
-  auto found = extensions.find(name);
-  return found == extensions.end() ? nullptr : &found->second;
-}
-
-// A finite number field of an extension object, or `fallback` when absent.
-double number_field(const tinygltf::Value& object, const char* key, double fallback,
-                    const std::string& where) {
-  if (!object.Has(key)) return fallback;
-  const tinygltf::Value& value = object.Get(key);
-  if (!value.IsNumber() || !std::isfinite(value.GetNumberAsDouble()))
-    throw InputError(where, std::string(key) + " must be a finite number");
-  return value.GetNumberAsDouble();
-}
-
-void require(bool ok, const std::string& where, const std::string& problem) {
-  if (!ok) throw InputError(where, problem);
-}
-
-bool unit_range(double v) {
-  return v >= 0.0 && v <= 1.0;
-}
-
-dvec3 attenuation_color(const tinygltf::Value& volume, const std::string& where) {
-  if (!volume.Has("attenuationColor")) return dvec3(1.0);
-  const tinygltf::Value& array = volume.Get("attenuationColor");
-  dvec3 color(1.0);
-  bool ok = array.IsArray() && array.ArrayLen() == 3;
-  for (int i = 0; ok && i < 3; ++i) {
-    ok = array.Get(i).IsNumber() && unit_range(array.Get(i).GetNumberAsDouble());
-    if (ok) color[i] = array.Get(i).GetNumberAsDouble();
-  }
-  require(ok, where, "attenuationColor must be 3 numbers in [0, 1]");
-  return color;
-}
-
-// Constant interior from KHR_materials_volume, or none when thin-walled.
-Interior volume_interior(const tinygltf::Value& volume, const std::string& where) {
-  Interior interior;
-  double thickness = number_field(volume, "thicknessFactor", 0.0, where);
-  require(thickness >= 0.0, where, "thicknessFactor must be >= 0");
-  dvec3 color = attenuation_color(volume, where);
-  double distance =
-      number_field(volume, "attenuationDistance", std::numeric_limits<double>::infinity(), where);
-  require(distance > 0.0, where, "attenuationDistance must be > 0");
-  if (thickness == 0.0) return interior;  // thin-walled: no medium inside
-  dvec3 sigma(0.0);
-  if (std::isfinite(distance)) sigma = -glm::log(glm::max(color, dvec3(1e-6))) / distance;
-  interior.kind = InteriorKind::constant;
-  const bool grey = sigma.x == sigma.y && sigma.y == sigma.z;  // tint exactly 1 (no colour)
-  interior.sigma = grey ? sigma.x : (sigma.x + sigma.y + sigma.z) / 3.0;
-  if (interior.sigma > 0.0 && !grey) interior.sigma_tint = sigma / interior.sigma;
-  return interior;
-}
-
-// A 2-number array field of an extension object, or `fallback` when absent.
-dvec2 pair_field(const tinygltf::Value& object, const char* key, dvec2 fallback,
-                 const std::string& where) {
-  if (!object.Has(key)) return fallback;
-  const tinygltf::Value& array = object.Get(key);
-  bool ok = array.IsArray() && array.ArrayLen() == 2;
-  for (int i = 0; ok && i < 2; ++i) {
-    ok = array.Get(i).IsNumber() && std::isfinite(array.Get(i).GetNumberAsDouble());
-    if (ok) fallback[i] = array.Get(i).GetNumberAsDouble();
-  }
-  require(ok, where, std::string(key) + " must be 2 finite numbers");
-  return fallback;
-}
-
-// KHR_texture_transform on the base-colour texture: uv' = T(offset) R(rotation) S(scale) uv
-// (the extension's matrix, column-major like glm), and its texCoord override.
-void read_texture_transform(const tinygltf::Value& ext, const std::string& where,
-                            MappedMaterial& out) {
-  const dvec2 offset = pair_field(ext, "offset", dvec2(0.0), where);
-  const dvec2 scale = pair_field(ext, "scale", dvec2(1.0), where);
-  const double rotation = number_field(ext, "rotation", 0.0, where);
-  const double c = std::cos(rotation), s = std::sin(rotation);
-  const glm::dmat3 translate(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
-  const glm::dmat3 rotate(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
-  const glm::dmat3 scaling(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
-  out.material.uv_transform = translate * rotate * scaling;
-  const double texcoord = number_field(ext, "texCoord", double(out.texcoord), where);
-  require(texcoord >= 0.0 && texcoord == std::floor(texcoord) && texcoord < 64.0, where,
-          "texCoord must be a small integer >= 0");
-  out.texcoord = int(texcoord);
-}
-
-MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string& where) {
-  MappedMaterial out;
-  const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
-  require(base.size() == 4 && std::all_of(base.begin(), base.end(), unit_range), where,
-          "baseColorFactor must be 4 numbers in [0, 1]");
-  double roughness = m.pbrMetallicRoughness.roughnessFactor;
-  require(unit_range(roughness), where, "roughnessFactor must lie in [0, 1]");
-  out.material.color = dvec3(base[0], base[1], base[2]);
-  out.material.diffuse = 0.8;
-  out.material.specular = 0.2 * (1.0 - roughness) + 0.04;
-  double r4 = roughness * roughness * roughness * roughness;
-  out.material.shininess = clamp_value(2.0 / std::max(r4, 1e-4) - 2.0, 1.0, 512.0);
-
-  double coverage = 1.0;
-  if (m.alphaMode == "BLEND") {
-    coverage = base[3];
-    out.material.alpha_mode = AlphaMode::blend;
-  } else if (m.alphaMode == "MASK") {
-    require(std::isfinite(m.alphaCutoff) && m.alphaCutoff >= 0.0, where,
-            "alphaCutoff must be a finite number >= 0");
-    coverage = base[3] >= m.alphaCutoff ? 1.0 : 0.0;
-    out.material.alpha_mode = AlphaMode::mask;
-  } else {
-    require(m.alphaMode == "OPAQUE", where, "alphaMode must be OPAQUE, MASK or BLEND");
-  }
-  out.material.alpha_cutoff = m.alphaCutoff;
-  const tinygltf::TextureInfo& texture = m.pbrMetallicRoughness.baseColorTexture;
-  if (texture.index >= 0) {
-    // Coverage comes per point from the factor times the texel's alpha (texture_sampling.h).
-    out.gltf_texture = texture.index;
-    out.texcoord = texture.texCoord;
-    out.material.coverage_factor = base[3];
-    coverage = 1.0;
-    if (const tinygltf::Value* ext = find_extension(texture.extensions, "KHR_texture_transform"))
-      read_texture_transform(*ext, where + ": KHR_texture_transform", out);
-  }
-  double transmission = 0.0;
-  if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_transmission")) {
-    std::string ext_where = where + ": KHR_materials_transmission";
-    transmission = number_field(*ext, "transmissionFactor", 0.0, ext_where);
-    require(unit_range(transmission), ext_where, "transmissionFactor must lie in [0, 1]");
-  }
-  out.material.alpha = coverage * (1.0 - transmission);
-  out.material.transmission = coverage * transmission;
-  if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_ior")) {
-    std::string ext_where = where + ": KHR_materials_ior";
-    out.material.ior = number_field(*ext, "ior", 1.5, ext_where);
-    require(out.material.ior >= 1.0 && std::isfinite(out.material.ior), ext_where,
-            "ior must be a finite number >= 1");
-  }
-  if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_volume"))
-    out.interior = volume_interior(*ext, where + ": KHR_materials_volume");
-  return out;
 }
 
 class Importer {
