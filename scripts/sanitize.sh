@@ -22,5 +22,7 @@ fi
 # too large to satisfy throws std::bad_alloc as it does without ASan (a damaged .vdb can ask
 # OpenVDB for one; the reader turns it into an error naming the file) instead of aborting.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:allocator_may_return_null=1}
+# Leaks inside third-party libraries that deepvox cannot free (each one says why).
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan-suppressions.txt:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -L "$labels" "$@"
