@@ -104,7 +104,7 @@ DV_HD inline dvec3 crossing_transmittance(const SceneView& s, const ObjectView& 
 // transmission).
 DV_HD inline double crossing_opacity(const SceneView& s, const ObjectView& o, uint32_t triangle,
                                      const dvec3& dir, const dvec3& p) {
-  if (o.transmission <= 0.0) return o.texture < 0 ? o.alpha : surface_look(s, o, triangle, p).alpha;
+  if (o.transmission <= 0.0) return surface_alpha(s, triangle, p);
   return 1.0 - luminance(crossing_transmittance(s, o, triangle, dir, p));
 }
 
