@@ -1,15 +1,22 @@
 // OpenVDB volumes with OpenVDB (see vdb_io.h): the only file that includes OpenVDB's headers,
 // so the library's templates and their warnings stay in one translation unit. Files are read
-// without delayed loading (no memory-mapped file a truncated file could fault in).
+// without delayed loading (no memory-mapped file a truncated file could fault in), and only
+// after their header and grid descriptors have been checked against the file's length
+// (GridExtentProbe below).
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <istream>
 #include <mutex>
+#include <streambuf>
 #include <system_error>
 
 #include "core/error.h"
@@ -49,7 +56,114 @@ std::string grid_listing(openvdb::io::File& file) {
   return listing.empty() ? "none" : listing;
 }
 
+// A read-only view of a file that does not end: past its last byte it yields zeros and notes
+// that a reader went there. OpenVDB 10 reads sizes and counts with istream::read without
+// checking the stream, so on a truncated file it goes on with whatever its variables held
+// (uninitialised memory: an allocation of terabytes, which AddressSanitizer aborts). Zeros make
+// such a read harmless and the note turns it into a clear error.
+class ZeroPaddedFile final : public std::streambuf {
+ public:
+  explicit ZeroPaddedFile(const std::string& path) : in_(path, std::ios::binary) {
+    in_.seekg(0, std::ios::end);
+    size_ = in_.good() ? std::streamoff(in_.tellg()) : 0;
+  }
+  std::streamoff size() const { return size_; }
+  bool read_past_end() const { return read_past_end_; }
+
+ protected:
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    const std::streamoff at = position();
+    std::streamsize loaded = 0;
+    if (at < size_) {
+      in_.clear();
+      in_.seekg(at);
+      in_.read(buffer_, std::streamsize(std::min<std::streamoff>(kBuffer, size_ - at)));
+      loaded = in_.gcount();
+    }
+    if (loaded == 0) {
+      read_past_end_ = true;
+      std::memset(buffer_, 0, kBuffer);
+      loaded = kBuffer;
+    }
+    base_ = at;
+    setg(buffer_, buffer_, buffer_ + loaded);
+    return traits_type::to_int_type(*gptr());
+  }
+  pos_type seekoff(off_type offset, std::ios_base::seekdir from,
+                   std::ios_base::openmode which) override {
+    const std::streamoff origin = from == std::ios_base::beg   ? 0
+                                  : from == std::ios_base::cur ? position()
+                                                               : size_;
+    return seekpos(pos_type(origin + offset), which);
+  }
+  pos_type seekpos(pos_type target, std::ios_base::openmode which) override {
+    if (!(which & std::ios_base::in) || std::streamoff(target) < 0) return pos_type(off_type(-1));
+    base_ = std::streamoff(target);
+    setg(buffer_, buffer_, buffer_);  // empty: the next read loads from the new position
+    return target;
+  }
+
+ private:
+  static constexpr std::streamsize kBuffer = 4096;
+  std::streamoff position() const { return base_ + (gptr() - eback()); }
+
+  std::ifstream in_;
+  std::streamoff size_ = 0;
+  std::streamoff base_ = 0;  // file offset of buffer_[0]
+  bool read_past_end_ = false;
+  char buffer_[kBuffer];
+};
+
+// Reads what io::File::open reads (header, file metadata, one descriptor per grid) through a
+// ZeroPaddedFile and requires every grid to end inside the file, so that OpenVDB's own reader
+// never reads past the end. Archive's readers are protected: hence a subclass.
+class GridExtentProbe final : public openvdb::io::Archive {
+ public:
+  void require_complete(const std::string& path) {
+    ZeroPaddedFile file(path);
+    std::istream in(&file);
+    const std::string size_text = std::to_string(file.size()) + " bytes";
+    try {
+      readHeader(in);
+      setFormatVersion(in);
+      setLibraryVersion(in);
+      setDataCompression(in);
+      openvdb::MetaMap metadata;
+      metadata.readMeta(in);
+      if (inputHasGridOffsets() && !file.read_past_end()) {
+        const int32_t count = readGridCount(in);
+        for (int32_t i = 0; i < count && !file.read_past_end(); ++i) {
+          openvdb::io::GridDescriptor grid;
+          grid.read(in);
+          if (file.read_past_end()) break;
+          const bool ordered = grid.getGridPos() >= 0 && grid.getGridPos() <= grid.getBlockPos() &&
+                               grid.getBlockPos() <= grid.getEndPos();
+          if (!ordered || grid.getEndPos() > file.size()) {
+            throw InputError(path, "not a readable OpenVDB file: truncated or damaged: grid '" +
+                                       grid.gridName() + "' spans bytes " +
+                                       std::to_string(grid.getGridPos()) + " to " +
+                                       std::to_string(grid.getEndPos()) + " of a file of " +
+                                       size_text);
+          }
+          grid.seekToEnd(in);
+        }
+      }
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      if (!file.read_past_end())
+        throw InputError(path, std::string("not a readable OpenVDB file: ") + e.what());
+    }
+    if (file.read_past_end()) {
+      throw InputError(path, "not a readable OpenVDB file: truncated: it ends (" + size_text +
+                                 ") inside its header, metadata or grid descriptors");
+    }
+  }
+};
+
 openvdb::FloatGrid::Ptr read_float_grid(const std::string& path, const std::string& grid_name) {
+  GridExtentProbe().require_complete(path);
   openvdb::io::File file(path);
   file.open(false);
   if (!file.hasGrid(grid_name)) {
