@@ -19,8 +19,9 @@ else
   cmake --build build-asan -j "$jobs"
 fi
 # Leaks are reported too; UBSan prints the stack and stops at the first report. An allocation
-# too large to satisfy throws std::bad_alloc as it does without ASan (a damaged .vdb can ask
-# OpenVDB for one; the reader turns it into an error naming the file) instead of aborting.
+# too large to satisfy returns null from malloc; operator new still aborts under GCC 12's ASan
+# (CI of 2026-12-04: OpenVDB reading past the end of a truncated .vdb), so readers refuse such
+# input before a library sizes anything from it (render/io/vdb_openvdb.cpp: GridExtentProbe).
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:allocator_may_return_null=1}
 # Leaks inside third-party libraries that deepvox cannot free (each one says why).
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan-suppressions.txt:print_suppressions=0}

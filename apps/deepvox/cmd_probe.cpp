@@ -58,8 +58,8 @@ Runner add_probe(CLI::App& app) {
              to_string(backend) + ", " + std::to_string(r.milliseconds) + " ms -> " + opt->out);
     if (flagged) {
       log_warning(std::to_string(flagged) +
-                  " answers raised flags (oracle: crossing overflow or "
-                  "quadrature not converged); they are written but not exact");
+                  " answers raised flags (oracle: more volume crossings on a ray than it "
+                  "holds); they are written but not exact");
       return 3;
     }
     return 0;

@@ -14,9 +14,8 @@
 // Constant interiors use the order-free chord formula sum_i s_i (t_p - clamp(t_i, t_l, t_p))
 // per channel with s_i = +1 entering, -1 leaving (closed meshes oriented outward). Volume
 // interiors collect their crossings (at most kMaxVolumeCrossings per ray, overflow flagged), and
-// integrate the transfer-mapped trilinear density over each inside interval, split at cell
-// faces, with adaptive Simpson to an absolute tolerance of kOracleTolerance per inside interval
-// (non-convergence flagged).
+// integrate the transfer-mapped trilinear density over each inside interval in closed form, cell
+// by cell, skipping bricks of zero extinction (engine/oracle/volume_chord.h).
 //
 // Conventions: a crossing within kOracleEndTolerance * (scene diagonal + segment length) of
 // the point or the light is AT it, not between (a point exactly on a surface is not shadowed
@@ -28,7 +27,7 @@
 
 #include "core/hd.h"
 #include "core/math.h"
-#include "engine/oracle/quadrature.h"
+#include "engine/oracle/volume_chord.h"
 #include "engine/scene/ray_query.h"
 #include "engine/scene/scene_view.h"
 #include "engine/scene/surface_transmittance.h"
@@ -36,13 +35,11 @@
 
 namespace dv {
 
-inline constexpr double kOracleTolerance = 1e-9;
 inline constexpr double kOracleEndTolerance = 1e-9;
 inline constexpr int kMaxVolumeCrossings = 64;
 
 enum OracleFlag : uint32_t {
   kOracleCrossingOverflow = 1u << 0,  // more volume crossings than kMaxVolumeCrossings
-  kOracleNotConverged = 1u << 1,      // quadrature missed its tolerance somewhere
 };
 
 struct OracleResult {
@@ -111,51 +108,6 @@ DV_HD inline bool make_light_segment(const SceneView& s, const LightView& light,
   return true;
 }
 
-// Optical depth of one volume object over the ray interval [t0, t1], split at cell faces.
-DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o,
-                                         const LightSegment& seg, double t0, double t1,
-                                         double tolerance, uint32_t& flags) {
-  if (t1 <= t0) return 0.0;
-  const VolumeView& v = s.volumes[o.volume];
-  const dvec3 g0 = world_to_grid(o, seg.origin + seg.dir * t0);
-  const dvec3 g1 = world_to_grid(o, seg.origin + seg.dir * t1);
-  const dvec3 gd = (g1 - g0) / (t1 - t0);  // grid units per unit t
-  auto sigma_at = [&](double t) {
-    const dvec3 g = g0 + gd * (t - t0);
-    return apply_transfer(s, o, density_at_grid(s, v, g)).sigma;
-  };
-  // Next integer plane (inside [0, dims-1]) crossed after t on each axis.
-  double total = 0.0;
-  double t = t0;
-  const double length = t1 - t0;
-  while (t < t1) {
-    double t_next = t1;
-    const dvec3 g = g0 + gd * (t - t0);
-    for (int a = 0; a < 3; ++a) {
-      if (gd[a] == 0.0) continue;
-      const double hi = double(v.dims[a] - 1);
-      double plane;
-      if (gd[a] > 0.0) {
-        plane = g[a] < 0.0 ? 0.0 : double(int(g[a])) + 1.0;
-        if (plane > hi) continue;
-      } else {
-        if (g[a] <= 0.0) continue;
-        plane = g[a] > hi ? hi : double(int(g[a]));
-        if (plane >= g[a]) plane -= 1.0;
-        if (plane < 0.0) continue;
-      }
-      const double tp = t0 + (plane - g0[a]) / gd[a];
-      if (tp > t && tp < t_next) t_next = tp;
-    }
-    const QuadratureResult q =
-        adaptive_simpson(sigma_at, t, t_next, tolerance * (t_next - t) / length);
-    if (!q.converged) flags |= kOracleNotConverged;
-    total += q.value;
-    t = t_next;
-  }
-  return total;
-}
-
 DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightView& light,
                                               const dvec3& p) {
   LightSegment seg;
@@ -213,12 +165,12 @@ DV_HD inline OracleResult exact_transmittance(const SceneView& s, const LightVie
       if (before <= 0 && depth > 0) enter_t = crossings[j].t;
       if (before > 0 && depth <= 0) {
         const double a = clamp_value(enter_t, t_l, t_p), b = clamp_value(crossings[j].t, t_l, t_p);
-        tau_volume += volume_optical_depth(s, o, seg, a, b, kOracleTolerance, flags);
+        tau_volume += volume_optical_depth(s, o, seg.origin, seg.dir, a, b);
       }
     }
     if (depth > 0) {  // the point lies inside this volume
       const double a = clamp_value(enter_t, t_l, t_p);
-      tau_volume += volume_optical_depth(s, o, seg, a, t_p, kOracleTolerance, flags);
+      tau_volume += volume_optical_depth(s, o, seg.origin, seg.dir, a, t_p);
     }
   }
   const dvec3 tau = tau_constant + dvec3(tau_volume);

@@ -27,22 +27,38 @@ struct GridCell {
   bool varies[3];
 };
 
-DV_HD inline GridCell grid_cell(const SceneView& s, const VolumeView& v, const dvec3& g) {
-  GridCell cell;
-  int i0[3], i1[3];
+// The cell holding continuous grid coordinates g, clamped into the grid: its low corner sample
+// per axis (0 on an axis of one sample).
+DV_HD inline void cell_of_grid_point(const VolumeView& v, const dvec3& g, int cell[3]) {
   for (int a = 0; a < 3; ++a) {
-    const double hi = double(v.dims[a] - 1);
-    const double c = clamp_value(g[a], 0.0, hi);
+    const double c = clamp_value(g[a], 0.0, double(v.dims[a] - 1));
     int i = int(c);  // c >= 0, so truncation is floor
     if (i > v.dims[a] - 2) i = v.dims[a] - 2 < 0 ? 0 : v.dims[a] - 2;
-    i0[a] = i;
-    i1[a] = v.dims[a] > 1 ? i + 1 : i;
-    cell.f[a] = v.dims[a] > 1 ? c - double(i) : 0.0;
+    cell[a] = i;
+  }
+}
+
+// The eight samples around a cell (bit 0: +x, bit 1: +y, bit 2: +z; on an axis of one sample
+// both sides are that sample).
+DV_HD inline void cell_corners(const SceneView& s, const VolumeView& v, const int cell[3],
+                               double corner[8]) {
+  int i1[3];
+  for (int a = 0; a < 3; ++a) i1[a] = v.dims[a] > 1 ? cell[a] + 1 : cell[a];
+  for (int k = 0; k < 8; ++k)
+    corner[k] = sample_at(s, v, k & 1 ? i1[0] : cell[0], k & 2 ? i1[1] : cell[1],
+                          k & 4 ? i1[2] : cell[2]);
+}
+
+DV_HD inline GridCell grid_cell(const SceneView& s, const VolumeView& v, const dvec3& g) {
+  GridCell cell;
+  int i0[3];
+  cell_of_grid_point(v, g, i0);
+  for (int a = 0; a < 3; ++a) {
+    const double hi = double(v.dims[a] - 1);
+    cell.f[a] = v.dims[a] > 1 ? clamp_value(g[a], 0.0, hi) - double(i0[a]) : 0.0;
     cell.varies[a] = v.dims[a] > 1 && g[a] >= 0.0 && g[a] <= hi;
   }
-  for (int k = 0; k < 8; ++k)
-    cell.corner[k] =
-        sample_at(s, v, k & 1 ? i1[0] : i0[0], k & 2 ? i1[1] : i0[1], k & 4 ? i1[2] : i0[2]);
+  cell_corners(s, v, i0, cell.corner);
   return cell;
 }
 

@@ -116,7 +116,7 @@ const EffectRow kEffects[] = {
       "approximated: its boundary is voxelized, each crossing 1 - exp(-sigma_max d / 2) with "
       "sigma_max its transfer function's largest extinction and d the object's thinnest extent, "
       "under the translucent casters' one alpha (their mean when they differ)",
-      "kept (adaptive Simpson to 1e-9)",
+      "kept (closed form per cell, exact up to rounding)",
       "approximated as dsm does: the planner runs dsm with volume sampling for every light "
       "that reaches it"}},
     {"tinted medium or coloured glass",

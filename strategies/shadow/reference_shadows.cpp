@@ -12,7 +12,7 @@ class ReferenceShadows final : public ShadowMethod {
   nlohmann::json params() const override { return nlohmann::json::object(); }
   // The oracle's fixed accuracy (compile-time constants, not parameters).
   nlohmann::json stats() const override {
-    return {{"tolerance", kOracleTolerance},
+    return {{"volume_integral", "closed form per cell (engine/oracle/volume_chord.h)"},
             {"end_tolerance", kOracleEndTolerance},
             {"max_volume_crossings", kMaxVolumeCrossings}};
   }

@@ -16,7 +16,7 @@ TEST(Registry, ShadowMethodsByName) {
   EXPECT_NE(std::find(names.begin(), names.end(), "reference"), names.end());
   EXPECT_EQ(shadow_registry().create("Reference")->name(), "reference");
   // The oracle reports its fixed accuracy as figures; it has no parameters to echo.
-  EXPECT_TRUE(shadow_registry().create("reference")->stats().contains("tolerance"));
+  EXPECT_TRUE(shadow_registry().create("reference")->stats().contains("volume_integral"));
   EXPECT_TRUE(shadow_registry().create("reference")->params().empty());
 }
 

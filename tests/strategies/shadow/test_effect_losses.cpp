@@ -166,7 +166,7 @@ TEST(EffectLosses, DeepShadowMapsKeepMediaAndColour) {
             header("reference") + "  2 translucent casters (0 < alpha < 1): kept (exact)\n" +
                 "  1 transmissive (glass) caster: " + kGlassReference +
                 "\n  2 constant media: kept (exact chord lengths)\n"
-                "  1 volume: kept (adaptive Simpson to 1e-9)\n"
+                "  1 volume: kept (closed form per cell, exact up to rounding)\n"
                 "  2 tinted media or coloured glass objects: " +
                 kTintReference + "\n");
   const std::vector<EffectTreatment> none = effect_treatments(effects_scene(), "none");
