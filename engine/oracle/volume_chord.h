@@ -223,7 +223,8 @@ DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o
     }
     double corner[8];
     cell_corners(s, v, cell, corner);
-    total += (t_next - t) * transfer_integral_of_cubic(tf, n_tf, cell_density_cubic(corner, f0, f1));
+    total +=
+        (t_next - t) * transfer_integral_of_cubic(tf, n_tf, cell_density_cubic(corner, f0, f1));
     t = t_next;
   }
   return total;

@@ -45,8 +45,8 @@ DV_HD inline void cell_corners(const SceneView& s, const VolumeView& v, const in
   int i1[3];
   for (int a = 0; a < 3; ++a) i1[a] = v.dims[a] > 1 ? cell[a] + 1 : cell[a];
   for (int k = 0; k < 8; ++k)
-    corner[k] = sample_at(s, v, k & 1 ? i1[0] : cell[0], k & 2 ? i1[1] : cell[1],
-                          k & 4 ? i1[2] : cell[2]);
+    corner[k] =
+        sample_at(s, v, k & 1 ? i1[0] : cell[0], k & 2 ? i1[1] : cell[1], k & 4 ? i1[2] : cell[2]);
 }
 
 DV_HD inline GridCell grid_cell(const SceneView& s, const VolumeView& v, const dvec3& g) {

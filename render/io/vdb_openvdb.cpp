@@ -140,11 +140,10 @@ class GridExtentProbe final : public openvdb::io::Archive {
           const bool ordered = grid.getGridPos() >= 0 && grid.getGridPos() <= grid.getBlockPos() &&
                                grid.getBlockPos() <= grid.getEndPos();
           if (!ordered || grid.getEndPos() > file.size()) {
-            throw InputError(path, "not a readable OpenVDB file: truncated or damaged: grid '" +
-                                       grid.gridName() + "' spans bytes " +
-                                       std::to_string(grid.getGridPos()) + " to " +
-                                       std::to_string(grid.getEndPos()) + " of a file of " +
-                                       size_text);
+            throw InputError(
+                path, "not a readable OpenVDB file: truncated or damaged: grid '" +
+                          grid.gridName() + "' spans bytes " + std::to_string(grid.getGridPos()) +
+                          " to " + std::to_string(grid.getEndPos()) + " of a file of " + size_text);
           }
           grid.seekToEnd(in);
         }
