@@ -11,7 +11,8 @@ a caption each in plots/plots.json (the report prints them in that order). Per e
   (strategy and its fixed parameters) and grouped bars (groups: the first varying sweep key or the
   scene, colours: the others). A line plot takes "x": "scene" (the number in the scene's file
   name, e.g. a cup count) or a column, and "y" (a column or an array: one panel each), one line
-  per configuration.
+  per configuration; "fit": "power" writes each line's fitted exponent k of y = c x^k beside it
+  and in the caption.
 - with "pareto": {"error": [...], "cost": [...]}: plots/<experiment>_pareto_<nn>.png per scene
   and (error, cost) pair (every item coloured by method family, the front joined and labelled)
   and, when a cost is frame_ms, plots/<experiment>_headline.png: error against frame time, one
@@ -439,6 +440,20 @@ def unit_of(runs, spec):
     return next((u for u in (metric_value(r, spec)[1] for r in runs) if u), "")
 
 
+def power_fit(points):
+    """The exponent k of y = c x^k fitted by least squares to log y against log x over the
+    (x, y, ...) points with x > 0 and y > 0; None with fewer than three such points."""
+    logs = [(math.log(p[0]), math.log(p[1])) for p in points if p[0] > 0 and p[1] > 0]
+    if len(logs) < 3:
+        return None
+    mx = sum(x for x, _ in logs) / len(logs)
+    my = sum(y for _, y in logs) / len(logs)
+    sxx = sum((x - mx) ** 2 for x, _ in logs)
+    if sxx <= 0:
+        return None
+    return sum((x - mx) * (y - my) for x, y in logs) / sxx
+
+
 def line_plot(folder, exp, runs, spec, name, captions):
     ys = [spec["y"]] if isinstance(spec["y"], str) else list(spec["y"])
     title = spec.get("title", exp["name"])
@@ -446,6 +461,7 @@ def line_plot(folder, exp, runs, spec, name, captions):
     keys = [] if spec["x"] == "scene" else sweep_keys(exp, runs)[:1]
     configs = sorted({without(rows, keys, runs) for rows in runs})
     colours = dict(zip(configs, palette(len(configs))))
+    fits = []
     for ax, y_spec in zip(axes, ys):
         series = {}
         for rows in runs:
@@ -460,6 +476,12 @@ def line_plot(folder, exp, runs, spec, name, captions):
                         yerr=[[p[1] - p[2] for p in pts], [p[3] - p[1] for p in pts]],
                         color=colours[key], marker="o", markersize=3, linewidth=1,
                         elinewidth=0.6, capsize=1.5)
+            exponent = power_fit(pts) if spec.get("fit") == "power" else None
+            if exponent is not None:
+                fits.append("%s of %s: %.2f" % (y_spec, key or "all", exponent))
+                ax.annotate("^%.2f" % exponent, (pts[-1][0], pts[-1][1]), fontsize=6,
+                            color=colours[key], xytext=(3, 0), textcoords="offset points",
+                            va="center")
         ax.set_ylabel(axis_label(y_spec, unit_of(runs, y_spec)), fontsize=7)
         ax.set_xlabel(spec.get("xlabel", "number in the scene name" if spec["x"] == "scene"
                                else spec["x"]), fontsize=7)
@@ -476,7 +498,11 @@ def line_plot(folder, exp, runs, spec, name, captions):
     save(fig, folder, name, captions, exp,
          "%s: %s against %s, a line and colour per configuration of `%s` (the same in every "
          "panel; a panel lacks the configurations without that column); whiskers: min-max over "
-         "the repetitions." % (title, ", ".join(ys), spec.get("xlabel", spec["x"]), exp["name"]))
+         "the repetitions.%s" % (title, ", ".join(ys), spec.get("xlabel", spec["x"]), exp["name"],
+                                 " Fitted exponents k of y = c x^k (least squares on log y "
+                                 "against log x over the points with both positive, at least "
+                                 "three; written beside each line's last point): " +
+                                 "; ".join(fits) + "." if fits else ""))
 
 
 def family_legend(where, used, markers, extra=()):

@@ -1,9 +1,9 @@
 // The seeds and accuracy machinery: Pareto fronts on a known set, findings decided by their
 // declared comparison (the verdicts' interval logic: test_verdicts.cpp), a tiny suite whose report
 // prints a tiny paper table beside ours with both machines and the findings' verdicts and a Pareto
-// table, the `smoke` form of a suite (overrides merged, strictly checked), and the built-in seeds
-// and accuracy suites run in their smoke form on the CPU end to end (seconds), every experiment
-// without a failed row.
+// table, the `smoke` form of a suite (overrides merged, strictly checked), and the built-in seeds,
+// accuracy and scale suites run in their smoke form on the CPU end to end (seconds), every
+// experiment without a failed row.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -441,6 +441,25 @@ TEST_F(PaperFindings, AccuracySmokeRunsOnTheCpuWithParetoFronts) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("Cheapest: "), std::string::npos);
+}
+
+TEST_F(PaperFindings, ScaleSmokeRunsOnTheCpuWithTheOracleAsItsOwnZero) {
+  const SuiteOutcome r = run("scale", true);
+  expect_clean_smoke(r, 5);
+  // Every shadow row carries its error at camera-visible points and its frame time; the exact
+  // oracle measured against itself is exactly 0 on every scene, and a method that drops shadows
+  // ("none") is not.
+  std::map<std::string, int> visible_rows;
+  for (const Row& row : read_rows_csv(r.folder + "/rows.csv")) {
+    if (row.metric == "probe_error_visible" && row.stat == "max") {
+      ++visible_rows[row.experiment];
+      if (row.strategy == "reference") EXPECT_EQ(row.value, 0.0) << row.scene;
+      if (row.strategy == "none") EXPECT_GT(row.value, 0.1) << row.scene;
+    }
+  }
+  for (const char* e : {"casters", "pixels", "lights", "volume", "dsm-res"})
+    EXPECT_GT(visible_rows[e], 0) << e;
+  EXPECT_EQ(visible_rows["casters"], 6);  // two scenes x (none, dsm, reference)
 }
 
 }  // namespace

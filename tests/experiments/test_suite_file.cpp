@@ -130,7 +130,7 @@ TEST(SuiteFile, BadFilesNameTheFileAndTheProblem) {
 
 TEST(SuiteFile, BuiltInSuitesLoadAndQuickIsAmongThem) {
   const std::vector<std::string> names = builtin_suite_names();
-  for (const char* wanted : {"quick", "seeds", "accuracy"})
+  for (const char* wanted : {"quick", "seeds", "accuracy", "scale"})
     EXPECT_NE(std::find(names.begin(), names.end(), wanted), names.end()) << wanted;
   for (const std::string& name : names) {
     const Suite s = load_suite(resolve_suite_path(name));
