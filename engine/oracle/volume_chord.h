@@ -5,7 +5,8 @@
 // points). So the ray is cut at cell faces; in each cell the cubic is cut where it turns
 // (roots of its derivative) and, on each monotone stretch, where it crosses a transfer control
 // point (a bracketed root, found to 1e-14 of the cell); on every piece the extinction is
-// alpha + beta * cubic, which Simpson's rule integrates exactly. Bricks whose extinction is
+// alpha + beta * cubic, which Simpson's rule integrates exactly (a cell whose corners span no
+// control point is one such piece: its cubic's mean suffices). Bricks whose extinction is
 // zero everywhere (SceneView::brick_empty, flagged from the range of their samples) are crossed
 // in one step. No tolerance and no adaptivity: the answer is exact up to rounding, and the cost
 // per cell is fixed (4 cubic coefficients, at most 2 turning points, one root per control point
@@ -162,6 +163,26 @@ DV_HD inline double transfer_integral_of_cubic(const TransferPoint* p, int n, co
   return total;
 }
 
+// The integral over u in [0, 1] of the extinction along a stretch of one cell (the fractions
+// running from f0 to f1). Trilinear interpolation stays within the corners' range, so when no
+// control point lies strictly inside that range the extinction is one linear piece along the
+// whole stretch: alpha + beta * (the cubic's mean), no turning points or roots to find.
+DV_HD inline double cell_transfer_integral(const TransferPoint* p, int n, const double corner[8],
+                                           const double f0[3], const double f1[3]) {
+  double lo = corner[0], hi = corner[0];
+  for (int k = 1; k < 8; ++k) {
+    lo = min_value(lo, corner[k]);
+    hi = max_value(hi, corner[k]);
+  }
+  const Cubic d = cell_density_cubic(corner, f0, f1);
+  for (int k = 0; k < n; ++k)
+    if (p[k].density > lo && p[k].density < hi) return transfer_integral_of_cubic(p, n, d);
+  double alpha, beta;
+  transfer_piece(p, n, 0.5 * (lo + hi), alpha, beta);
+  if (beta == 0.0) return alpha;
+  return alpha + beta * (d.c[0] + d.c[1] / 2.0 + d.c[2] / 3.0 + d.c[3] / 4.0);
+}
+
 // Optical depth of volume object o over the ray interval [t0, t1] (origin + t dir, world units).
 DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o,
                                          const dvec3& origin, const dvec3& dir, double t0,
@@ -223,8 +244,7 @@ DV_HD inline double volume_optical_depth(const SceneView& s, const ObjectView& o
     }
     double corner[8];
     cell_corners(s, v, cell, corner);
-    total +=
-        (t_next - t) * transfer_integral_of_cubic(tf, n_tf, cell_density_cubic(corner, f0, f1));
+    total += (t_next - t) * cell_transfer_integral(tf, n_tf, corner, f0, f1);
     t = t_next;
   }
   return total;

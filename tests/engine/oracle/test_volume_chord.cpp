@@ -1,6 +1,7 @@
 // The closed-form optical depth through density volumes (engine/oracle/volume_chord.h): the
 // cell's cubic against trilinear interpolation, the transfer integral of a cubic against
-// adaptive Simpson refined to intervals of 2^-40 (kinks, steps, turning points, constant ends),
+// adaptive Simpson refined to intervals of 2^-40 (kinks, steps, turning points, constant ends;
+// cells whose corners span no control point, which take the cubic's mean),
 // and the walk through a grid (cell faces met on the ray, empty bricks skipped) against the same
 // walk with no brick flagged and against adaptive Simpson on the trilinear extinction.
 #include <gtest/gtest.h>
@@ -65,6 +66,33 @@ TEST(VolumeChord, TransferIntegralOfACubicMatchesAdaptiveSimpson) {
     EXPECT_NEAR(transfer_integral_of_cubic(tf.data(), n, d), simpson_reference(tf, d), 1e-10)
         << trial;
   }
+}
+
+TEST(VolumeChord, CellsWhoseCornersSpanNoControlPointTakeTheCubicsMean) {
+  // Corners in a narrow band: every other cell's band holds no control point (the shortcut),
+  // the rest hold one (the cuts); both against adaptive Simpson, and constant cells exactly.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const std::vector<TransferPoint> tf = {tp(0.2, 0.0), tp(0.5, 6.0), tp(0.5, 2.0), tp(0.9, 9.0)};
+  int shortcut = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const double base = unit(rng), width = 0.1 * unit(rng);
+    double corner[8], f0[3], f1[3];
+    for (double& c : corner) c = base + width * unit(rng);
+    for (int a = 0; a < 3; ++a) f0[a] = unit(rng), f1[a] = unit(rng);
+    const double lo = *std::min_element(corner, corner + 8);
+    const double hi = *std::max_element(corner, corner + 8);
+    shortcut += std::none_of(tf.begin(), tf.end(), [&](const TransferPoint& p) {
+      return p.density > lo && p.density < hi;
+    });
+    EXPECT_NEAR(cell_transfer_integral(tf.data(), 4, corner, f0, f1),
+                simpson_reference(tf, cell_density_cubic(corner, f0, f1)), 1e-10)
+        << trial;
+  }
+  EXPECT_GT(shortcut, 200);
+  const double flat[8] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5}, f[3] = {0.3, 0.3, 0.3};
+  EXPECT_DOUBLE_EQ(cell_transfer_integral(tf.data(), 4, flat, f, f),
+                   evaluate_transfer(tf.data(), 4, 0.5).sigma);
 }
 
 TEST(VolumeChord, TurningPointsCrossTheSameControlPointThreeTimes) {
