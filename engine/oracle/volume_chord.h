@@ -26,7 +26,6 @@ namespace dv {
 struct Cubic {
   double c[4];
   DV_HD double operator()(double u) const { return c[0] + u * (c[1] + u * (c[2] + u * c[3])); }
-  DV_HD double slope(double u) const { return c[1] + u * (2.0 * c[2] + u * 3.0 * c[3]); }
 };
 
 // The trilinear density of a cell along a straight stretch on which the cell fractions run
