@@ -6,8 +6,10 @@
 // measurement), pick.json (a shadow config render/probe/view take with --config and suite files
 // name), front.svg (error against frame time). Ctrl-C ends the search, keeps what was measured
 // and writes the outputs from it (exit 130).
+// `deepvox advise SCENE --time CONFIG... [--rounds N]` times config files alternately.
 // `deepvox advise --calibrate RUN_DIR [--model-out FILE]` regenerates the error model of
 // `--shadows auto --error-budget` from an accuracy suite run (experiments/harness/error_model.h).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +24,8 @@
 #include "experiments/harness/error_model.h"
 #include "experiments/harness/interrupt.h"
 #include "experiments/harness/scene_cache.h"
+#include "experiments/harness/timing.h"
+#include "strategies/shadow/shadow_config.h"
 
 namespace dv::cli {
 
@@ -62,6 +66,38 @@ int check_auto_budget(SceneCache& cache, const AdviseOptions& a, Backend backend
   return m.ok && m.error_p95 <= a.budgets.error ? 0 : 4;
 }
 
+// --time: the frame times of config files in interleaved rounds, as advise's final timing takes
+// them, so that two configurations are compared in one process and alternately
+// (scripts/advise_check.py); timing.json in the output folder; exit 4 when one failed.
+int time_configs(SceneCache& cache, const AdviseOptions& a, const std::vector<std::string>& files,
+                 const std::filesystem::path& out) {
+  std::vector<ShadowConfig> configs;
+  for (const std::string& file : files) configs.push_back(read_shadow_config(file));
+  AdviseMeasurer measurer(cache, a.scene, a.settings);
+  const std::vector<std::vector<double>> times =
+      measurer.interleaved_frame_ms(configs, a.final_rounds);
+  nlohmann::json j = {{"scene", a.scene},
+                      {"image", {measurer.width(), measurer.height()}},
+                      {"rounds", a.final_rounds},
+                      {"repeat", a.settings.repeat},
+                      {"configs", nlohmann::json::array()}};
+  bool all_timed = true;
+  for (size_t k = 0; k < configs.size(); ++k) {
+    const Spread s = spread_of(times[k]);
+    all_timed = all_timed && std::isfinite(s.max);
+    std::printf("%10.3f ms median (%.3f - %.3f) over %d rounds: %s\n", s.median, s.min, s.max,
+                a.final_rounds, configs[k].param_line().c_str());
+    j["configs"].push_back({{"file", files[k]},
+                            {"param_line", configs[k].param_line()},
+                            {"times_ms", times[k]},
+                            {"median_ms", s.median},
+                            {"min_ms", s.min},
+                            {"max_ms", s.max}});
+  }
+  write_text(out / "timing.json", j.dump(1) + "\n");
+  return all_timed ? 0 : 4;
+}
+
 }  // namespace
 
 Runner add_advise(CLI::App& app) {
@@ -70,8 +106,9 @@ Runner add_advise(CLI::App& app) {
     double error = 0.02;
     std::optional<double> budget_ms, memory_mb;
     AdviseSettings settings;
-    int max_evaluations = 60, max_res = 0;
+    int max_evaluations = 60, max_res = 0, rounds = 5;
     bool exhaustive = false, auto_budget = false;
+    std::vector<std::string> time_configs;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -115,6 +152,14 @@ Runner add_advise(CLI::App& app) {
   cmd->add_flag("--auto-budget", opt->auto_budget,
                 "instead of a search: what `--shadows auto --error-budget E` (E: --error) "
                 "chooses on the scene and why, measured at fresh points (auto.json)");
+  cmd->add_option("--rounds", opt->rounds,
+                  "interleaved rounds in which the cheapest candidates (within 1.5x of the "
+                  "cheapest's time, at most 6) are timed again before the pick (and of --time)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--time", opt->time_configs,
+                  "instead of a search: the frame times of these shadow config files (as "
+                  "--config takes) in --rounds interleaved rounds (timing.json)");
   cmd->add_option("--calibrate", opt->calibrate,
                   "regenerate the error model of --error-budget from an accuracy suite run "
                   "folder (rows.csv) instead of advising");
@@ -143,6 +188,7 @@ Runner add_advise(CLI::App& app) {
     a.max_evaluations = opt->max_evaluations;
     a.exhaustive = opt->exhaustive;
     a.max_res = opt->max_res;
+    a.final_rounds = opt->rounds;
     a.progress = [](const std::string& line) {
       std::fprintf(stderr, "advise: %s\n", line.c_str());
     };
@@ -154,6 +200,7 @@ Runner add_advise(CLI::App& app) {
     if (ec) throw InputError(out.string(), "cannot create the output folder: " + ec.message());
     SceneCache cache(backend);
     if (opt->auto_budget) return check_auto_budget(cache, a, backend, out);
+    if (!opt->time_configs.empty()) return time_configs(cache, a, opt->time_configs, out);
     Advice advice;
     {
       InterruptScope interrupts;  // Ctrl-C: the search stops, what was measured is kept

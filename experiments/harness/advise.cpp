@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "experiments/harness/interrupt.h"
 #include "experiments/harness/scene_cache.h"
+#include "experiments/harness/timing.h"
 
 namespace dv {
 
@@ -26,7 +29,42 @@ std::string progress_line(const AdviseResult& r, size_t index) {
   return text;
 }
 
+// The final timing: the contenders timed again in interleaved rounds lead `candidates` in the
+// order of their medians (one whose median breaks --budget-ms or that failed leaves), the other
+// candidates follow as they were.
+void time_contenders(AdviseMeasurer& measurer, const AdviseOptions& o,
+                     std::vector<size_t>& candidates, Advice& advice) {
+  const std::vector<size_t> contenders =
+      timing_contenders(advice.results, candidates, kFinalTimingBand, kFinalTimingMost);
+  if (contenders.size() < 2 || o.final_rounds < 1) return;
+  if (o.progress)
+    o.progress("final timing: " + std::to_string(contenders.size()) + " candidates in " +
+               std::to_string(o.final_rounds) + " interleaved rounds");
+  std::vector<ShadowConfig> configs;
+  for (size_t i : contenders) configs.push_back(advice.results[i].config);
+  const std::vector<std::vector<double>> times =
+      measurer.interleaved_frame_ms(configs, o.final_rounds);
+  for (size_t k = 0; k < contenders.size(); ++k)
+    advice.final_timing.push_back({contenders[k], times[k], spread_of(times[k]).median});
+  std::vector<Advice::FinalTiming> ranked = advice.final_timing;
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.median_ms < b.median_ms; });
+  std::vector<size_t> order;
+  for (const Advice::FinalTiming& t : ranked)
+    if (std::isfinite(t.median_ms) && (!o.budgets.frame_ms || t.median_ms <= *o.budgets.frame_ms))
+      order.push_back(t.index);
+  order.insert(order.end(), candidates.begin() + std::ptrdiff_t(contenders.size()),
+               candidates.end());
+  candidates = std::move(order);
+}
+
 }  // namespace
+
+double Advice::chosen_ms(size_t index) const {
+  for (const FinalTiming& t : final_timing)
+    if (t.index == index) return t.median_ms;
+  return results[index].measurement.frame_ms;
+}
 
 std::vector<AdviseFamily> advise_space_for(const AdviseMeasurer& measurer, bool auto_only,
                                            int max_res) {
@@ -73,8 +111,10 @@ Advice advise(SceneCache& cache, const AdviseOptions& o) {
   advice.interrupted = interrupt_requested();
   advice.front = advise_front(advice.results);
   advice.verify_seed = o.settings.seed + kVerifySeedOffset;
+  std::vector<size_t> candidates = advise_picks(advice.results, o.budgets);
+  if (!interrupt_requested()) time_contenders(measurer, o, candidates, advice);
   int tries = 0;
-  for (size_t i : advise_picks(advice.results, o.budgets)) {
+  for (size_t i : candidates) {
     if (tries++ == kVerifyTries || interrupt_requested()) break;
     advice.tried = i;
     advice.verified = measurer.verify(advice.results[i].config, advice.verify_seed);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "core/error.h"
@@ -71,6 +72,28 @@ AdviseMeasurement AdviseMeasurer::measure(const ShadowConfig& config) {
 
 AdviseMeasurement AdviseMeasurer::verify(const ShadowConfig& config, uint64_t seed) {
   return measure_with(config, seed);
+}
+
+std::vector<std::vector<double>> AdviseMeasurer::interleaved_frame_ms(
+    const std::vector<ShadowConfig>& configs, int rounds) {
+  const Scene& scene = cache_.scene(path_);
+  const SceneData& data = cache_.data(path_);
+  Camera camera = scene.camera;
+  camera.width = settings_.width;
+  camera.height = settings_.height;
+  std::vector<std::vector<double>> times(configs.size());
+  for (const std::vector<size_t>& round : interleaved_rounds(configs.size(), rounds))
+    for (size_t k : round) {
+      double ms = std::numeric_limits<double>::infinity();
+      try {
+        ms = timed_repeats(configs[k].name, StrategyParams(configs[k].params), data,
+                           cache_.backend(), camera, scene.background, settings_.repeat)
+                 .frame_ms();
+      } catch (const Error&) {  // as in measure_with: a failure is no time
+      }
+      times[k].push_back(ms);
+    }
+  return times;
 }
 
 AdviseMeasurement AdviseMeasurer::measure_with(const ShadowConfig& config, uint64_t seed) {

@@ -7,11 +7,13 @@
 // the chosen backend) and the method's bytes. The budget is checked against the worst light's
 // camera-visible p95: what the image weights (probe_points.h says why medium points along the
 // camera rays are left out; the world-uniform medium points are shown, not budgeted).
-// verify() repeats the error measurement on fresh probe points (another seed) for the pick.
+// verify() repeats the error measurement on fresh probe points (another seed) for the pick;
+// interleaved_frame_ms() times configurations again, alternating them, for the final choice.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "cuda/execute.h"
 #include "experiments/harness/advise_search.h"
@@ -34,6 +36,11 @@ class AdviseMeasurer {
   AdviseMeasurement measure(const ShadowConfig& config);
   // The error of `config` at fresh points (seed `seed`), its time and bytes measured anew.
   AdviseMeasurement verify(const ShadowConfig& config, uint64_t seed);
+  // Frame times only (median generation + median render, ms, as measure() takes them) of each
+  // config in `rounds` interleaved rounds (interleaved_rounds): per config its time per round,
+  // +infinity for a round where it failed.
+  std::vector<std::vector<double>> interleaved_frame_ms(const std::vector<ShadowConfig>& configs,
+                                                        int rounds);
   // Which casters the lights reach (advise_space's families).
   AdviseSceneKind kind() const;
   int width() const { return settings_.width; }

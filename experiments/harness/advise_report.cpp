@@ -58,13 +58,22 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
     out << "pick: " << a.results[*a.pick].config.param_line() << "\n  search p95 "
         << format("%.4g", m.error_p95) << ", verified p95 at fresh points (seed " << a.verify_seed
         << ") " << format("%.4g", a.verified.error_p95) << " <= " << budgets.error << ", "
-        << format("%.3f", m.frame_ms) << " ms, " << format("%.2f", m.bytes / 1e6) << " MB\n";
+        << format("%.3f", a.chosen_ms(*a.pick)) << " ms, " << format("%.2f", m.bytes / 1e6)
+        << " MB\n";
   } else if (a.tried) {
     out << "no pick: the cheapest candidates' verified p95 ("
         << format("%.4g", a.verified.error_p95) << " for "
         << a.results[*a.tried].config.param_line() << ") misses " << budgets.error << "\n";
   } else {
     out << "no pick: no measured configuration meets the bound and budgets\n";
+  }
+  if (!a.final_timing.empty()) {
+    out << "final timing (" << a.final_timing.front().times_ms.size()
+        << " interleaved rounds; median ms, search ms):\n";
+    for (const Advice::FinalTiming& t : a.final_timing)
+      out << (a.pick && *a.pick == t.index ? "=> " : "   ") << format("%-9.3f ", t.median_ms)
+          << format("%-9.3f ", a.results[t.index].measurement.frame_ms)
+          << a.results[t.index].config.param_line() << "\n";
   }
   if (a.interrupted) out << "(interrupted: the front holds what was measured)\n";
   return out.str();
@@ -100,7 +109,14 @@ nlohmann::json advice_json(const Advice& a, const AdviseOptions& o) {
     j["results"].push_back({{"shadows", r.config.to_json()["shadows"]},
                             {"param_line", r.config.param_line()},
                             {"measured", measurement_json(r.measurement)}});
+  j["final_timing"] = nlohmann::json::array();
+  for (const Advice::FinalTiming& t : a.final_timing)
+    j["final_timing"].push_back({{"index", t.index},
+                                 {"param_line", a.results[t.index].config.param_line()},
+                                 {"times_ms", t.times_ms},
+                                 {"median_ms", t.median_ms}});
   j["pick"] = a.pick ? nlohmann::json(*a.pick) : nlohmann::json();
+  if (a.pick) j["pick_ms"] = a.chosen_ms(*a.pick);
   if (a.tried) {
     j["verified"] = measurement_json(a.verified);
     j["verified_index"] = *a.tried;

@@ -59,6 +59,26 @@ std::vector<size_t> advise_picks(const std::vector<AdviseResult>& results,
   return picks;
 }
 
+std::vector<size_t> timing_contenders(const std::vector<AdviseResult>& results,
+                                      const std::vector<size_t>& picks, double band, size_t most) {
+  std::vector<size_t> contenders;
+  for (size_t i : picks) {
+    if (contenders.size() == most) break;
+    if (!contenders.empty() &&
+        results[i].measurement.frame_ms > band * results[contenders.front()].measurement.frame_ms)
+      break;
+    contenders.push_back(i);
+  }
+  return contenders;
+}
+
+std::vector<std::vector<size_t>> interleaved_rounds(size_t n, int rounds) {
+  std::vector<std::vector<size_t>> order(size_t(std::max(rounds, 0)));
+  for (size_t r = 0; r < order.size(); ++r)
+    for (size_t k = 0; k < n; ++k) order[r].push_back((r + k) % n);
+  return order;
+}
+
 namespace {
 
 bool should_stop(const AdviseSearchLimits& limits, size_t measured) {

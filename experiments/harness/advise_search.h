@@ -82,6 +82,17 @@ std::vector<size_t> advise_front(const std::vector<AdviseResult>& results);
 std::vector<size_t> advise_picks(const std::vector<AdviseResult>& results,
                                  const AdviseBudgets& budgets);
 
+// The final timing of advise (advise.h): of `picks` (advise_picks' order), the leading ones whose
+// search time is within `band` times the first's, at most `most`; these are timed again in
+// interleaved rounds, since one search measurement of a ~1 ms frame varies by 10-30 % between
+// measurements (clock and launch jitter) and would decide a near tie by chance.
+std::vector<size_t> timing_contenders(const std::vector<AdviseResult>& results,
+                                      const std::vector<size_t>& picks, double band, size_t most);
+// The order of `rounds` interleaved rounds over n configurations: every round times each once,
+// its start rotating by one per round, so that each configuration takes every place in turn
+// and a drift over the rounds falls on all of them alike.
+std::vector<std::vector<size_t>> interleaved_rounds(size_t n, int rounds);
+
 struct AdviseSearchLimits {
   int max_evaluations = 60;
   std::function<bool()> stop;  // checked before each measurement; may be empty

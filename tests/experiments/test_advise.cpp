@@ -4,6 +4,7 @@
 // CPU advise end to end whose pick's verified error meets the bound.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -74,6 +75,34 @@ TEST(AdviseSearch, DominanceFrontAndPicks) {
   budgets.error = 0.2;
   budgets.frame_ms = 3.5;
   EXPECT_EQ(advise_picks(results, budgets), (std::vector<size_t>{1}));
+}
+
+// The final timing takes the leading candidates within the band of the cheapest's search time
+// (at most `most`) and times them in rounds that rotate their order.
+TEST(AdviseSearch, FinalTimingContendersAndInterleavedRounds) {
+  std::vector<AdviseResult> results;
+  for (double ms : {2.0, 1.0, 1.4, 1.6, 3.0}) results.push_back({{}, {}, point(0.01, ms)});
+  AdviseBudgets budgets;
+  const std::vector<size_t> picks = advise_picks(results, budgets);
+  ASSERT_EQ(picks, (std::vector<size_t>{1, 2, 3, 0, 4}));
+  EXPECT_EQ(timing_contenders(results, picks, 1.5, 6), (std::vector<size_t>{1, 2}));
+  EXPECT_EQ(timing_contenders(results, picks, 2.0, 6), (std::vector<size_t>{1, 2, 3, 0}));
+  EXPECT_EQ(timing_contenders(results, picks, 2.0, 3), (std::vector<size_t>{1, 2, 3}));
+  EXPECT_EQ(timing_contenders(results, {4}, 1.5, 6), (std::vector<size_t>{4}));
+  EXPECT_TRUE(timing_contenders(results, {}, 1.5, 6).empty());
+
+  const std::vector<std::vector<size_t>> rounds = interleaved_rounds(3, 4);
+  ASSERT_EQ(rounds.size(), 4u);
+  EXPECT_EQ(rounds[0], (std::vector<size_t>{0, 1, 2}));
+  EXPECT_EQ(rounds[1], (std::vector<size_t>{1, 2, 0}));
+  EXPECT_EQ(rounds[2], (std::vector<size_t>{2, 0, 1}));
+  EXPECT_EQ(rounds[3], (std::vector<size_t>{0, 1, 2}));
+  for (size_t place = 0; place < 3; ++place) {  // over the first three rounds each index once
+    std::vector<size_t> at;
+    for (size_t r = 0; r < 3; ++r) at.push_back(rounds[r][place]);
+    std::sort(at.begin(), at.end());
+    EXPECT_EQ(at, (std::vector<size_t>{0, 1, 2})) << "place " << place;
+  }
 }
 
 TEST(AdviseSearch, StopsDominatedBranchesAndFindsTheSweepsCheapest) {
@@ -264,6 +293,12 @@ TEST_F(AdviseFiles, SmallCpuAdviceMeetsItsBoundAtFreshPoints) {
   EXPECT_NE(advice.verify_seed, o.settings.seed);
   EXPECT_LE(int(advice.results.size()), o.max_evaluations);
   EXPECT_FALSE(advice.front.empty());
+  // The final timing: every contender timed once per round; the pick's time is its median.
+  for (const Advice::FinalTiming& t : advice.final_timing) {
+    EXPECT_EQ(int(t.times_ms.size()), o.final_rounds);
+    EXPECT_LT(t.index, advice.results.size());
+    if (t.index == *advice.pick) EXPECT_EQ(advice.chosen_ms(t.index), t.median_ms);
+  }
 }
 
 }  // namespace

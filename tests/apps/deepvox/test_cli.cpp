@@ -340,6 +340,34 @@ TEST_F(Cli, AdvisePickIsAConfigRenderAndProbeTake) {
                {"bad.json", "version"});
 }
 
+// advise --time times config files alternately in one process (what advise's final timing
+// does, and what scripts/advise_check.py compares a pick with the sweep's cheapest by).
+TEST_F(Cli, AdviseTimeTimesConfigsInInterleavedRounds) {
+  const std::string scene = write("scene.json", kAdviseScene);
+  const std::string a = write("a.json", R"({"format": "deepvox-shadow-config", "version": 1,
+                                          "shadows": {"name": "dsm", "params": {"res": 64}}})");
+  const std::string b = write("b.json", R"({"format": "deepvox-shadow-config", "version": 1,
+                                          "shadows": {"name": "shadowmap", "params": {"res": 64}}})");
+  const CommandResult timed = run("advise " + scene + " --backend cpu --width 32 --repeat 1 " +
+                                  "--rounds 3 --time " + a + " " + b + " --out " + path("t"));
+  ASSERT_EQ(timed.exit_code, 0) << timed.output;
+  EXPECT_NE(timed.output.find("over 3 rounds: --shadows dsm --param res=64"), std::string::npos)
+      << timed.output;
+  std::ifstream in(path("t/timing.json"));
+  const nlohmann::json timing = nlohmann::json::parse(in);
+  ASSERT_EQ(timing["configs"].size(), 2u);
+  EXPECT_EQ(timing["rounds"], 3);
+  for (const nlohmann::json& c : timing["configs"]) {
+    ASSERT_EQ(c["times_ms"].size(), 3u) << c.dump();
+    for (const nlohmann::json& ms : c["times_ms"]) EXPECT_GT(ms.get<double>(), 0.0);
+    EXPECT_LE(c["min_ms"].get<double>(), c["median_ms"].get<double>());
+    EXPECT_LE(c["median_ms"].get<double>(), c["max_ms"].get<double>());
+  }
+  expect_error(
+      "advise " + scene + " --backend cpu --time " + path("missing.json") + " --out " + path("t2"),
+      {"missing.json"});
+}
+
 // --error-budget chooses auto's parameters for the scene and --explain says how and why.
 TEST_F(Cli, ErrorBudgetChoosesAutosParametersAndExplains) {
   const std::string scene = write("scene.json", kAdviseScene);
