@@ -67,8 +67,7 @@ DV_HD inline void transfer_piece(const TransferPoint* p, int n, double density, 
     alpha = p[n - 1].sigma;
     return;
   }
-  int k = 0;
-  while (k + 1 < n - 1 && p[k + 1].density <= density) ++k;
+  const int k = transfer_segment(p, n, density);
   const double span = p[k + 1].density - p[k].density;
   if (!(span > 0.0)) {
     alpha = p[k + 1].sigma;

@@ -99,13 +99,21 @@ struct TransferSample {
   double sigma;
 };
 
+// The transfer function's segment [p[k], p[k + 1]] holding a density strictly inside its range
+// (p[0].density < density < p[n - 1].density; the callers answer the constant ends themselves;
+// evaluate_transfer here, the oracle's transfer_piece in engine/oracle/volume_chord.h).
+DV_HD inline int transfer_segment(const TransferPoint* p, int n, double density) {
+  int k = 0;
+  while (k + 1 < n - 1 && p[k + 1].density <= density) ++k;
+  return k;
+}
+
 // Piecewise-linear transfer function over n >= 1 points sorted by density; the end points'
 // values hold outside their range.
 DV_HD inline TransferSample evaluate_transfer(const TransferPoint* p, int n, double density) {
   if (density <= p[0].density) return {p[0].color, p[0].sigma};
   if (density >= p[n - 1].density) return {p[n - 1].color, p[n - 1].sigma};
-  int k = 0;
-  while (k + 1 < n - 1 && p[k + 1].density <= density) ++k;
+  const int k = transfer_segment(p, n, density);
   const double span = p[k + 1].density - p[k].density;
   const double w = span > 0.0 ? (density - p[k].density) / span : 1.0;
   return {p[k].color * (1.0 - w) + p[k + 1].color * w, p[k].sigma * (1.0 - w) + p[k + 1].sigma * w};
