@@ -13,9 +13,9 @@ namespace dv::cli {
 
 namespace {
 
-// The measured fallback: an advise search over what auto takes, with advise's own number of
-// evaluations (24 missed knecht-fig56's only configurations within 0.005, at res 1024, on the
-// H200) and fewer probe points.
+// The measured fallback: an advise search over what auto takes, as long as advise's own (a
+// shorter one can stop before the resolutions a tight budget needs: knecht-fig56 within 0.005
+// needs res 1024), with fewer probe points.
 constexpr int kFallbackProbes = 1000;
 
 std::string number_text(double v) {
