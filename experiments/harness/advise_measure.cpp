@@ -74,21 +74,27 @@ AdviseMeasurement AdviseMeasurer::verify(const ShadowConfig& config, uint64_t se
   return measure_with(config, seed);
 }
 
-std::vector<std::vector<double>> AdviseMeasurer::interleaved_frame_ms(
-    const std::vector<ShadowConfig>& configs, int rounds) {
-  const Scene& scene = cache_.scene(path_);
-  const SceneData& data = cache_.data(path_);
-  Camera camera = scene.camera;
+Camera AdviseMeasurer::camera() const {
+  Camera camera = cache_.scene(path_).camera;
   camera.width = settings_.width;
   camera.height = settings_.height;
+  return camera;
+}
+
+TimedRepeats AdviseMeasurer::timed(const ShadowConfig& config, const Camera& camera) {
+  return timed_repeats(config.name, StrategyParams(config.params), cache_.data(path_),
+                       cache_.backend(), camera, cache_.scene(path_).background, settings_.repeat);
+}
+
+std::vector<std::vector<double>> AdviseMeasurer::interleaved_frame_ms(
+    const std::vector<ShadowConfig>& configs, int rounds) {
+  const Camera view = camera();
   std::vector<std::vector<double>> times(configs.size());
   for (const std::vector<size_t>& round : interleaved_rounds(configs.size(), rounds))
     for (size_t k : round) {
       double ms = std::numeric_limits<double>::infinity();
       try {
-        ms = timed_repeats(configs[k].name, StrategyParams(configs[k].params), data,
-                           cache_.backend(), camera, scene.background, settings_.repeat)
-                 .frame_ms();
+        ms = timed(configs[k], view).frame_ms();
       } catch (const Error&) {  // as in measure_with: a failure is no time
       }
       times[k].push_back(ms);
@@ -98,23 +104,18 @@ std::vector<std::vector<double>> AdviseMeasurer::interleaved_frame_ms(
 
 AdviseMeasurement AdviseMeasurer::measure_with(const ShadowConfig& config, uint64_t seed) {
   AdviseMeasurement m;
-  const Scene& scene = cache_.scene(path_);
   const SceneData& data = cache_.data(path_);
-  Camera camera = scene.camera;
-  camera.width = settings_.width;
-  camera.height = settings_.height;
+  const Camera view = camera();
   try {
-    TimedRepeats timed =
-        timed_repeats(config.name, StrategyParams(config.params), data, cache_.backend(), camera,
-                      scene.background, settings_.repeat);
-    m.frame_ms = timed.frame_ms();
-    m.bytes = method_bytes(timed.last.stats);
-    ShadowMethod& method = *timed.last.method;
+    TimedRepeats repeats = timed(config, view);
+    m.frame_ms = repeats.frame_ms();
+    m.bytes = method_bytes(repeats.last.stats);
+    ShadowMethod& method = *repeats.last.method;
     const ProbeSet& visible =
         cache_.visible_probes(path_, settings_.width, settings_.height, settings_.probes, seed);
     const std::vector<ErrorSummary> errors = light_errors(
-        probe_transmittance(cache_.backend(), data, method, visible.points.points, &camera),
-        visible, ProbeClass::visible);
+        probe_transmittance(cache_.backend(), data, method, visible.points.points, &view), visible,
+        ProbeClass::visible);
     for (const ErrorSummary& e : errors) {
       m.light_p95.push_back(e.p95);
       m.light_max.push_back(e.max);
@@ -124,11 +125,11 @@ AdviseMeasurement AdviseMeasurer::measure_with(const ShadowConfig& config, uint6
     if (media_) {
       const ProbeSet& medium = cache_.probes(path_, settings_.probes, 1.0, seed);
       for (const ErrorSummary& e : light_errors(
-               probe_transmittance(cache_.backend(), data, method, medium.points.points, &camera),
+               probe_transmittance(cache_.backend(), data, method, medium.points.points, &view),
                medium, ProbeClass::medium))
         m.light_medium_p95.push_back(e.p95);
     }
-    m.image_rmse = image_error(timed.frame.render.image,
+    m.image_rmse = image_error(repeats.frame.render.image,
                                cache_.reference(path_, settings_.width, settings_.height).image)
                        .rmse;
     m.ok = true;

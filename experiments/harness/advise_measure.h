@@ -18,6 +18,7 @@
 #include "cuda/execute.h"
 #include "experiments/harness/advise_search.h"
 #include "experiments/harness/scene_cache.h"
+#include "experiments/harness/shadow_measure.h"
 
 namespace dv {
 
@@ -51,6 +52,11 @@ class AdviseMeasurer {
 
  private:
   AdviseMeasurement measure_with(const ShadowConfig& config, uint64_t seed);
+  // The scene's camera at the measurements' image size.
+  Camera camera() const;
+  // `config` generated and rendered from `camera`: a warm-up, then settings_.repeat timed
+  // repetitions of each (throws the strategy's Error when it fails).
+  TimedRepeats timed(const ShadowConfig& config, const Camera& camera);
   SceneCache& cache_;
   std::string path_;
   AdviseSettings settings_;
