@@ -1,8 +1,12 @@
 // Storage strategy `compact` (see compact_device.h): counting pass (which keeps the nodes for
-// the packing pass, engine/dsm/node_replay.h), exclusive scan, packing pass. Compiled by nvcc when
-// CUDA is on.
+// the packing pass, engine/dsm/node_replay.h), the two-level scan of the counts, packing pass.
+// Compiled by nvcc when CUDA is on.
+#include <cstdint>
 #include <memory>
+#include <string>
 
+#include "core/atomic.h"
+#include "core/error.h"
 #include "cuda/ensure_buffer.h"
 #include "cuda/scan.h"
 #include "strategies/storage/compact_device.h"
@@ -14,7 +18,7 @@ namespace dv {
 
 namespace {
 
-void count_nodes(const DsmGenerationContext& c, NodeReplay replay, View<int64_t> counts) {
+void count_nodes(const DsmGenerationContext& c, NodeReplay replay, View<uint32_t> counts) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   parallel_for(
@@ -23,21 +27,41 @@ void count_nodes(const DsmGenerationContext& c, NodeReplay replay, View<int64_t>
         if (!g.texel_of_thread(i, t)) return;
         const DsmTexelResult<KeepingSink<CountingNodeSink>> r =
             g.generate(t, eps, replay.sink<CountingNodeSink>(t));
-        counts[t.index] = r.record.nodes;
+        counts[t.index] = uint32_t(r.record.nodes);
         replay.keep(i, t, r);
       });
 }
 
+// Turns each group's counts into starts within the group and leaves the group's total in
+// `group_starts` for the scan; the largest total above 2^32 - 1 (the starts within a group are
+// 32-bit) goes to `largest`.
+void start_within_groups(Backend backend, View<uint32_t> counts, View<int64_t> group_starts,
+                         View<unsigned long long> largest) {
+  parallel_for(
+      backend, "dsm_compact_group_starts", group_starts.size, DV_KERNEL_LAMBDA(int64_t g) {
+        const int64_t first = g * kCompactGroupTexels;
+        const int64_t end = min_value(first + kCompactGroupTexels, counts.size);
+        unsigned long long sum = 0;
+        for (int64_t t = first; t < end; ++t) {
+          const uint32_t n = counts[t];
+          counts[t] = uint32_t(sum);
+          sum += n;
+        }
+        group_starts[g] = int64_t(sum);
+        if (sum > 0xffffffffull) atomic_max(largest.data, sum);
+      });
+}
+
 template <bool kWalk>
-void write_nodes(const DsmGenerationContext& c, NodeReplay replay, View<const int64_t> offsets,
+void write_nodes(const DsmGenerationContext& c, NodeReplay replay, CompactStarts starts,
                  View<DsmNode> nodes) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
   const View<DsmTexelRecord> records = c.records;
   for_replay_texels<kWalk>(
       c, replay, "dsm_compact_write", DV_KERNEL_LAMBDA(int64_t, const DsmTexel& t) {
-        const int64_t begin = offsets[t.index];
-        const CompactSink sink{nodes.data + begin, offsets[t.index + 1] - begin};
+        const int64_t begin = starts.start(t.index);
+        const CompactSink sink{nodes.data + begin, starts.start(t.index + 1) - begin};
         records[t.index] = replay.generate<kWalk>(g, t, eps, sink).record;
       });
 }
@@ -49,34 +73,62 @@ class CompactStorage final : public DsmStorage {
 
   void generate(const DsmGenerationContext& c) override {
     const int64_t texels = c.generator.texel_count();
-    ensure_buffer(offsets_, memory_of(c.backend), texels + 1, "dsm compact offsets");
+    const Memory memory = memory_of(c.backend);
+    ensure_buffer(local_starts_, memory, texels + 1, "dsm compact starts within groups");
+    ensure_buffer(group_starts_, memory, compact_groups(texels), "dsm compact group starts");
+    ensure_buffer(largest_group_, memory, 1, "dsm compact largest group");
     timed_pass(c, "count", [&] {
-      offsets_.fill_zero();
-      count_nodes(c, scratch_.begin(c), offsets_.view());
+      local_starts_.fill_zero();
+      count_nodes(c, scratch_.begin(c), local_starts_.view());
     });
     int64_t total = 0;
-    timed_pass(c, "scan", [&] { total = exclusive_scan_in_place(c.backend, offsets_.view()); });
+    timed_pass(c, "scan", [&] {
+      largest_group_.fill_zero();
+      start_within_groups(c.backend, local_starts_.view(), group_starts_.view(),
+                          largest_group_.view());
+      total = exclusive_scan_in_place(c.backend, group_starts_.view());
+    });
+    const unsigned long long largest = largest_group_.to_vector()[0];
+    if (largest > 0) {
+      scratch_.end();
+      throw Error("dsm storage 'compact': " + std::to_string(largest) + " nodes in one group of " +
+                  std::to_string(kCompactGroupTexels) +
+                  " texels, more than its 32-bit starts hold (4294967295)");
+    }
     ensure_buffer(nodes_, memory_of(c.backend), total, "dsm compact nodes");
     timed_pass(c, "write", [&] {
       const NodeReplay replay = scratch_.replay();
-      run_replay_write(replay, [&]<bool kWalk>() {
-        write_nodes<kWalk>(c, replay, offsets_.const_view(), nodes_.view());
-      });
+      run_replay_write(
+          replay, [&]<bool kWalk>() { write_nodes<kWalk>(c, replay, starts(), nodes_.view()); });
     });
     scratch_.end();
   }
 
   DsmReader reader() const override {
-    return DsmReader(CompactReader{offsets_.const_view(), nodes_.const_view()});
+    return DsmReader(CompactReader{starts(), nodes_.const_view()});
   }
-  int64_t bytes_allocated() const override { return offsets_.bytes() + nodes_.bytes(); }
+  int64_t bytes_allocated() const override {
+    return group_starts_.bytes() + local_starts_.bytes() + nodes_.bytes();
+  }
   bool keeps_error_bound() const override { return true; }
   int64_t bytes_per_node() const override { return sizeof(DsmNode); }
-  DsmHostNodes host_nodes() const override { return {offsets_.to_vector(), nodes_.to_vector()}; }
+  DsmHostNodes host_nodes() const override {
+    const std::vector<int64_t> groups = group_starts_.to_vector();
+    const std::vector<uint32_t> local = local_starts_.to_vector();
+    const CompactStarts host{{groups.data(), int64_t(groups.size())},
+                             {local.data(), int64_t(local.size())}};
+    std::vector<int64_t> offsets(local.size());
+    for (size_t t = 0; t < offsets.size(); ++t) offsets[t] = host.start(int64_t(t));
+    return {offsets, nodes_.to_vector()};
+  }
   nlohmann::json own_figures() const override { return scratch_.figures(); }
 
  private:
-  Buffer<int64_t> offsets_;
+  CompactStarts starts() const { return {group_starts_.const_view(), local_starts_.const_view()}; }
+
+  Buffer<int64_t> group_starts_;
+  Buffer<uint32_t> local_starts_;
+  Buffer<unsigned long long> largest_group_;
   Buffer<DsmNode> nodes_;
   NodeReplayScratch scratch_;
 };

@@ -14,14 +14,16 @@ NodeReplay NodeReplayScratch::begin(const DsmGenerationContext& c) {
   // and every texel is walked twice, as without it.
   const int64_t most_chunks = std::numeric_limits<int32_t>::max();
   if (texels == 0 || texels >= most_chunks || c.generator.thread_count() > most_chunks)
-    return replay_ = {};
+    return inactive(texels);
   const int64_t wanted = largest_stripe_ < 0 ? texels / 4 / kReplayStripes + 1
                                              : largest_stripe_ + largest_stripe_ / 8 + 1;
   const int64_t share = std::min(wanted, (most_chunks - texels) / kReplayStripes);
   const int64_t chunks = replay_chunks(texels, share);
   const Memory memory = memory_of(c.backend);
-  check_reservation(memory, chunks * kReplayChunkNodes * int64_t(sizeof(DsmNode)),
-                    "dsm node replay chunks");
+  const int64_t bytes = chunks * (kReplayChunkNodes * int64_t(sizeof(DsmNode)) + 4) +
+                        texels * int64_t(sizeof(KeptTexel) + 4) +
+                        kReplayCounters * int64_t(sizeof(unsigned long long));
+  if (bytes > free_memory_bytes(memory) / 2) return inactive(texels);  // room for the storage
   nodes_ = Buffer<DsmNode>(memory, chunks * kReplayChunkNodes, "dsm node replay chunks");
   next_ = Buffer<int32_t>(memory, chunks, "dsm node replay chunk links");
   kept_ = Buffer<KeptTexel>(memory, texels, "dsm node replay texels");
@@ -32,6 +34,13 @@ NodeReplay NodeReplayScratch::begin(const DsmGenerationContext& c) {
   replay_ = {nodes_.view(), next_.view(),     kept_.view(),
              lost_.view(),  counters_.view(), int32_t(share)};
   return replay_;
+}
+
+NodeReplay NodeReplayScratch::inactive(int64_t texels) {
+  largest_stripe_ = -1;
+  walked_ = texels;
+  bytes_ = 0;
+  return replay_ = {};
 }
 
 void NodeReplayScratch::end() {

@@ -5,7 +5,9 @@
 // storage's bytes_allocated: the storage holds none of it between generations. A chunk per
 // texel, and per stripe what the busiest stripe asked for in the last generation's first pass,
 // an eighth more (the first generation: a chunk for every fourth texel, over the stripes); a
-// record and a slot in the list of lost texels per texel.
+// record and a slot in the list of lost texels per texel (56 bytes a texel in all: 1.9 GB for
+// 112 maps of 512^2). Where that exceeds half the free memory the replay stays inactive and
+// every texel is walked twice: scratch never makes a generation fail that fits without it.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +32,9 @@ class NodeReplayScratch {
   nlohmann::json figures() const;
 
  private:
+  // No scratch: every one of `texels` texels is walked twice.
+  NodeReplay inactive(int64_t texels);
+
   Buffer<DsmNode> nodes_;
   Buffer<int32_t> next_;
   Buffer<KeptTexel> kept_;

@@ -6,14 +6,17 @@
 // the sums over the records.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
 #include "cuda/device_memory.h"
 #include "strategies/shadow/probe.h"
+#include "strategies/storage/compact_device.h"
 #include "strategies/storage/deep_shadow_maps.h"
 #include "strategies/storage/pool_sizing.h"
 #include "tests/strategies/storage/storage_test_support.h"
@@ -212,14 +215,18 @@ Scene five_omni_scene() {
   return b.scene;
 }
 
-// Counted pools (the default) hold the same functions as compact in a small multiple of its
-// bytes: chunked and blocked within 4x; texture3d gives every texel the deepest texel's layers,
-// exactly, which here (max 11 layers, 89% of texels empty) is within 10x. The thesis's pools
-// reserve 64 layers' worth per texel, over 40x compact.
+// Counted pools (the default) hold the same functions as an exact-size node array with a 64-bit
+// offset per texel (compact's layout before its two-level starts; compact's own bytes are
+// CompactStartsAreTwoLevelAndExact's) in a small multiple of its bytes: chunked and blocked
+// within 4x; texture3d gives every texel the deepest texel's layers, exactly, which here (max 11
+// layers, 89% of texels empty) is within 10x. The thesis's pools reserve 64 layers' worth per
+// texel, over 40x.
 TEST(StorageSizing, CountedPoolsStayNearCompactWithFiveOmniLights) {
   const Scene scene = five_omni_scene();
   const Generated compact = generate(scene, Backend::cpu, "compact", {}, 0.02f, 64);
-  const int64_t compact_bytes = compact.maps->figures()["bytes_allocated"].get<int64_t>();
+  const nlohmann::json& cf = compact.maps->figures();
+  const int64_t compact_bytes =
+      8 * (cf["texels"].get<int64_t>() + 1) + cf["nodes"].get<int64_t>() * int64_t(sizeof(DsmNode));
   const std::pair<const char*, int> cases[] = {{"texture3d", 10}, {"chunked", 4}, {"blocked", 4}};
   for (const auto& [name, factor] : cases) {
     const Generated counted = generate(scene, Backend::cpu, name, {}, 0.02f, 64);
@@ -334,6 +341,55 @@ TEST(StorageSizing, ReservationBeyondFreeMemoryNamesStructureAndBytes) {
         << m;
     EXPECT_NE(m.find("20 MB free"), std::string::npos) << m;
   }
+}
+
+// compact's starts are two-level (compact_device.h): 8 bytes a group of 64 texels and 4 a texel
+// beside its nodes. At 33^2 texels a map the last group is partial; the starts copied out are
+// those of one exact-size array, and every lookup equals chunked's, which sizes its own way.
+TEST(StorageSizing, CompactStartsAreTwoLevelAndExact) {
+  const Scene scene = five_omni_scene();
+  const Generated compact = generate(scene, Backend::cpu, "compact", {}, 0.02f, 33);
+  const nlohmann::json& f = compact.maps->figures();
+  const int64_t texels = f["texels"].get<int64_t>(), nodes = f["nodes"].get<int64_t>();
+  ASSERT_EQ(texels, 5 * 6 * 33 * 33);
+  ASSERT_NE(texels % kCompactGroupTexels, 0);
+  EXPECT_EQ(
+      f["bytes_allocated"].get<int64_t>(),
+      8 * (texels / kCompactGroupTexels + 1) + 4 * (texels + 1) + nodes * int64_t(sizeof(DsmNode)));
+  const DsmHostNodes host = compact.maps->storage().host_nodes();
+  ASSERT_EQ(int64_t(host.offsets.size()), texels + 1);
+  EXPECT_EQ(host.offsets.front(), 0);
+  EXPECT_EQ(host.offsets.back(), nodes);
+  EXPECT_EQ(int64_t(host.nodes.size()), nodes);
+  int64_t decreasing = 0, deepest = 0;
+  for (int64_t t = 0; t < texels; ++t) {
+    decreasing += host.offsets[t + 1] < host.offsets[t];
+    deepest = std::max(deepest, host.offsets[t + 1] - host.offsets[t]);
+  }
+  EXPECT_EQ(decreasing, 0);
+  EXPECT_EQ(deepest, f["max_layers"].get<int64_t>());
+  expect_same_lookups(compact, generate(scene, Backend::cpu, "chunked", {}, 0.02f, 33),
+                      Backend::cpu);
+}
+
+// The node replay's scratch (node_replay_scratch.h) takes at most half the free memory: beyond
+// that every texel is walked twice, and the maps are the same.
+TEST(StorageSizing, ReplayScratchBeyondHalfTheFreeMemoryWalksTexelsTwice) {
+  const Scene scene = five_omni_scene();
+  const Generated roomy = generate(scene, Backend::cpu, "compact", {}, 0.02f, 64);
+  const nlohmann::json& want = roomy.maps->figures();
+  const int64_t scratch = want["strategy"]["replay_scratch_bytes"].get<int64_t>();
+  ASSERT_GT(scratch, 4 * want["bytes_allocated"].get<int64_t>());
+  EXPECT_EQ(want["strategy"]["replay_walked_texels"], 0);
+  const std::string limit_bytes = std::to_string(scratch);
+  const ScopedEnv limit("DEEPVOX_MEMORY_LIMIT", limit_bytes.c_str());
+  const Generated tight = generate(scene, Backend::cpu, "compact", {}, 0.02f, 64);
+  const nlohmann::json& got = tight.maps->figures();
+  EXPECT_EQ(got["strategy"]["replay_scratch_bytes"], 0);
+  EXPECT_EQ(got["strategy"]["replay_walked_texels"], want["texels"]);
+  for (const char* key : {"nodes", "bytes_allocated", "max_layers", "overflowed_texels"})
+    EXPECT_EQ(got[key], want[key]) << key;
+  expect_same_lookups(roomy, tight, Backend::cpu);
 }
 
 TEST(StorageParams, BadValuesAreRejected) {
