@@ -40,13 +40,27 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
   faces_ = Buffer<ShadowFace>(memory, layout_.faces, "dsm faces");
   lights_ = Buffer<ShadowLight>(memory, layout_.lights, "dsm lights");
   PassTimer timer(backend);
+  // Runs of faces of one size in sets of at most tile_set_projections: every pass of the tile
+  // rasterizer runs once a set, not once a face.
   std::vector<TileListsView> views;
-  for (const ShadowFace& f : layout_.faces) {
-    lists_.push_back(rasterize_tiles(backend, s, f.projection));
-    if (lists_.back().stats.overflow)
-      throw Error("dsm: tile lists overflowed while rasterizing a light's face (" +
-                  std::to_string(lists_.back().stats.entries_needed) + " entries needed)");
-    views.push_back(lists_.back().view());
+  const int most_in_set = tile_set_projections(s.triangles.size);
+  for (size_t first = 0; first < layout_.faces.size();) {
+    std::vector<RasterProjection> projections;
+    const RasterProjection& lead = layout_.faces[first].projection;
+    for (size_t f = first; f < layout_.faces.size() && int(projections.size()) < most_in_set &&
+                           layout_.faces[f].projection.width == lead.width &&
+                           layout_.faces[f].projection.height == lead.height;
+         ++f)
+      projections.push_back(layout_.faces[f].projection);
+    sets_.push_back(rasterize_tile_set(backend, s.vertices, s.triangles, projections));
+    for (int p = 0; p < sets_.back().projections(); ++p) {
+      const RasterStats& stats = sets_.back().stats[size_t(p)];
+      if (stats.overflow)
+        throw Error("dsm: tile lists overflowed while rasterizing a light's face (" +
+                    std::to_string(stats.entries_needed) + " entries needed)");
+      views.push_back(sets_.back().view(p));
+    }
+    first += projections.size();
   }
   list_views_ = Buffer<TileListsView>(memory, views, "dsm tile lists");
   ray_media_ = Buffer<InsideSet>(memory, int64_t(layout_.faces.size()), "dsm ray media");
@@ -75,7 +89,8 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
 
 int64_t DsmGeneration::fragments() const {
   int64_t total = 0;
-  for (const TileLists& l : lists_) total += l.stats.entries;
+  for (const TileListSet& set : sets_)
+    for (const RasterStats& stats : set.stats) total += stats.entries;
   return total;
 }
 

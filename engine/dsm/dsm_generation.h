@@ -31,9 +31,10 @@ struct DsmGenerationOptions {
 
 class DsmGeneration {
  public:
-  // Rasterizes every face of every light (options.light >= 0: of that light alone); throws if a
-  // tile list overflows. With `clusters` the faces are the clusters' (at clusters->resolution,
-  // each seeing only its cluster's objects) instead of the standard faces at options.resolution.
+  // Rasterizes every face of every light (options.light >= 0: of that light alone), faces of one
+  // size together (rasterize_tile_set); throws if a tile list overflows. With `clusters` the faces
+  // are the clusters' (at clusters->resolution, each seeing only its cluster's objects) instead of
+  // the standard faces at options.resolution.
   DsmGeneration(const SceneData& scene, Backend backend, const DsmGenerationOptions& options,
                 const ClusteredLayout* clusters = nullptr);
 
@@ -51,7 +52,7 @@ class DsmGeneration {
   LightMapLayout layout_;
   Buffer<ShadowFace> faces_;
   Buffer<ShadowLight> lights_;
-  std::vector<TileLists> lists_;
+  std::vector<TileListSet> sets_;  // the faces' tile lists, faces of one size binned together
   Buffer<TileListsView> list_views_;
   Buffer<InsideSet> ray_media_;
   Buffer<uint32_t> object_masks_;

@@ -1,5 +1,5 @@
-// Host-side helpers of TileLists (views, host copies) and the stats as JSON for the render
-// stats file. Kept out of tile_raster.cpp so nvcc compiles only the kernels.
+// Host-side helpers of TileLists and TileListSet (views, host copies) and the stats as JSON for the
+// render stats file. Kept out of tile_raster.cpp so nvcc compiles only the kernels.
 #include <nlohmann/json.hpp>
 
 #include "engine/raster/tile_raster.h"
@@ -8,6 +8,17 @@ namespace dv {
 
 TileListsView TileLists::view() const {
   return {width, height, tiles_x, tiles_y, offsets.const_view(), entries.const_view()};
+}
+
+TileListsView TileListSet::view(int projection) const {
+  const int64_t tiles = tile_count();
+  const View<const uint32_t> all = offsets.const_view();
+  return {width,
+          height,
+          tiles_x,
+          tiles_y,
+          {all.data + projection * tiles, tiles + 1},
+          entries.const_view()};
 }
 
 TileLists TileLists::to_host() const {

@@ -1,15 +1,17 @@
 // The passes of the tile rasterizer (see tile_raster.h), each a parallel_for that runs on CPU
-// threads or as a CUDA kernel (nvcc compiles this file when CUDA is on):
-//   setup   one thread per source triangle: clip, snap, orient; the first piece goes to the
-//           triangle's own record, further pieces of clipped triangles are counted, and so
-//           are the tiles of every piece's box;
+// threads or as a CUDA kernel (nvcc compiles this file when CUDA is on). A set of projections
+// runs every pass once over all of them: pair i is source triangle i % n under projection
+// i / n, records carry the pair as their source, and projection p's tiles follow p - 1's.
+//   setup   one thread per pair: clip, snap, orient; the first piece goes to the pair's own
+//           record, further pieces of clipped triangles are counted, and so are the tiles of
+//           every piece's box (per projection);
 //   extras  only if clipping made extra pieces: they are set up again and appended;
 //   items   every tile of every record's box is one work item: the records' box sizes, scanned
 //           on the device, give each record its first item;
 //   count   one thread per item: the tile's coverage mask; non-zero ones are counted per tile
 //           (atomic);
 //   offsets the per-tile counts scanned on the device, then cut at the entry limit; the host
-//           reads back only the totals;
+//           reads back only the totals and where each projection's entries start;
 //   write   the same masks again, each stored at its tile's next free slot (atomic cursor) of
 //           a scratch copy;
 //   sort    entries ordered by (triangle, mask) into the lists, so the arbitrary order of the
@@ -18,7 +20,9 @@
 //           longer list sorts that list. The order is total up to equal entries, so both give
 //           the same lists.
 #include <algorithm>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/atomic.h"
@@ -33,6 +37,7 @@ namespace {
 
 constexpr const char* kWhere = "rasterize_tiles";
 
+// Per projection.
 struct SetupCounters {
   unsigned long long clipped, clipped_near, clipped_guard;
   unsigned long long culled_behind, culled_offscreen, culled_degenerate, culled_invalid;
@@ -40,16 +45,33 @@ struct SetupCounters {
   unsigned long long box_tiles;  // over every piece, the extra ones included
 };
 
-// Sets up source triangle t of the view (indices checked: a bad one culls it as invalid).
+// The triangles under one or more projections of one size. A single projection travels by
+// value (no device copy for the camera's lists); more live in the backend's memory.
+struct SetView {
+  RasterProjection first;
+  View<const RasterProjection> all;  // empty for a single projection
+  int64_t projections = 1;
+  View<const dvec3> vertices;
+  View<const u32vec3> triangles;
+
+  DV_HD const RasterProjection& projection(int64_t p) const { return p == 0 ? first : all[p]; }
+  DV_HD int64_t pairs() const { return projections * triangles.size; }
+  DV_HD int64_t projection_of(uint32_t source) const { return int64_t(source) / triangles.size; }
+  DV_HD uint32_t triangle_of(uint32_t source) const {
+    return uint32_t(int64_t(source) % triangles.size);
+  }
+};
+
+// Sets up pair i of the view (indices checked: a bad one culls it as invalid).
 template <class Emit>
-DV_HD uint32_t setup_source(const RasterView& view, int64_t t, Emit&& emit) {
-  const u32vec3 tri = view.triangles[t];
+DV_HD uint32_t setup_pair(const SetView& view, int64_t i, Emit&& emit) {
+  const u32vec3 tri = view.triangles[i % view.triangles.size];
   dvec3 world[3];
   for (int k = 0; k < 3; ++k) {
     if (int64_t(tri[k]) >= view.vertices.size) return kSetupCulledInvalid;
     world[k] = view.vertices[tri[k]];
   }
-  return setup_triangle(view.projection, world, uint32_t(t), emit);
+  return setup_triangle(view.projection(i / view.triangles.size), world, uint32_t(i), emit);
 }
 
 DV_HD inline unsigned long long one_if(bool b) {
@@ -73,9 +95,16 @@ DV_HD inline void tally(SetupCounters* c, uint32_t flags, int pieces, int64_t bo
 }
 
 // What the host reads back of the tile lists' sizes. tiles_from_first_dropped is tiles - t for
-// the first tile t whose list does not fit, 0 if every list fits (so zeroed memory starts it).
+// the first tile t (of all projections) whose list does not fit, 0 if every list fits (so
+// zeroed memory starts it).
 struct ListTotals {
-  unsigned long long stored, needed, most_per_tile, dropped_tiles, tiles_from_first_dropped;
+  unsigned long long stored, needed, tiles_from_first_dropped;
+};
+
+// Per projection: the entries needed before its first tile, its longest list and the tiles of
+// it whose lists do not fit.
+struct ProjectionTotals {
+  unsigned long long first_entry, most_per_tile, dropped_tiles;
 };
 
 // Tiles of a record's box (0 for an empty record); at most 2^26 (kMaxRasterSide / kTileSide
@@ -155,29 +184,39 @@ DV_HD inline void sort_entries(TileEntry* e, int64_t n) {
   }
 }
 
-void check_view(const RasterView& view) {
-  const RasterProjection& p = view.projection;
-  if (p.width < 1 || p.height < 1 || p.width > kMaxRasterSide || p.height > kMaxRasterSide)
-    throw InputError(kWhere, "image size " + std::to_string(p.width) + "x" +
-                                 std::to_string(p.height) + " is outside 1.." +
-                                 std::to_string(kMaxRasterSide));
-  if (view.triangles.size * int64_t(kMaxPiecesPerTriangle) >= int64_t(UINT32_MAX))
-    throw InputError(kWhere, std::to_string(view.triangles.size) +
-                                 " triangles are more than the 32-bit triangle ids can hold");
+void check_projections(const std::vector<RasterProjection>& projections, int64_t triangles) {
+  if (projections.empty()) throw InputError(kWhere, "no projection to rasterize");
+  for (const RasterProjection& p : projections) {
+    if (p.width < 1 || p.height < 1 || p.width > kMaxRasterSide || p.height > kMaxRasterSide)
+      throw InputError(kWhere, "image size " + std::to_string(p.width) + "x" +
+                                   std::to_string(p.height) + " is outside 1.." +
+                                   std::to_string(kMaxRasterSide));
+    if (p.width != projections[0].width || p.height != projections[0].height)
+      throw InputError(kWhere, "a set of projections must share one image size, got " +
+                                   std::to_string(projections[0].width) + "x" +
+                                   std::to_string(projections[0].height) + " and " +
+                                   std::to_string(p.width) + "x" + std::to_string(p.height));
+  }
+  const int64_t pairs = int64_t(projections.size()) * triangles;
+  if (pairs * int64_t(kMaxPiecesPerTriangle) >= int64_t(UINT32_MAX))
+    throw InputError(kWhere, std::to_string(triangles) + " triangles under " +
+                                 std::to_string(projections.size()) +
+                                 " projections are more than the 32-bit triangle ids can hold");
 }
 
 struct SetupResult {
   Buffer<RasterTriangle> first, extra;
-  SetupCounters counters{};
+  std::vector<SetupCounters> counters;  // per projection
+  int64_t extra_pieces = 0, box_tiles = 0;
 };
 
-SetupResult setup_records(Backend backend, const RasterView& view) {
+SetupResult setup_records(Backend backend, const SetView& view) {
   const Memory memory = memory_of(backend);
-  const int64_t n = view.triangles.size;
+  const int64_t n = view.pairs();
   SetupResult out;
   out.first = Buffer<RasterTriangle>(memory, n, "raster records");
   Buffer<uint8_t> piece_counts(memory, n, "raster piece counts");
-  Buffer<SetupCounters> counters(memory, 1, "raster counters");
+  Buffer<SetupCounters> counters(memory, view.projections, "raster counters");
   counters.fill_zero();
   const View<RasterTriangle> first = out.first.view();
   const View<uint8_t> pieces_of = piece_counts.view();
@@ -187,17 +226,21 @@ SetupResult setup_records(Backend backend, const RasterView& view) {
         RasterTriangle head = empty_raster_triangle(uint32_t(i));
         int pieces = 0;
         int64_t box_tiles = 0;
-        const uint32_t flags = setup_source(view, i, [&](const RasterTriangle& t) {
+        const uint32_t flags = setup_pair(view, i, [&](const RasterTriangle& t) {
           if (pieces == 0) head = t;
           ++pieces;
           box_tiles += box_tile_count(t);
         });
         first[i] = head;
         pieces_of[i] = uint8_t(pieces);
-        tally(c, flags, pieces, box_tiles);
+        tally(c + i / view.triangles.size, flags, pieces, box_tiles);
       });
-  out.counters = counters.to_vector()[0];
-  const int64_t extra_count = int64_t(out.counters.extra_pieces);
+  out.counters = counters.to_vector();
+  for (const SetupCounters& k : out.counters) {
+    out.extra_pieces += int64_t(k.extra_pieces);
+    out.box_tiles += int64_t(k.box_tiles);
+  }
+  const int64_t extra_count = out.extra_pieces;
   out.extra = Buffer<RasterTriangle>(memory, extra_count, "raster extra pieces");
   if (extra_count == 0) return out;
   Buffer<unsigned long long> cursor(memory, 1, "raster extra cursor");
@@ -210,7 +253,7 @@ SetupResult setup_records(Backend backend, const RasterView& view) {
         if (pieces <= 1) return;
         const unsigned long long base = atomic_add(next, (unsigned long long)(pieces - 1));
         int k = 0;
-        setup_source(view, i, [&](const RasterTriangle& t) {
+        setup_pair(view, i, [&](const RasterTriangle& t) {
           const int64_t slot = int64_t(base) + k - 1;
           if (k > 0 && slot < extra.size) extra[slot] = t;
           ++k;
@@ -219,27 +262,35 @@ SetupResult setup_records(Backend backend, const RasterView& view) {
   return out;
 }
 
-}  // namespace
-
-TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterOptions& options) {
+// The passes over a set of projections (see the top of the file).
+TileListSet rasterize_set(Backend backend, const std::vector<RasterProjection>& projections,
+                          View<const dvec3> vertices, View<const u32vec3> triangles,
+                          const RasterOptions& options) {
   require_backend(backend);
-  check_view(view);
+  check_projections(projections, triangles.size);
   if (options.max_entries < 0)
     throw InputError(
         kWhere, "max_entries must not be negative, got " + std::to_string(options.max_entries));
   const Memory memory = memory_of(backend);
-  const int width = view.projection.width, height = view.projection.height;
-  TileLists lists;
+  const int width = projections[0].width, height = projections[0].height;
+  const int64_t count = int64_t(projections.size());
+  Buffer<RasterProjection> projection_buffer;
+  if (count > 1)
+    projection_buffer = Buffer<RasterProjection>(
+        memory, std::span<const RasterProjection>(projections), "raster projections");
+  const SetView view{projections[0], projection_buffer.const_view(), count, vertices, triangles};
+  TileListSet lists;
   lists.width = width;
   lists.height = height;
   lists.tiles_x = tiles_along(width);
   lists.tiles_y = tiles_along(height);
-  const int64_t tiles = lists.tile_count();
+  const int64_t face_tiles = lists.tile_count();
+  const int64_t tiles = face_tiles * count;  // of every projection
   const int tiles_x = lists.tiles_x;
 
   const SetupResult setup = setup_records(backend, view);
   const Records records{setup.first.const_view(), setup.extra.const_view()};
-  const int64_t items = int64_t(setup.counters.box_tiles);
+  const int64_t items = setup.box_tiles;
   Buffer<int64_t> record_starts(memory, records.size() + 1, "raster record starts");
   const View<int64_t> starts_out = record_starts.view();
   parallel_for(
@@ -255,8 +306,10 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   parallel_for(
       backend, "raster_count", items, DV_KERNEL_LAMBDA(int64_t i) {
         visit_box_tile(records, starts, i, [&](const RasterTriangle& t, int tx, int ty) {
+          const int64_t tile =
+              view.projection_of(t.source) * face_tiles + int64_t(ty) * tiles_x + tx;
           if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
-            atomic_add(counts + (int64_t(ty) * tiles_x + tx), 1u);
+            atomic_add(counts + tile, 1u);
         });
       });
 
@@ -274,12 +327,16 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
   Buffer<ListTotals> totals_buffer(memory, 1, "raster list totals");
   totals_buffer.fill_zero();
   ListTotals* totals = totals_buffer.data();
+  Buffer<ProjectionTotals> projection_totals(memory, count, "raster projection totals");
+  projection_totals.fill_zero();
+  ProjectionTotals* per_projection = projection_totals.data();
   parallel_for(
       backend, "raster_list_limit", tiles, DV_KERNEL_LAMBDA(int64_t t) {
-        const unsigned long long count = counted[t];
-        const bool dropped = count > 0 && uint64_t(tile_start[t + 1]) > limit;
-        atomic_max_combined(&totals->most_per_tile, count);
-        atomic_add_combined(&totals->dropped_tiles, (unsigned long long)(dropped));
+        const unsigned long long entries = counted[t];
+        const bool dropped = entries > 0 && uint64_t(tile_start[t + 1]) > limit;
+        ProjectionTotals* mine = per_projection + t / face_tiles;
+        atomic_max_combined(&mine->most_per_tile, entries);
+        atomic_add_combined(&mine->dropped_tiles, (unsigned long long)(dropped));
         atomic_max_combined(&totals->tiles_from_first_dropped,
                             (unsigned long long)(dropped ? tiles - t : 0));
       });
@@ -290,18 +347,31 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
         const int64_t first_dropped = tiles - int64_t(totals->tiles_from_first_dropped);
         const int64_t stored = tile_start[first_dropped];
         offsets[t] = uint32_t(min_value(tile_start[t], stored));
+        if (t % face_tiles == 0 && t < tiles)
+          per_projection[t / face_tiles].first_entry = (unsigned long long)(tile_start[t]);
         if (t == tiles) {
           totals->stored = (unsigned long long)(stored);
           totals->needed = (unsigned long long)(tile_start[tiles]);
         }
       });
   const ListTotals sums = totals_buffer.to_vector()[0];
-  const uint64_t stored = sums.stored, needed = sums.needed;
-  RasterStats& s = lists.stats;
-  s.max_entries_per_tile = int64_t(sums.most_per_tile);
-  s.dropped_tiles = int64_t(sums.dropped_tiles);
-  s.first_incomplete_tile = tiles - int64_t(sums.tiles_from_first_dropped);
-  s.overflow = s.dropped_tiles > 0;
+  const std::vector<ProjectionTotals> each = projection_totals.to_vector();
+  const uint64_t stored = sums.stored;
+  const int64_t first_dropped = tiles - int64_t(sums.tiles_from_first_dropped);
+  lists.stats.resize(size_t(count));
+  int64_t most_per_tile = 0;
+  for (int64_t p = 0; p < count; ++p) {
+    RasterStats& s = lists.stats[size_t(p)];
+    const uint64_t first = each[size_t(p)].first_entry;
+    const uint64_t end = p + 1 < count ? each[size_t(p) + 1].first_entry : sums.needed;
+    s.entries_needed = int64_t(end - first);
+    s.entries = int64_t(std::clamp(stored, first, end) - first);
+    s.max_entries_per_tile = int64_t(each[size_t(p)].most_per_tile);
+    s.dropped_tiles = int64_t(each[size_t(p)].dropped_tiles);
+    s.first_incomplete_tile = std::clamp(first_dropped - p * face_tiles, int64_t(0), face_tiles);
+    s.overflow = s.dropped_tiles > 0;
+    most_per_tile = std::max(most_per_tile, s.max_entries_per_tile);
+  }
   lists.entries = Buffer<TileEntry>(memory, int64_t(stored), "raster tile entries");
 
   Buffer<uint32_t> tile_fill(memory, tiles, "raster tile cursors");
@@ -315,10 +385,11 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
         visit_box_tile(records, starts, i, [&](const RasterTriangle& t, int tx, int ty) {
           const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
           if (mask == 0) return;
-          const int64_t tile = int64_t(ty) * tiles_x + tx;
+          const int64_t tile =
+              view.projection_of(t.source) * face_tiles + int64_t(ty) * tiles_x + tx;
           const uint32_t slot = atomic_add(fill + tile, 1u);
           if (slot < range[tile + 1] - range[tile])
-            unsorted[range[tile] + slot] = {mask, t.source, 0u};
+            unsorted[range[tile] + slot] = {mask, view.triangle_of(t.source), 0u};
         });
       });
   const View<TileEntry> entries = lists.entries.view();
@@ -336,7 +407,7 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
         }
         entries[first + rank] = mine;
       });
-  if (s.max_entries_per_tile > rank_sorted)
+  if (most_per_tile > rank_sorted)
     parallel_for(
         backend, "raster_sort", tiles, DV_KERNEL_LAMBDA(int64_t t) {
           const int64_t first = range[t], count = int64_t(range[t + 1] - range[t]);
@@ -346,27 +417,56 @@ TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterO
         });
   if (backend == Backend::cuda) device_synchronize(kWhere);
 
-  const SetupCounters& c = setup.counters;
-  s.triangles_in = view.triangles.size;
-  s.culled_behind = int64_t(c.culled_behind);
-  s.culled_offscreen = int64_t(c.culled_offscreen);
-  s.culled_degenerate = int64_t(c.culled_degenerate);
-  s.culled_invalid = int64_t(c.culled_invalid);
-  s.triangles_culled =
-      s.culled_behind + s.culled_offscreen + s.culled_degenerate + s.culled_invalid;
-  s.triangles_rasterized = s.triangles_in - s.triangles_culled;
-  s.triangles_clipped = int64_t(c.clipped);
-  s.clipped_near = int64_t(c.clipped_near);
-  s.clipped_guard = int64_t(c.clipped_guard);
-  s.pieces = s.triangles_rasterized + int64_t(c.extra_pieces);
-  s.entries = int64_t(stored);
-  s.entries_needed = int64_t(needed);
+  for (int64_t p = 0; p < count; ++p) {
+    const SetupCounters& c = setup.counters[size_t(p)];
+    RasterStats& s = lists.stats[size_t(p)];
+    s.triangles_in = triangles.size;
+    s.culled_behind = int64_t(c.culled_behind);
+    s.culled_offscreen = int64_t(c.culled_offscreen);
+    s.culled_degenerate = int64_t(c.culled_degenerate);
+    s.culled_invalid = int64_t(c.culled_invalid);
+    s.triangles_culled =
+        s.culled_behind + s.culled_offscreen + s.culled_degenerate + s.culled_invalid;
+    s.triangles_rasterized = s.triangles_in - s.triangles_culled;
+    s.triangles_clipped = int64_t(c.clipped);
+    s.clipped_near = int64_t(c.clipped_near);
+    s.clipped_guard = int64_t(c.clipped_guard);
+    s.pieces = s.triangles_rasterized + int64_t(c.extra_pieces);
+  }
+  return lists;
+}
+
+}  // namespace
+
+TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterOptions& options) {
+  TileListSet set =
+      rasterize_set(backend, {view.projection}, view.vertices, view.triangles, options);
+  TileLists lists;
+  lists.width = set.width;
+  lists.height = set.height;
+  lists.tiles_x = set.tiles_x;
+  lists.tiles_y = set.tiles_y;
+  lists.offsets = std::move(set.offsets);
+  lists.entries = std::move(set.entries);
+  lists.stats = set.stats[0];
   return lists;
 }
 
 TileLists rasterize_tiles(Backend backend, const SceneView& scene,
                           const RasterProjection& projection, const RasterOptions& options) {
   return rasterize_tiles(backend, make_raster_view(scene, projection), options);
+}
+
+TileListSet rasterize_tile_set(Backend backend, View<const dvec3> vertices,
+                               View<const u32vec3> triangles,
+                               const std::vector<RasterProjection>& projections,
+                               const RasterOptions& options) {
+  return rasterize_set(backend, projections, vertices, triangles, options);
+}
+
+int tile_set_projections(int64_t triangles) {
+  constexpr int64_t kMostPairs = int64_t(1) << 22;
+  return int(std::clamp<int64_t>(kMostPairs / std::max<int64_t>(triangles, 1), 1, 1 << 20));
 }
 
 Buffer<uint32_t> count_pixel_fragments(Backend backend, const TileLists& lists) {

@@ -9,6 +9,7 @@
 // backend changes. Also implements the shared depth maps of depth_maps.h.
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "cuda/buffer.h"
 #include "cuda/pass_timer.h"
@@ -67,18 +68,15 @@ DV_HD inline bool glass_caster(const ObjectView& o) {
   return o.transmission > 0.0;
 }
 
-// Nearest caster depth per texel of one face; `medium_alphas` per object: the opacity of its
-// interior medium across it (depth_maps.h). With a glass layer (non-empty views) also the
-// nearest glass crossing's depth and the product of the crossing rule over the glass crossings
-// the depth map leaves out.
+// Nearest caster depth per texel of one face from its tile lists; `medium_alphas` per object:
+// the opacity of its interior medium across it (depth_maps.h). With a glass layer (non-empty
+// views) also the nearest glass crossing's depth and the product of the crossing rule over the
+// glass crossings the depth map leaves out.
 void render_depth_face(Backend backend, const SceneView& s, const ShadowFace& face,
-                       DepthCasters casters, View<const double> medium_alphas, View<float> depths,
+                       const TileListsView& tiles, DepthCasters casters,
+                       View<const double> medium_alphas, View<float> depths,
                        View<float> glass_depths, View<vec3> glass_filters) {
   const double min_alpha = casters == DepthCasters::opaque ? 1.0 : kDepthMapOpaqueAlpha;
-  const TileLists lists = rasterize_tiles(backend, s, face.projection);
-  if (lists.stats.overflow)
-    throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
-  const TileListsView tiles = lists.view();
   const int res = face.projection.width;
   const bool glass = !glass_filters.empty();
   parallel_for(
@@ -249,12 +247,33 @@ DepthMaps render_depth_maps(Backend backend, const SceneData& scene, const Light
     maps.glass_depths = Buffer<float>(memory, none, "shadow map glass depths");
     maps.glass_filters = Buffer<vec3>(memory, layout.texel_count(), "shadow map glass filters");
   }
+  // The faces to render are binned in sets of one size (rasterize_tile_set: the rasterizer's
+  // passes once a set, not once a face), then each face's depths come from its lists.
+  std::vector<size_t> to_render;
   for (size_t i = 0; i < layout.faces.size(); ++i) {
     if (rendered && !(*rendered)[i])
       clear_depth_face(backend, layout.faces[i], maps.depths.view());
     else
-      render_depth_face(backend, s, layout.faces[i], casters, medium_alphas.const_view(),
-                        maps.depths.view(), maps.glass_depths.view(), maps.glass_filters.view());
+      to_render.push_back(i);
+  }
+  const int most_in_set = tile_set_projections(s.triangles.size);
+  for (size_t first = 0; first < to_render.size();) {
+    std::vector<RasterProjection> projections;
+    const RasterProjection& lead = layout.faces[to_render[first]].projection;
+    for (size_t k = first; k < to_render.size() && int(projections.size()) < most_in_set; ++k) {
+      const RasterProjection& p = layout.faces[to_render[k]].projection;
+      if (p.width != lead.width || p.height != lead.height) break;
+      projections.push_back(p);
+    }
+    const TileListSet lists = rasterize_tile_set(backend, s.vertices, s.triangles, projections);
+    for (int k = 0; k < lists.projections(); ++k) {
+      if (lists.stats[size_t(k)].overflow)
+        throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
+      render_depth_face(backend, s, layout.faces[to_render[first + size_t(k)]], lists.view(k),
+                        casters, medium_alphas.const_view(), maps.depths.view(),
+                        maps.glass_depths.view(), maps.glass_filters.view());
+    }
+    first += projections.size();
   }
   maps.faces = Buffer<ShadowFace>(memory, layout.faces, "shadow map faces");
   maps.lights = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");

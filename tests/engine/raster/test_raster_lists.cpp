@@ -1,8 +1,14 @@
 // Tile lists of the rasterizer: offsets, ordering and counts against a brute-force serial
-// binning of the same setup, the overflow report when the entry limit is too small, identical
-// lists on CPU and CUDA, and the projection helpers (pixel rays, light views, input checks).
+// binning of the same setup, the overflow report when the entry limit is too small, sets of
+// projections binned together against runs of their own, identical lists on CPU and CUDA, and
+// the projection helpers (pixel rays, light views, input checks).
 #include <map>
+#include <span>
+#include <vector>
+
 #include <nlohmann/json.hpp>
+
+#include "core/error.h"
 
 #include "render/load/mesh_generators.h"
 #include "tests/engine/raster/raster_test_support.h"
@@ -165,6 +171,118 @@ TEST_P(TileListsTest, OverflowIsReportedAndNothingIsWrittenBeyondTheLimit) {
   exact.max_entries = needed;
   EXPECT_FALSE(
       test::rasterize(backend(), scene.soup, scene.projection(), exact).lists.stats.overflow);
+}
+
+// MixedScene seen from four cameras of one image size (one looks away and sees nothing), the
+// soup in the backend's memory.
+struct MixedSet {
+  MixedScene scene;
+  std::vector<RasterProjection> projections;
+  Buffer<dvec3> vertices;
+  Buffer<u32vec3> triangles;
+  explicit MixedSet(Backend backend) {
+    const dvec3 eyes[] = {{0.2, 0.1, 3.0}, {2.5, 1.0, 0.5}, {-0.4, 2.8, 0.9}, {0.0, 0.0, 30.0}};
+    const dvec3 targets[] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 60.0}};
+    for (int k = 0; k < 4; ++k)
+      projections.push_back(make_camera_projection(
+          test::test_camera(eyes[k], targets[k], scene.camera.width, scene.camera.height, 0.3),
+          20.0));
+    const Memory memory = memory_of(backend);
+    vertices = Buffer<dvec3>(memory, std::span<const dvec3>(scene.soup.vertices), "test vertices");
+    triangles =
+        Buffer<u32vec3>(memory, std::span<const u32vec3>(scene.soup.triangles), "test triangles");
+  }
+  TileListSet rasterize(Backend backend, const RasterOptions& options = {}) const {
+    return rasterize_tile_set(backend, vertices.const_view(), triangles.const_view(), projections,
+                              options);
+  }
+};
+
+// Projection p's entries of tile t of a set, copied to the host.
+std::vector<TileEntry> set_tile_entries(const TileListSet& set, int p, int64_t t) {
+  const std::vector<uint32_t> offsets = set.offsets.to_vector();
+  const std::vector<TileEntry> entries = set.entries.to_vector();
+  const int64_t k = p * set.tile_count() + t;
+  return std::vector<TileEntry>(entries.begin() + offsets[size_t(k)],
+                                entries.begin() + offsets[size_t(k) + 1]);
+}
+
+// One run over every (projection, triangle) pair gives each projection the lists, counts and
+// stats of a run of its own.
+TEST_P(TileListsTest, SetOfProjectionsGivesEachItsOwnLists) {
+  const MixedSet set(backend());
+  const TileListSet lists = set.rasterize(backend());
+  ASSERT_EQ(lists.projections(), 4);
+  int64_t total = 0;
+  for (int p = 0; p < 4; ++p) {
+    const test::RasterRun alone = test::rasterize(backend(), set.scene.soup, set.projections[p]);
+    ASSERT_EQ(lists.tile_count(), alone.lists.tile_count());
+    for (int64_t t = 0; t < lists.tile_count(); ++t)
+      expect_same_entries(set_tile_entries(lists, p, t), test::tile_entries(alone.lists, t), t);
+    const nlohmann::json got = lists.stats[size_t(p)], want = alone.lists.stats;
+    EXPECT_EQ(got, want) << "projection " << p;
+    // view(p) over host copies: the same fragments per pixel as the run of its own.
+    const TileListsView v = lists.view(p);
+    ASSERT_EQ(v.offsets.size, lists.tile_count() + 1);
+    const std::vector<uint32_t> offsets = lists.offsets.to_vector();
+    const std::vector<TileEntry> entries = lists.entries.to_vector();
+    const TileListsView host{v.width,
+                             v.height,
+                             v.tiles_x,
+                             v.tiles_y,
+                             {offsets.data() + p * lists.tile_count(), v.offsets.size},
+                             {entries.data(), int64_t(entries.size())}};
+    int64_t differing = 0;
+    for (int y = 0; y < alone.height; ++y)
+      for (int x = 0; x < alone.width; ++x)
+        differing += uint32_t(fragment_count(host, x, y)) != alone.count(x, y);
+    EXPECT_EQ(differing, 0) << "projection " << p;
+    total += lists.stats[size_t(p)].entries;
+  }
+  EXPECT_GT(lists.stats[0].entries, 100);
+  EXPECT_EQ(lists.stats[3].entries, 0);  // the camera that looks away
+  EXPECT_EQ(total, lists.entries.size());
+}
+
+// A set shares the entry limit: the lists are complete up to the first tile, in projection
+// order, that does not fit, and empty from there on, which each projection's stats report.
+TEST_P(TileListsTest, SetOverflowCutsAtTheFirstTileThatDoesNotFit) {
+  const MixedSet set(backend());
+  const TileListSet full = set.rasterize(backend());
+  RasterOptions options;
+  options.max_entries = full.stats[0].entries + full.stats[1].entries / 2;
+  const TileListSet cut = set.rasterize(backend(), options);
+  EXPECT_FALSE(cut.stats[0].overflow);
+  EXPECT_EQ(cut.stats[0].first_incomplete_tile, cut.tile_count());
+  EXPECT_TRUE(cut.stats[1].overflow);
+  EXPECT_TRUE(cut.stats[2].overflow);
+  EXPECT_FALSE(cut.stats[3].overflow);  // nothing to drop
+  int64_t stored = 0;
+  for (int p = 0; p < 4; ++p) {
+    const RasterStats& s = cut.stats[size_t(p)];
+    EXPECT_EQ(s.entries_needed, full.stats[size_t(p)].entries) << "projection " << p;
+    int64_t dropped = 0;
+    for (int64_t t = 0; t < cut.tile_count(); ++t) {
+      const std::vector<TileEntry> got = set_tile_entries(cut, p, t);
+      const std::vector<TileEntry> complete = set_tile_entries(full, p, t);
+      if (t < s.first_incomplete_tile) {
+        expect_same_entries(got, complete, t);
+      } else {
+        EXPECT_TRUE(got.empty()) << "projection " << p << " tile " << t;
+        dropped += !complete.empty();
+      }
+    }
+    EXPECT_EQ(dropped, s.dropped_tiles) << "projection " << p;
+    stored += s.entries;
+  }
+  EXPECT_EQ(stored, cut.entries.size());
+  EXPECT_LE(stored, options.max_entries);
+}
+
+TEST_P(TileListsTest, SetOfProjectionsOfTwoSizesIsAnInputError) {
+  MixedSet set(backend());
+  set.projections[2].width += 8;
+  EXPECT_THROW(set.rasterize(backend()), InputError);
 }
 
 TEST_P(TileListsTest, OutOfRangeIndicesAreCulledNotRead) {
