@@ -56,9 +56,13 @@ struct SetView {
 
   DV_HD const RasterProjection& projection(int64_t p) const { return p == 0 ? first : all[p]; }
   DV_HD int64_t pairs() const { return projections * triangles.size; }
-  DV_HD int64_t projection_of(uint32_t source) const { return int64_t(source) / triangles.size; }
+  // Which projection and triangle a record's source pair is (32-bit: pairs < 2^32 by
+  // check_projections); a single projection's sources are its triangles.
+  DV_HD int64_t projection_of(uint32_t source) const {
+    return projections == 1 ? 0 : int64_t(source / uint32_t(triangles.size));
+  }
   DV_HD uint32_t triangle_of(uint32_t source) const {
-    return uint32_t(int64_t(source) % triangles.size);
+    return projections == 1 ? source : source % uint32_t(triangles.size);
   }
 };
 
