@@ -6,6 +6,7 @@
 #include "cuda/pass_timer.h"
 #include "engine/dsm/precompressed_table.h"
 #include "engine/raster/fragment_walk.h"
+#include "engine/raster/tile_list_sets.h"
 
 namespace dv {
 
@@ -40,28 +41,20 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
   faces_ = Buffer<ShadowFace>(memory, layout_.faces, "dsm faces");
   lights_ = Buffer<ShadowLight>(memory, layout_.lights, "dsm lights");
   PassTimer timer(backend);
-  // Runs of faces of one size in sets of at most tile_set_projections: every pass of the tile
-  // rasterizer runs once a set, not once a face.
+  // The faces binned in sets (tile_list_sets.h): the rasterizer's passes once a set, not once a
+  // face.
+  std::vector<RasterProjection> projections;
+  for (const ShadowFace& f : layout_.faces) projections.push_back(f.projection);
+  sets_ = rasterize_tile_sets(backend, s.vertices, s.triangles, projections);
   std::vector<TileListsView> views;
-  const int most_in_set = tile_set_projections(s.triangles.size);
-  for (size_t first = 0; first < layout_.faces.size();) {
-    std::vector<RasterProjection> projections;
-    const RasterProjection& lead = layout_.faces[first].projection;
-    for (size_t f = first; f < layout_.faces.size() && int(projections.size()) < most_in_set &&
-                           layout_.faces[f].projection.width == lead.width &&
-                           layout_.faces[f].projection.height == lead.height;
-         ++f)
-      projections.push_back(layout_.faces[f].projection);
-    sets_.push_back(rasterize_tile_set(backend, s.vertices, s.triangles, projections));
-    for (int p = 0; p < sets_.back().projections(); ++p) {
-      const RasterStats& stats = sets_.back().stats[size_t(p)];
+  for (const TileListSet& set : sets_)
+    for (int p = 0; p < set.projections(); ++p) {
+      const RasterStats& stats = set.stats[size_t(p)];
       if (stats.overflow)
         throw Error("dsm: tile lists overflowed while rasterizing a light's face (" +
                     std::to_string(stats.entries_needed) + " entries needed)");
-      views.push_back(sets_.back().view(p));
+      views.push_back(set.view(p));
     }
-    first += projections.size();
-  }
   list_views_ = Buffer<TileListsView>(memory, views, "dsm tile lists");
   ray_media_ = Buffer<InsideSet>(memory, int64_t(layout_.faces.size()), "dsm ray media");
   const View<const ShadowFace> faces = faces_.const_view();

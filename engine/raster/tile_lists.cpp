@@ -1,7 +1,12 @@
-// Host-side helpers of TileLists and TileListSet (views, host copies) and the stats as JSON for the
-// render stats file. Kept out of tile_raster.cpp so nvcc compiles only the kernels.
+// Host-side helpers of TileLists and TileListSet (views, host copies, the split into sets of
+// tile_list_sets.h) and the stats as JSON for the render stats file. Kept out of tile_raster.cpp
+// so nvcc compiles only the kernels.
+#include <cstddef>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
+#include "engine/raster/tile_list_sets.h"
 #include "engine/raster/tile_raster.h"
 
 namespace dv {
@@ -19,6 +24,26 @@ TileListsView TileListSet::view(int projection) const {
           tiles_y,
           {all.data + projection * tiles, tiles + 1},
           entries.const_view()};
+}
+
+std::vector<TileListSet> rasterize_tile_sets(Backend backend, View<const dvec3> vertices,
+                                             View<const u32vec3> triangles,
+                                             const std::vector<RasterProjection>& projections,
+                                             const RasterOptions& options) {
+  const size_t most = size_t(tile_set_projections(triangles.size));
+  std::vector<TileListSet> sets;
+  for (size_t first = 0; first < projections.size();) {
+    const RasterProjection& lead = projections[first];
+    size_t end = first + 1;
+    while (end < projections.size() && end - first < most && projections[end].width == lead.width &&
+           projections[end].height == lead.height)
+      ++end;
+    const std::vector<RasterProjection> set(projections.begin() + std::ptrdiff_t(first),
+                                            projections.begin() + std::ptrdiff_t(end));
+    sets.push_back(rasterize_tile_set(backend, vertices, triangles, set, options));
+    first = end;
+  }
+  return sets;
 }
 
 TileLists TileLists::to_host() const {

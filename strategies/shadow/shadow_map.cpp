@@ -13,6 +13,7 @@
 
 #include "cuda/buffer.h"
 #include "cuda/pass_timer.h"
+#include "engine/raster/tile_list_sets.h"
 #include "engine/raster/tile_raster.h"
 #include "engine/scene/ray_query.h"
 #include "engine/scene/texture_sampling.h"
@@ -247,34 +248,28 @@ DepthMaps render_depth_maps(Backend backend, const SceneData& scene, const Light
     maps.glass_depths = Buffer<float>(memory, none, "shadow map glass depths");
     maps.glass_filters = Buffer<vec3>(memory, layout.texel_count(), "shadow map glass filters");
   }
-  // The faces to render are binned in sets of one size (rasterize_tile_set: the rasterizer's
-  // passes once a set, not once a face), then each face's depths come from its lists.
+  // The faces to render are binned in sets (tile_list_sets.h: the rasterizer's passes once a
+  // set, not once a face), then each face's depths come from its lists.
   std::vector<size_t> to_render;
+  std::vector<RasterProjection> projections;
   for (size_t i = 0; i < layout.faces.size(); ++i) {
-    if (rendered && !(*rendered)[i])
+    if (rendered && !(*rendered)[i]) {
       clear_depth_face(backend, layout.faces[i], maps.depths.view());
-    else
+    } else {
       to_render.push_back(i);
-  }
-  const int most_in_set = tile_set_projections(s.triangles.size);
-  for (size_t first = 0; first < to_render.size();) {
-    std::vector<RasterProjection> projections;
-    const RasterProjection& lead = layout.faces[to_render[first]].projection;
-    for (size_t k = first; k < to_render.size() && int(projections.size()) < most_in_set; ++k) {
-      const RasterProjection& p = layout.faces[to_render[k]].projection;
-      if (p.width != lead.width || p.height != lead.height) break;
-      projections.push_back(p);
+      projections.push_back(layout.faces[i].projection);
     }
-    const TileListSet lists = rasterize_tile_set(backend, s.vertices, s.triangles, projections);
+  }
+  size_t face = 0;
+  for (const TileListSet& lists :
+       rasterize_tile_sets(backend, s.vertices, s.triangles, projections))
     for (int k = 0; k < lists.projections(); ++k) {
       if (lists.stats[size_t(k)].overflow)
         throw Error("shadowmap: tile lists overflowed while rendering a shadow map");
-      render_depth_face(backend, s, layout.faces[to_render[first + size_t(k)]], lists.view(k),
-                        casters, medium_alphas.const_view(), maps.depths.view(),
-                        maps.glass_depths.view(), maps.glass_filters.view());
+      render_depth_face(backend, s, layout.faces[to_render[face++]], lists.view(k), casters,
+                        medium_alphas.const_view(), maps.depths.view(), maps.glass_depths.view(),
+                        maps.glass_filters.view());
     }
-    first += projections.size();
-  }
   maps.faces = Buffer<ShadowFace>(memory, layout.faces, "shadow map faces");
   maps.lights = Buffer<ShadowLight>(memory, layout.lights, "shadow map lights");
   return maps;

@@ -95,7 +95,7 @@ class CompactStorage final : public DsmStorage {
                   std::to_string(kCompactGroupTexels) +
                   " texels, more than its 32-bit starts hold (4294967295)");
     }
-    ensure_buffer(nodes_, memory_of(c.backend), total, "dsm compact nodes");
+    ensure_buffer(nodes_, memory, total, "dsm compact nodes");
     timed_pass(c, "write", [&] {
       const NodeReplay replay = scratch_.replay();
       run_replay_write(
