@@ -5,7 +5,7 @@ $PEER_VOXELIZER_URL) into .peer/git/, shallow where the server allows it; the pi
 name the pinned commit; an unreachable repository, a missing folder and a moved pin stop it
 with exit 2 and a message naming the source, before anything is built. The script runs from a
 copy of itself in a scratch tree, so it writes that tree's .peer/, never this checkout's. Also
-bash -n over every script and shellcheck (when installed) over the benchmark scripts."""
+bash -n over every script and shellcheck (when installed) over build-peer.sh and ab-bench.sh."""
 import glob
 import os
 import shutil
@@ -100,9 +100,8 @@ class SourceStep(unittest.TestCase):
     def test_fetched_sources_are_extracted_into_peer_src(self):
         trimesh = os.path.join(self.dir, "trimesh2")
         tm_commits = stand_in_repository(trimesh, "libsrc/TriMesh_io.cc", "2022.03.04")
-        env_url = "file://" + trimesh
         out = self.run_script("--voxelizer-ref", self.commits[0], "--trimesh-ref", tm_commits[1],
-                              "--no-meshes", trimesh_url=env_url)
+                              "--no-meshes", trimesh_url="file://" + trimesh)
         self.assertIn(f"cuda_voxelizer {self.commits[0]}, trimesh2 {tm_commits[1]}", out.stdout)
         src = os.path.join(self.tree, ".peer", "src")
         with open(os.path.join(src, "cuda_voxelizer", "src", "voxelize.cu")) as f:
@@ -162,7 +161,7 @@ class Syntax(unittest.TestCase):
 
     @unittest.skipUnless(shutil.which("shellcheck"), "shellcheck is not installed")
     def test_the_benchmark_scripts_pass_shellcheck(self):
-        for name in ("build-peer.sh",):
+        for name in ("build-peer.sh", "ab-bench.sh"):
             out = subprocess.run(["shellcheck", os.path.join(ROOT, "scripts", name)],
                                  capture_output=True, text=True)
             self.assertEqual(out.returncode, 0, name + ":\n" + out.stdout)
