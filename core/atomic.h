@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "core/hd.h"
 
@@ -100,11 +101,22 @@ __device__ inline int warp_lane() {
 }
 
 // `value` of every lane here with this one that targets `address`, folded by `op` (each of
-// them gets the result); `leader`: this lane is the lowest of them.
+// them gets the result); `leader`: this lane is the lowest of them. A whole warp on one address
+// (per-pixel and per-texel counters) folds integers in five butterfly steps instead of 31
+// shuffles in lane order: integer sums and maxima do not depend on the order.
 template <class T, class Op>
 __device__ T combine_with_peers(const void* address, T value, Op op, bool& leader) {
   const unsigned peers =
       __match_any_sync(__activemask(), reinterpret_cast<unsigned long long>(address));
+  if constexpr (std::is_integral_v<T>) {
+    if (peers == 0xffffffffu) {
+      T result = value;
+      for (int offset = 16; offset > 0; offset /= 2)
+        result = op(result, __shfl_xor_sync(peers, result, offset));
+      leader = warp_lane() == 0;
+      return result;
+    }
+  }
   T result = __shfl_sync(peers, value, __ffs(peers) - 1);
   for (unsigned rest = peers & (peers - 1); rest != 0; rest &= rest - 1)
     result = op(result, __shfl_sync(peers, value, __ffs(rest) - 1));

@@ -67,4 +67,30 @@ void parallel_for_resident(Backend backend, const char* name, F body) {
   parallel_for(backend, name, threads, ResidentBody<F>{body, threads});
 }
 
+// parallel_for whose CUDA kernel is compiled to fit kMinBlocks blocks of 256 threads on an SM
+// (cuda/launch.cuh, bounded_parallel_for_kernel); 1 is parallel_for itself, whose block size the
+// occupancy calculator picks. Which budget is faster is a measurement per kernel.
+template <int kMinBlocks, class F>
+void parallel_for_bounded(Backend backend, const char* name, int64_t n, F body) {
+  static_assert(kMinBlocks >= 1, "at least one block per SM");
+  if constexpr (kMinBlocks == 1) {
+    parallel_for(backend, name, n, body);
+  } else {
+#if defined(DEEPVOX_WITH_CUDA) && !defined(__CUDACC__)
+    static_assert(kNeverTrue<F>,
+                  "this file launches parallel_for_bounded: list it in deepvox_kernel_sources() so "
+                  "nvcc compiles it (scripts/cmake/DeepvoxCuda.cmake)");
+#endif
+    if (backend == Backend::cuda) {
+#if defined(__CUDACC__)
+      cuda_bounded_parallel_for<kMinBlocks>(name, n, body);
+#else
+      throw Error(std::string(name) + ": CUDA launch in a build without CUDA");
+#endif
+    } else {
+      cpu_parallel_for(n, body);
+    }
+  }
+}
+
 }  // namespace dv

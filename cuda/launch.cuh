@@ -82,6 +82,33 @@ void cuda_parallel_for(const char* name, int64_t n, F body) {
   timing.finish();
 }
 
+// parallel_for_kernel with a register budget: __launch_bounds__(kBoundedBlock, kMinBlocks) lets
+// at most 65536 / (kMinBlocks * kBoundedBlock) registers per thread, so that kMinBlocks blocks fit
+// an SM (the compiler spills what does not fit). For heavy kernels whose warps wait on
+// dependent arithmetic, more resident warps can hide more of that latency than the spills cost.
+inline constexpr int kBoundedBlock = 256;
+
+template <int kMinBlocks, class F>
+__global__ void __launch_bounds__(kBoundedBlock, kMinBlocks)
+    bounded_parallel_for_kernel(int64_t n, F body) {
+  int64_t i = int64_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i < n) body(i);
+}
+
+template <int kMinBlocks, class F>
+void cuda_bounded_parallel_for(const char* name, int64_t n, F body) {
+  if (n <= 0) return;
+  const int block_size = spread_block_size(n, kBoundedBlock);
+  const int64_t blocks = (n + block_size - 1) / block_size;
+  if (blocks > int64_t(INT32_MAX))
+    throw Error(std::string(name) + ": " + std::to_string(n) +
+                " threads need more blocks than one launch can hold (2^31 - 1)");
+  KernelTimingScope timing(name, block_size);
+  bounded_parallel_for_kernel<kMinBlocks><<<unsigned(blocks), block_size>>>(n, body);
+  check_cuda(cudaGetLastError(), name, __FILE__, __LINE__);
+  timing.finish();
+}
+
 // Threads of one full wave of parallel_for_kernel<F>: every SM holding as many of its blocks
 // as its registers allow (asked once per kernel).
 template <class F>

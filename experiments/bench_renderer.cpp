@@ -8,7 +8,8 @@
 // measured in the run (copy_GBps), fragment_floor_x the pass's multiple; raster_floor_ms /
 // raster_floor_x the same for the tile binning (the scene read, the lists written). With
 // DEEPVOX_KERNEL_TIMING=1 each case adds a counter per kernel (experiments/kernel_counters.h). Run:
-// build/bin/bench_renderer --benchmark_repetitions=5
+// build/bin/bench_renderer --benchmark_repetitions=5. The goal/ cases time the project's frame
+// goals at their image sizes (goal_ms beside the time).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -25,14 +26,26 @@
 namespace dv {
 namespace {
 
-void raster_render(benchmark::State& state, const char* scene_name, const char* shadows,
-                   Backend backend) {
+// One measured frame: the scene (under experiments/scenes/), the shadow method and its
+// parameters, the image size (0: the scene camera's) and, for the goal cases, the frame time the
+// project aims at (goal_ms, 0: none; the case then reports goal_x = frame time / goal).
+struct FrameCase {
+  const char* scene;
+  const char* shadows;
+  const char* params = "";
+  int width = 0, height = 0;
+  double goal_ms = 0.0;
+};
+
+void raster_render_case(benchmark::State& state, const FrameCase& c, Backend backend) {
   std::string why;
   if (backend == Backend::cuda && !cuda_device_available(&why))
     return state.SkipWithError(why.c_str());
-  const Scene scene = load_scene(test::source_dir() + "/experiments/scenes/" + scene_name);
+  Scene scene = load_scene(test::source_dir() + "/experiments/scenes/" + c.scene);
+  if (c.width > 0) scene.camera.width = c.width, scene.camera.height = c.height;
   const SceneData data(scene, memory_of(backend));
-  const TimedGeneration g = timed_generation(shadows, {}, data, backend, scene.camera);
+  const StrategyParams params = *c.params ? StrategyParams::parse({c.params}) : StrategyParams{};
+  const TimedGeneration g = timed_generation(c.shadows, params, data, backend, scene.camera);
   timed_frame(backend, data, scene.camera, *g.method, scene.background);  // warm-up
   double raster_ms = 0.0, fragment_ms = 0.0;
   int64_t entries = 0;
@@ -63,8 +76,55 @@ void raster_render(benchmark::State& state, const char* scene_name, const char* 
     state.counters["raster_floor_ms"] = raster_floor_ms;
     state.counters["raster_floor_x"] = state.counters["raster_ms"] / raster_floor_ms;
   }
+  state.counters["generate_ms"] = g.milliseconds;
+  if (c.goal_ms > 0.0) {
+    state.counters["goal_ms"] = c.goal_ms;
+    state.counters["goal_x"] =
+        state.counters["fragment_ms"] / c.goal_ms + state.counters["raster_ms"] / c.goal_ms;
+  }
   state.SetLabel(backend == Backend::cuda ? cuda_device_name() : "cpu");
 }
+
+void raster_render(benchmark::State& state, const char* scene_name, const char* shadows,
+                   Backend backend) {
+  raster_render_case(state, FrameCase{scene_name, shadows}, backend);
+}
+
+// The frame-time goals of the oracle and the 4K camera pass (one light, knecht-fig56) and of many
+// lights (knecht-32-lights, 112 map faces), on CUDA: goal_x > 1 is a goal missed by that factor.
+// Run: build/bin/bench_renderer --benchmark_filter=goal/ --benchmark_repetitions=5
+const FrameCase kFrameGoals[] = {
+    {"knecht-fig56.json", "reference", "", 0, 0, 15.0},
+    {"knecht-fig56.json", "reference", "", 1920, 1080, 40.0},
+    {"knecht-32-lights.json", "reference", "", 0, 0, 500.0},
+    {"knecht-fig56.json", "none", "", 3840, 2160, 2.5},
+    {"knecht-fig56.json", "shadowmap", "", 3840, 2160, 3.0},
+    {"knecht-fig56.json", "dsm", "res=1024", 3840, 2160, 4.0},
+    {"knecht-fig56.json", "none", "", 1920, 1080, 0.8},
+    {"knecht-fig56.json", "dsm", "res=1024", 1920, 1080, 1.2},
+    {"knecht-fig56.json", "none", "", 0, 0, 0.868},
+    {"knecht-fig56.json", "shadowmap", "", 0, 0, 1.05},
+    {"knecht-32-lights.json", "dsm", "res=512", 0, 0, 2.0},
+    {"knecht-32-lights.json", "dsm", "res=512", 1920, 1080, 5.0},
+    {"knecht-32-lights.json", "dsm", "res=512", 3840, 2160, 16.7},
+    {"knecht-32-lights.json", "shadowmap", "", 3840, 2160, 12.0},
+};
+
+[[maybe_unused]] const bool kFrameGoalsRegistered = [] {
+  for (const FrameCase& c : kFrameGoals) {
+    const std::string scene = std::string(c.scene).substr(0, std::string(c.scene).find('.'));
+    const std::string size = c.width > 0 ? std::to_string(c.width) + "x" + std::to_string(c.height)
+                                         : std::string("scene");
+    const std::string name = "goal/" + scene + "/" + c.shadows +
+                             (*c.params ? std::string("_") + c.params : std::string()) + "/" +
+                             size + "/cuda";
+    benchmark::RegisterBenchmark(name.c_str(), raster_render_case, c, Backend::cuda)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(std::string(c.shadows) == "reference" ? 3 : 20);
+  }
+  return true;
+}();
 
 BENCHMARK_CAPTURE(raster_render, fig56_none_cuda, "knecht-fig56.json", "none", Backend::cuda)
     ->UseManualTime()

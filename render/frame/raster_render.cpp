@@ -5,15 +5,28 @@
 
 #include "core/atomic.h"
 #include "cuda/buffer.h"
+#include "cuda/execute.h"
 #include "cuda/pass_timer.h"
 #include "engine/raster/fragment_walk.h"
 #include "engine/raster/raster_fragments.h"
 #include "render/frame/fragment_lanes.h"
 #include "render/frame/shade_payload.h"
+#include "strategies/shadow/shadow_device.h"
 
 namespace dv {
 
 namespace {
+
+// The fragment pass's register budget per shadow source (parallel_for_bounded): two blocks of
+// 256 threads per SM (128 registers) make the passes without shadows and with shadow maps about a
+// third faster at 4K, but the deep-shadow-map and oracle passes slower (their lookups spill), so
+// those keep the occupancy calculator's launch (results/perf/2026-12-06-register-budget).
+template <class Source>
+inline constexpr int kFragmentMinBlocks = 1;
+template <>
+inline constexpr int kFragmentMinBlocks<NoShadowSource> = 2;
+template <>
+inline constexpr int kFragmentMinBlocks<ShadowMapSource> = 2;
 
 template <class Source>
 void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& projection,
@@ -21,7 +34,7 @@ void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& p
                   const Source& source, const dvec3& background, const InsideSet* eye_media,
                   View<float> rgb, RenderCounters* counters) {
   const int width = projection.width, height = projection.height;
-  parallel_for(
+  parallel_for_bounded<kFragmentMinBlocks<Source>>(
       backend, "raster_fragment_pass", fragment_thread_count(tile_order.order.size),
       DV_KERNEL_LAMBDA(int64_t t) {
         int x, y;

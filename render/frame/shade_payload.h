@@ -130,12 +130,16 @@ struct ShadePayload {
     transmittance_scale = dvec3(1.0);
   }
 
+  // exp(-sigma * length) per channel; grey media (equal channels, the common case) take one
+  // exponential for all three, which gives the same bits.
+  DV_HD static dvec3 attenuation(const dvec3& sigma, double length) {
+    if (sigma.x == sigma.y && sigma.y == sigma.z) return dvec3(exp(-sigma.x * length));
+    return dvec3(exp(-sigma.x * length), exp(-sigma.y * length), exp(-sigma.z * length));
+  }
+
   // Constant media only over [a, b]: they absorb, exactly, per channel.
   DV_HD void absorb(double, double a, double b) {
-    const double length = b - a;
-    transmittance.x *= exp(-segment_sigma_rgb.x * length);
-    transmittance.y *= exp(-segment_sigma_rgb.y * length);
-    transmittance.z *= exp(-segment_sigma_rgb.z * length);
+    transmittance *= attenuation(segment_sigma_rgb, b - a);
   }
 
   DV_HD void sample(const InsideSet& inside, double, const dvec3& x, double a, double b) {
@@ -165,7 +169,7 @@ struct ShadePayload {
     ++samples;
     const dvec3 sigma = sigma_constant + sigma_volume;
     if (max_value(sigma.x, max_value(sigma.y, sigma.z)) <= 0.0) return;
-    const dvec3 alpha(1.0 - exp(-sigma.x * dt), 1.0 - exp(-sigma.y * dt), 1.0 - exp(-sigma.z * dt));
+    const dvec3 alpha = 1.0 - attenuation(sigma, dt);
     if (dominant >= 0) {
       const ObjectView& o = s.objects[dominant];
       dvec3 n = gradient;

@@ -8,6 +8,7 @@
 #include "core/atomic.h"
 #include "core/error.h"
 #include "cuda/ensure_buffer.h"
+#include "cuda/execute.h"
 #include "cuda/scan.h"
 #include "strategies/storage/compact_device.h"
 #include "strategies/storage/dsm_storage.h"
@@ -18,10 +19,13 @@ namespace dv {
 
 namespace {
 
+// Two blocks of 256 threads per SM (128 registers, parallel_for_bounded): the counting walk
+// generates faster than at the occupancy calculator's 255 registers
+// (results/perf/2026-12-06-register-budget).
 void count_nodes(const DsmGenerationContext& c, NodeReplay replay, View<uint32_t> counts) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
-  parallel_for(
+  parallel_for_bounded<2>(
       c.backend, "dsm_compact_count", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
         DsmTexel t;
         if (!g.texel_of_thread(i, t)) return;
