@@ -50,7 +50,7 @@ sample() {
 # Watches process $1 until it ends: `$2` prints its progress (a count), sampled each time it
 # reaches the next multiple of $3; $4 names the kind.
 watch() {
-  local pid=$1 progress=$2 step=$3 kind=$4 next=0 now start
+  local pid=$1 progress=$2 step=$3 kind=$4 next=1 now start
   start=$(date +%s.%N)
   while kill -0 "$pid" 2> /dev/null; do
     now=$($progress)
@@ -65,7 +65,7 @@ watch() {
 }
 
 # Frames rendered so far: the last "render: frame K" line is frame K + 1.
-frames_done() { tail -c 4096 "$work/render.log" | grep -o 'render: frame [0-9]*' | tail -n 1 | awk '{print $3 + 1}'; }
+frames_done() { tail -c 4096 "$work/render.log" | grep -o 'render: frame [0-9]*' | tail -n 1 | awk '{print $3 + 1}' || true; }
 mkdir -p "$work/frames" && touch "$work/frames/.mark"
 "$bin" render "$scene" --backend "$backend" --shadows "$shadows" --frames "$frames" --orbit 360 \
   --width "$width" --height "$height" --out "$work/frames/frame.png" 2> "$work/render.log" &
@@ -81,7 +81,7 @@ cat > "$work/soak-suite.json" << EOF
    "params": {"res": 64}, "sweep": {"eps": [$eps]},
    "settings": {"width": $width, "height": $height, "probe_points": 50, "seed": 1, "images": 0}}]}
 EOF
-items_done() { cat "$work"/suites/soak/*/progress.jsonl 2> /dev/null | wc -l; }
+items_done() { cat "$work"/suites/soak/*/progress.jsonl 2> /dev/null | wc -l || true; }
 "$bin" suite "$work/soak-suite.json" --backend "$backend" --costs estimate --no-report \
   --out "$work/suites" > "$work/suite.log" 2>&1 &
 suite_pid=$!

@@ -74,12 +74,14 @@ inline void expect_no_duplicates(const fs::path& folder) {
     EXPECT_TRUE(items.insert(Json::parse(line)["item"].get<int>()).second) << line;
 }
 
-// The result folders (with meta.json) under OUT/<suite>/.
+// The result folders (with meta.json) under OUT/<suite>/, not the hidden one a new run fills.
 inline std::vector<fs::path> result_folders(const fs::path& root) {
   std::vector<fs::path> out;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(root, ec))
-    if (fs::is_regular_file(e.path() / "meta.json")) out.push_back(e.path());
+    if (fs::is_regular_file(e.path() / "meta.json") &&
+        e.path().filename().string().rfind('.', 0) != 0)  // not a new folder being filled
+      out.push_back(e.path());
   std::sort(out.begin(), out.end());
   return out;
 }
