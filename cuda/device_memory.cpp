@@ -2,6 +2,7 @@
 #include "cuda/device_memory.h"
 
 #include <cstdint>
+#include <cstdlib>
 
 #include "core/error.h"
 #include "core/hd.h"
@@ -82,18 +83,24 @@ void retain_pool_memory() {
 
 }  // namespace
 
-// A failed allocation for want of memory throws OutOfMemory (cuda/memory_check.h).
+// A failed allocation for want of memory throws OutOfMemory (cuda/memory_check.h), naming `what`
+// and the bytes; so does one beyond DEEPVOX_MEMORY_LIMIT when that is set (the check costs a
+// cudaMemGetInfo, so it runs only then).
 void* device_allocate(size_t bytes, const char* what) {
   void* ptr = nullptr;
   if (bytes == 0) return nullptr;
+  if (std::getenv("DEEPVOX_MEMORY_LIMIT")) check_reservation(Memory::device, int64_t(bytes), what);
   retain_pool_memory();
   cudaError_t err = cudaMallocAsync(&ptr, bytes, cudaStreamLegacy);
   if (err != cudaSuccess) {
     cudaGetLastError();
-    const std::string message = std::string("cudaMallocAsync of ") + std::to_string(bytes) +
-                                " bytes for " + what + " failed: " + cudaGetErrorString(err);
-    if (err == cudaErrorMemoryAllocation) throw OutOfMemory("", message, int64_t(bytes));
-    throw Error(message);
+    const std::string asked = format_bytes(int64_t(bytes)) + " (" + std::to_string(bytes) +
+                              " bytes) asked, cudaMallocAsync failed: " + cudaGetErrorString(err);
+    if (err == cudaErrorMemoryAllocation)
+      throw OutOfMemory(
+          what, asked + " (" + format_bytes(int64_t(device_free_bytes())) + " free on the device)",
+          int64_t(bytes));
+    throw Error(std::string(what) + ": " + asked);
   }
   return ptr;
 }

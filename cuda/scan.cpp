@@ -34,13 +34,12 @@ void exclusive_scan_queued(Backend backend, View<int64_t> values) {
     size_t scratch_bytes = 0;
     check_cuda(cub::DeviceScan::ExclusiveSum(nullptr, scratch_bytes, values.data, values.size),
                "exclusive_scan (scratch size)", __FILE__, __LINE__);
-    void* scratch = nullptr;
-    check_cuda(cudaMallocAsync(&scratch, scratch_bytes, stream), "exclusive_scan (scratch)",
-               __FILE__, __LINE__);
-    check_cuda(
-        cub::DeviceScan::ExclusiveSum(scratch, scratch_bytes, values.data, values.size, stream),
-        "exclusive_scan", __FILE__, __LINE__);
-    check_cuda(cudaFreeAsync(scratch, stream), "exclusive_scan (scratch free)", __FILE__, __LINE__);
+    // From device_allocate: a scratch that does not fit is the OutOfMemory (with the bytes asked)
+    // that a suite records as its experiment's out_of_memory row.
+    const Buffer<char> scratch(Memory::device, int64_t(scratch_bytes), "exclusive_scan scratch");
+    check_cuda(cub::DeviceScan::ExclusiveSum(scratch.data(), scratch_bytes, values.data,
+                                             values.size, stream),
+               "exclusive_scan", __FILE__, __LINE__);
     return;
 #else
     throw Error("exclusive_scan: CUDA scan from a build without CUDA");

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/math.h"
+#include "cuda/buffer.h"
 #include "engine/dsm/dsm_generator.h"
 #include "engine/raster/tile_raster.h"
 #include "strategies/voxelizer/atlas_packing.h"
@@ -20,10 +21,11 @@ namespace dv {
 
 double measure_copy_bandwidth(int64_t bytes, int copies) {
 #if defined(DEEPVOX_WITH_CUDA)
-  void *src = nullptr, *dst = nullptr;
-  DV_CUDA_CHECK(cudaMalloc(&src, size_t(bytes)));
-  DV_CUDA_CHECK(cudaMalloc(&dst, size_t(bytes)));
-  DV_CUDA_CHECK(cudaMemset(src, 1, size_t(bytes)));
+  // Through device_allocate like every device buffer: too large is an OutOfMemory naming it.
+  const Buffer<char> source(Memory::device, bytes, "copy bandwidth source");
+  const Buffer<char> destination(Memory::device, bytes, "copy bandwidth destination");
+  char *src = source.data(), *dst = destination.data();
+  device_memset(src, 1, size_t(bytes));
   cudaEvent_t start, stop;
   DV_CUDA_CHECK(cudaEventCreate(&start));
   DV_CUDA_CHECK(cudaEventCreate(&stop));
@@ -39,8 +41,6 @@ double measure_copy_bandwidth(int64_t bytes, int copies) {
   }
   cudaEventDestroy(start);
   cudaEventDestroy(stop);
-  cudaFree(src);
-  cudaFree(dst);
   std::sort(ms.begin(), ms.end());
   return 2.0 * double(bytes) / double(ms[ms.size() / 2]);
 #else

@@ -130,14 +130,17 @@ Runner add_render(CLI::App& app) {
         frame = r.stats();
         frame["renderer"] = "raytrace";
       }
-      mark_wall_phase("frame " + std::to_string(f) + " rendered");
+      // Per frame only for a stats file, which holds them: a long run without one keeps its
+      // memory flat (scripts/soak.sh).
+      const bool keep_stats = !opt->stats.empty();
+      if (keep_stats) mark_wall_phase("frame " + std::to_string(f) + " rendered");
       const std::string path = frame_path(opt->out, f, opt->frames);
       write_image(path, r.image, display);
-      mark_wall_phase("frame " + std::to_string(f) + " written");
+      if (keep_stats) mark_wall_phase("frame " + std::to_string(f) + " written");
       frame["image"] = path;
       if (const nlohmann::json plan = method->plan(); !plan.is_null()) frame["plan"] = plan;
       explain_shadows(opt->shadows, *method, "frame " + std::to_string(f));
-      stats["frames"].push_back(frame);
+      if (keep_stats) stats["frames"].push_back(frame);
       log_info("render: frame " + std::to_string(f) + " " + std::to_string(r.image.width) + "x" +
                std::to_string(r.image.height) + " " + opt->renderer + " on " + to_string(backend) +
                " with " + method->name() + " shadows: " + std::to_string(r.milliseconds) +
@@ -149,10 +152,10 @@ Runner add_render(CLI::App& app) {
                     std::to_string(r.counters.oracle_flag_pixels) + " raised oracle flags");
         exit_code = 3;
       }
-      stats["shadows"]["stats"] = method->stats();
-      if (kernel_timing_enabled()) stats["kernels"] = kernel_timings_json();
-      stats["wall_ms"] = wall_phases_json();
-      if (!opt->stats.empty()) {  // rewrite after every frame: nothing computed is lost
+      if (keep_stats) {  // rewrite after every frame: nothing computed is lost
+        stats["shadows"]["stats"] = method->stats();
+        if (kernel_timing_enabled()) stats["kernels"] = kernel_timings_json();
+        stats["wall_ms"] = wall_phases_json();
         std::ofstream out(opt->stats);
         if (!out) throw InputError(opt->stats, "cannot write stats file");
         out << stats.dump(2) << "\n";

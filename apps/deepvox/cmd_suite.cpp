@@ -3,13 +3,15 @@
 //  [--runs N]
 //  [--slurm [--partition P] [--time T] [--submit] [--dry-run]]` and `deepvox suite --list`: runs
 // an experiment suite through the harness (experiments/harness/runner.h), continues a killed run
-// (--resume), runs it as worker processes on this node (workers.h), as N independent process
-// runs for the findings' intervals (--runs, workers.h) or as SLURM jobs (slurm.h),
-// and prints where the report is.
+// (--resume; with --gpus a worker session, with --slurm a SLURM session), runs it as worker
+// processes on this node (workers.h), as N independent process runs for the findings' intervals
+// (--runs, workers.h) or as SLURM jobs (slurm.h), and prints where the report is. Exit codes:
+// runner.h (kSuite*), docs/suite-format.md.
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
 #include "core/error.h"
+#include "experiments/harness/durable_file.h"
 #include "experiments/harness/runner.h"
 #include "experiments/harness/slurm.h"
 #include "experiments/harness/workers.h"
@@ -56,7 +58,9 @@ Runner add_suite(CLI::App& app) {
       cmd->add_option("--resume", opt->resume_dir,
                       "continue a killed or stopped run in DIR, or without DIR the newest "
                       "unfinished run of this suite (and --shard) under --out: runs only the "
-                      "experiments without complete rows")
+                      "experiments without complete rows; with --gpus N a worker session "
+                      "(each worker resumes its shard), with --slurm a SLURM session (its "
+                      "scripts again)")
           ->expected(0, 1);
   cmd->add_flag("--force", opt->force,
                 "with --resume: continue although the suite file or the deepvox commit differ "
@@ -75,10 +79,6 @@ Runner add_suite(CLI::App& app) {
     }
     opt->resume = resume->count() > 0;
     if (opt->force && !opt->resume) throw InputError("--force", "only with --resume");
-    if (opt->resume && (*use_slurm || !gpus->empty()))
-      throw InputError("--resume",
-                       "resumes one folder; resume shards one by one (--shard I/N "
-                       "--resume DIR), SLURM tasks resume by themselves");
     if (opt->suite.empty() && !(opt->resume && !opt->resume_dir.empty()))
       throw InputError("suite", "give a suite name or file (or --list)");
     if (*runs > 0 && (opt->resume || *use_slurm || !gpus->empty() || !opt->shard.empty()))
@@ -87,17 +87,24 @@ Runner add_suite(CLI::App& app) {
                        "--resume, --slurm, --gpus and --shard");
     if (*use_slurm) {
       if (*gpus == "all") throw InputError("--gpus all", "with --slurm give the number of tasks");
-      slurm->tasks = gpus->empty() ? 1 : worker_count(*gpus, "cpu");
+      slurm->tasks = !gpus->empty() ? worker_count(*gpus, "cpu") : opt->resume ? 0 : 1;
       return write_slurm_jobs(*opt, *slurm);
     }
     if (slurm->submit || slurm->dry_run || !slurm->partition.empty() || !slurm->time.empty())
       throw InputError("--submit/--dry-run/--partition/--time", "only with --slurm");
     if (!gpus->empty() && !opt->shard.empty())
       throw InputError("--gpus", "workers choose their shards; leave out --shard");
-    const SuiteOutcome r = *runs > 0       ? run_rounds(*opt, *runs)
-                           : gpus->empty() ? run_suite(*opt)
-                                           : run_workers(*opt, worker_count(*gpus, opt->backend));
-    if (opt->resume)
+    SuiteOutcome r;
+    try {
+      r = *runs > 0       ? run_rounds(*opt, *runs)
+          : gpus->empty() ? run_suite(*opt)
+                          : run_workers(*opt, worker_count(*gpus, opt->backend));
+    } catch (const ResultWriteError& e) {
+      // A full disk or an unwritable folder: the run stopped and resumes (its own exit code).
+      std::fprintf(stderr, "deepvox: error: %s\n", e.what());
+      return kSuiteStopped;
+    }
+    if (opt->resume && gpus->empty())
       std::printf("deepvox suite: resumed %s: %d more ran\n", r.folder.c_str(), r.ran_now);
     std::printf("deepvox suite: %s%d of %d experiments, %d failed, %d skipped; %s: %s%s\n",
                 r.interrupted ? "interrupted after " : "ran ", r.done, r.total, r.failed, r.skipped,

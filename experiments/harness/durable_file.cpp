@@ -119,9 +119,11 @@ int64_t AppendFile::size() const {
   return int64_t(st.st_size);
 }
 
-bool AppendFile::try_lock() {
+bool AppendFile::try_lock(std::string* no_locks) {
   if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return true;
-  return errno != EWOULDBLOCK;  // ENOLCK, ENOSYS: no locks on this file system
+  if (errno == EWOULDBLOCK) return false;
+  if (no_locks) *no_locks = std::strerror(errno);  // ENOLCK, ENOSYS, EOPNOTSUPP: no locks here
+  return true;
 }
 
 bool file_is_locked(const fs::path& path) {

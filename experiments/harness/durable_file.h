@@ -20,6 +20,8 @@ class ResultWriteError : public Error {
  public:
   ResultWriteError(const std::string& path, const std::string& problem)
       : Error(path + ": " + problem) {}
+  // The whole message as given (a stopped run's: the failed write, what is kept, how to resume).
+  explicit ResultWriteError(const std::string& message) : Error(message) {}
 };
 
 // Writes PATH.tmp, syncs it, renames it to PATH and syncs the folder.
@@ -46,8 +48,10 @@ class AppendFile {
   void truncate(int64_t size);
   int64_t size() const;
   // An exclusive advisory lock (flock) held until the file is closed: false when another
-  // process holds it; true also where the file system has no locks.
-  bool try_lock();
+  // process holds it; true also where the file system has no locks, and then `no_locks` (when
+  // given) receives the system's reason (e.g. "Function not implemented" on Lustre mounted
+  // noflock), else it is left empty.
+  bool try_lock(std::string* no_locks = nullptr);
   void set_path(const std::filesystem::path& path) { path_ = path; }
 
  private:

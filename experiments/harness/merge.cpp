@@ -82,7 +82,12 @@ std::string merge_shards(const std::vector<std::string>& folders, const std::str
     if (by_index.count(index))
       throw InputError(folder, shard + " given twice (also " + by_index[index].dir.string() + ")");
     if (state.locked)
-      throw InputError(folder, shard + " is still being written by a deepvox process");
+      throw InputError(
+          folder, shard + " is still being written by a deepvox process; merge " + "when it ended");
+    if (!state.unchecked_writer.empty() && !allow_missing)
+      throw InputError(folder, shard + " may still be written by a deepvox process on another " +
+                                   "host (" + state.unchecked_writer +
+                                   "); merge when it ended, or with --allow-missing");
     if (!state.missing.empty() && !allow_missing)
       throw InputError(folder, shard + " is unfinished: " + std::to_string(state.done) + " of " +
                                    std::to_string(state.done + int(state.missing.size())) +

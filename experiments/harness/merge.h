@@ -12,7 +12,9 @@ namespace dv {
 
 // Returns the new folder, made under OUT/<suite>/ (OUT empty: beside the first shard's folder).
 // InputError naming the folder and the problem otherwise. A shard that was killed and resumed
-// merges like any other; one still being written is refused. `allow_missing`: missing shards,
+// merges like any other; one still being written is refused (its flock or writer.lock held by
+// a live process; writer.lock of a process on another host, which cannot be checked, unless
+// `allow_missing`: then its complete rows merge). `allow_missing`: missing shards,
 // folders without meta.json and unfinished shards (killed, not resumed: their complete rows are
 // merged, their missing items listed as "missing_items") go into meta.json and the report
 // instead of being refused, so a failed SLURM task still leaves a report that names it.

@@ -2,6 +2,7 @@
 #include "experiments/harness/run_journal.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <set>
 
@@ -84,6 +85,16 @@ void read_journal(RunState& s, const std::string& rows_text, const std::string& 
   s.finished = s.missing.empty() && s.meta.value("state", "") == "finished";
 }
 
+// Says once per folder that its file system has no flock, so that the lock file alone keeps
+// one writer per folder.
+void note_missing_flock(const fs::path& where, const std::string& no_locks) {
+  if (no_locks.empty()) return;
+  std::fprintf(stderr,
+               "deepvox suite: note: %s: the file system has no flock (%s); one writer per "
+               "folder is kept by its writer.lock (host and pid) alone\n",
+               where.c_str(), no_locks.c_str());
+}
+
 }  // namespace
 
 RunState read_run_state(const fs::path& dir) {
@@ -92,7 +103,9 @@ RunState read_run_state(const fs::path& dir) {
   s.meta = parse_meta(dir);
   s.journaled = fs::is_regular_file(dir / kProgress);
   if (s.journaled) {
-    s.locked = file_is_locked(dir / kProgress);
+    const LockHolder writer = writer_lock_holder(dir);
+    s.locked = file_is_locked(dir / kProgress) || writer.checked;
+    if (writer.held && !writer.checked) s.unchecked_writer = writer.who;
     read_journal(s, read_file_text(dir / "rows.csv"), read_file_text(dir / kProgress));
     return s;
   }
@@ -109,8 +122,8 @@ RunState read_run_state(const fs::path& dir) {
   return s;
 }
 
-fs::path newest_unfinished_run(const fs::path& out, const std::string& suite, int shard_index,
-                               int shard_count) {
+fs::path newest_run(const fs::path& out, const std::string& suite, int shard_index, int shard_count,
+                    bool unfinished_only) {
   std::vector<fs::path> runs;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(out / suite, ec)) {
@@ -119,7 +132,7 @@ fs::path newest_unfinished_run(const fs::path& out, const std::string& suite, in
         !fs::is_regular_file(dir / "meta.json"))
       continue;
     const Json meta = Json::parse(read_file_text(dir / "meta.json"), nullptr, false);
-    if (meta.is_discarded() || meta.value("state", "") == "finished") continue;
+    if (meta.is_discarded() || (unfinished_only && meta.value("state", "") == "finished")) continue;
     const Json shard = meta.value("shard", Json::object());
     if (shard.value("index", 1) == shard_index && shard.value("count", 1) == shard_count)
       runs.push_back(dir);
@@ -139,10 +152,14 @@ RunJournal RunJournal::create(const fs::path& out, const std::string& suite,
     j.rows_ = AppendFile(tmp / "rows.csv", true);
     j.rows_.append(rows_csv_header());
     j.progress_ = AppendFile(tmp / kProgress, true);
-    j.progress_.try_lock();
+    std::string no_locks;
+    j.progress_.try_lock(&no_locks);
+    note_missing_flock(out, no_locks);
+    j.lock_ = WriterLock::take(tmp);
   });
   j.rows_.set_path(j.dir_ / "rows.csv");
   j.progress_.set_path(j.dir_ / kProgress);
+  j.lock_.set_dir(j.dir_);
   j.rows_end_ = j.rows_.size();
   return j;
 }
@@ -156,9 +173,12 @@ RunJournal RunJournal::reopen(const fs::path& dir, RunState& state) {
   RunJournal j;
   j.dir_ = dir;
   j.progress_ = AppendFile(dir / kProgress, false);
-  if (!j.progress_.try_lock())
+  std::string no_locks;
+  if (!j.progress_.try_lock(&no_locks))
     throw InputError(dir.string(),
                      "another deepvox process is writing this folder now; wait for it to end");
+  note_missing_flock(dir, no_locks);
+  j.lock_ = WriterLock::take(dir);
   state = read_run_state(dir);
   state.locked = false;  // the lock is ours
   j.rows_ = AppendFile(dir / "rows.csv", false);
@@ -190,6 +210,7 @@ void RunJournal::add_command(const std::string& command) const {
 void RunJournal::close() {
   rows_ = AppendFile();
   progress_ = AppendFile();
+  lock_.release();
 }
 
 }  // namespace dv

@@ -15,6 +15,7 @@
 #include "core/json_reader.h"
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/rows.h"
+#include "experiments/harness/writer_lock.h"
 
 namespace dv {
 
@@ -22,13 +23,14 @@ namespace dv {
 struct RunState {
   std::filesystem::path dir;
   Json meta;
-  bool journaled = false;       // has progress.jsonl (written by a deepvox that resumes)
-  bool finished = false;        // every planned item complete and the run ended (meta "state")
-  bool locked = false;          // a process is writing the folder now
-  std::vector<Row> rows;        // complete row groups, in item order
-  Json params = Json::array();  // echoed parameters per complete item, in item order
-  std::vector<int> planned;     // items the run is to run (journaled folders)
-  std::vector<int> missing;     // planned items without a complete row group
+  bool journaled = false;        // has progress.jsonl (written by a deepvox that resumes)
+  bool finished = false;         // every planned item complete and the run ended (meta "state")
+  bool locked = false;           // a process is writing the folder now (flock, writer.lock)
+  std::string unchecked_writer;  // writer.lock names a process on another host that may run
+  std::vector<Row> rows;         // complete row groups, in item order
+  Json params = Json::array();   // echoed parameters per complete item, in item order
+  std::vector<int> planned;      // items the run is to run (journaled folders)
+  std::vector<int> missing;      // planned items without a complete row group
   std::vector<std::pair<int, int>> attempt_of;  // (item, attempt that ran it)
   int done = 0, failed = 0, skipped = 0;
   int64_t rows_end = 0;      // bytes of rows.csv that hold complete groups
@@ -40,13 +42,18 @@ struct RunState {
 // meta.json.
 RunState read_run_state(const std::filesystem::path& dir);
 
-// The newest folder under OUT/<suite>/ whose run did not finish, for shard I/N (1/1: an
-// unsharded run); empty when there is none.
-std::filesystem::path newest_unfinished_run(const std::filesystem::path& out,
-                                            const std::string& suite, int shard_index,
-                                            int shard_count);
+// The newest journaled folder under OUT/<suite>/ of shard I/N (1/1: an unsharded run), whose
+// run did not finish when `unfinished_only`; empty when there is none.
+std::filesystem::path newest_run(const std::filesystem::path& out, const std::string& suite,
+                                 int shard_index, int shard_count, bool unfinished_only);
+inline std::filesystem::path newest_unfinished_run(const std::filesystem::path& out,
+                                                   const std::string& suite, int shard_index,
+                                                   int shard_count) {
+  return newest_run(out, suite, shard_index, shard_count, true);
+}
 
-// The writing side, held for the whole run (it keeps the folder locked).
+// The writing side, held for the whole run (it keeps the folder locked: a flock on
+// progress.jsonl and the lock file writer.lock, writer_lock.h).
 class RunJournal {
  public:
   // A new folder OUT/<suite>/<date>_<sha>[-TAG] holding command.txt, suite.json, meta.json,
@@ -55,8 +62,9 @@ class RunJournal {
   static RunJournal create(const std::filesystem::path& out, const std::string& suite,
                            const std::string& git_sha, const std::string& tag, const Json& meta,
                            const std::string& suite_text, const std::string& command);
-  // An existing folder to resume: locks it (InputError when another process writes it), reads
-  // its state and cuts rows.csv and progress.jsonl back to the complete part.
+  // An existing folder to resume: locks it (InputError when another process writes it: flock,
+  // or writer.lock where the file system has no flock), reads its state and cuts rows.csv and
+  // progress.jsonl back to the complete part.
   static RunJournal reopen(const std::filesystem::path& dir, RunState& state);
 
   const std::filesystem::path& dir() const { return dir_; }
@@ -68,12 +76,13 @@ class RunJournal {
   void write_meta(const Json& meta) const;
   // Appends a line to command.txt (atomically rewritten).
   void add_command(const std::string& command) const;
-  // Closes the files, which releases the folder's lock.
+  // Closes the files and removes writer.lock, which releases the folder's lock.
   void close();
 
  private:
   std::filesystem::path dir_;
   AppendFile rows_, progress_;
+  WriterLock lock_;
   int64_t rows_end_ = 0;
 };
 

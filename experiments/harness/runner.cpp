@@ -221,7 +221,8 @@ std::string run_item(const RunItem& item, RunContext& context, Drivers& drivers,
 }
 
 // The error a run stops with when its folder takes no more results.
-Error stopped(const ResultWriteError& e, Plan& p, const SuiteOptions& o, int done, int total) {
+ResultWriteError stopped(const ResultWriteError& e, Plan& p, const SuiteOptions& o, int done,
+                         int total) {
   Json meta = p.meta;
   meta["state"] = "stopped";
   meta["stopped_by"] = e.what();
@@ -231,10 +232,11 @@ Error stopped(const ResultWriteError& e, Plan& p, const SuiteOptions& o, int don
     // The disk is still full: meta.json stays as it was, which reads as a killed run.
   }
   const std::string dir = p.journal.dir().string();
-  return Error(std::string(e.what()) + "\nthe run stopped; " + std::to_string(done) + " of " +
-               std::to_string(total) + " experiments are complete and kept in " + dir +
-               "\nfree space or make the folder writable, then resume: deepvox suite " +
-               (o.suite.empty() ? "" : o.suite + " ") + "--resume " + dir);
+  return ResultWriteError(std::string(e.what()) + "\nthe run stopped; " + std::to_string(done) +
+                          " of " + std::to_string(total) +
+                          " experiments are complete and kept in " + dir +
+                          "\nfree space or make the folder writable, then resume: deepvox suite " +
+                          (o.suite.empty() ? "" : o.suite + " ") + "--resume " + dir);
 }
 
 }  // namespace
@@ -254,7 +256,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
   if (p.before.finished) {
     p.journal.close();
     if (o.report) build_report(dir.string());
-    outcome.exit_code = outcome.failed ? 3 : 0;
+    outcome.exit_code = outcome.failed ? kSuiteRowsFailed : kSuiteDone;
     return outcome;
   }
   SceneCache scenes(p.backend);
@@ -313,7 +315,9 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
   }
   p.journal.close();  // releases the folder's lock: the report reads it as not being written
   if (o.report) build_report(dir.string());
-  outcome.exit_code = outcome.interrupted ? 130 : outcome.failed ? 3 : 0;
+  outcome.exit_code = outcome.interrupted ? kSuiteInterrupted
+                      : outcome.failed    ? kSuiteRowsFailed
+                                          : kSuiteDone;
   return outcome;
 }
 

@@ -30,8 +30,15 @@ struct SuiteOptions {
   bool force = false;  // resume even when the suite file or the commit differ (noted in meta)
 };
 
+// Exit codes of `deepvox suite` (docs/suite-format.md, "Exit codes"); an error is 1, bad input
+// (a suite file, an option, a folder that cannot be resumed) 2.
+inline constexpr int kSuiteDone = 0;
+inline constexpr int kSuiteRowsFailed = 3;     // the run ended, some experiments failed
+inline constexpr int kSuiteStopped = 4;        // the folder took no more results (full disk)
+inline constexpr int kSuiteInterrupted = 130;  // Ctrl-C
+
 struct SuiteOutcome {
-  int exit_code = 0;  // 0 all ran, 3 some failed, 130 interrupted
+  int exit_code = 0;  // kSuiteDone, kSuiteRowsFailed or kSuiteInterrupted
   std::string folder;
   int done = 0, total = 0, failed = 0, skipped = 0;
   int ran_now = 0;  // items run by this call (a resumed run: the rest were there)
@@ -42,7 +49,7 @@ struct SuiteOutcome {
 // folder that cannot be resumed (no meta.json, another suite, another suite file or commit
 // without `force`, options that differ from the folder's, a run still writing it).
 // ResultWriteError (durable_file.h) when the disk is full or the folder unwritable: the run
-// stops, what was written stays and resumes.
+// stops, what was written stays and resumes (`deepvox suite` exits kSuiteStopped).
 SuiteOutcome run_suite(const SuiteOptions& options);
 
 // One line per built-in suite: "name  description".

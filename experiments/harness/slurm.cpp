@@ -1,12 +1,17 @@
 // SLURM job scripts for a sharded suite run (slurm.h).
 #include "experiments/harness/slurm.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "core/error.h"
+#include "experiments/harness/durable_file.h"
 #include "experiments/harness/run_folder.h"
+#include "experiments/harness/run_journal.h"
 #include "experiments/harness/run_metadata.h"
 #include "experiments/harness/suite_file.h"
 #include "experiments/harness/workers.h"
@@ -40,6 +45,92 @@ std::string run_command(const std::string& command) {
   while (fgets(buf, sizeof buf, pipe)) output += buf;
   if (pclose(pipe) != 0) throw Error(command + " failed: " + output);
   return output.substr(0, output.find('\n'));
+}
+
+// Prints the two sbatch lines, or with `submit` runs them (the merge after the array ended).
+int submit_or_print(const fs::path& array, const fs::path& merge, const SuiteOptions& o,
+                    const SlurmOptions& s, int tasks, const std::string& suite) {
+  if (!s.submit) {
+    std::printf(
+        "deepvox suite: wrote %s and %s\nsubmit: jid=$(sbatch --parsable %s) && sbatch "
+        "--dependency=afterany:$jid %s\n",
+        array.c_str(), merge.c_str(), array.c_str(), merge.c_str());
+    return 0;
+  }
+  std::string job = run_command("sbatch --parsable " + quoted(array.string()));
+  job = job.substr(0, job.find(';'));  // "id;cluster" on federations
+  const std::string merge_job =
+      run_command("sbatch --parsable --dependency=afterany:" + job + " " + quoted(merge.string()));
+  std::printf(
+      "deepvox suite: submitted array job %s (%d tasks) and merge job %s; merged report "
+      "under %s/%s/ when done\n",
+      job.c_str(), tasks, merge_job.substr(0, merge_job.find(';')).c_str(),
+      fs::absolute(o.out).c_str(), suite.c_str());
+  return 0;
+}
+
+// `--slurm --resume [DIR]`: the session's own scripts once more (DIR, else the newest SLURM
+// session of the suite under --out). Their tasks resume their shards' folders, so a session
+// whose array job was cancelled, ran out of time or of requeues continues where it stopped.
+// Options that differ from the scripts' are refused; so is a shard still being written here.
+int resume_slurm_session(const SuiteOptions& o, const SlurmOptions& s) {
+  fs::path dir = o.resume_dir;
+  if (dir.empty()) {
+    if (o.suite.empty())
+      throw InputError("--resume", "give the suite (name or file), or the session to resume");
+    const std::string name = load_suite(resolve_suite_path(o.suite)).name;
+    std::vector<fs::path> sessions;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(fs::path(o.out) / name, ec))
+      if (fs::is_regular_file(entry.path() / "slurm" / "array.sbatch"))
+        sessions.push_back(entry.path());
+    std::sort(sessions.begin(), sessions.end());  // names begin with the UTC time
+    if (sessions.empty())
+      throw InputError((fs::path(o.out) / name).string(),
+                       "no --slurm session of suite '" + name + "' to resume");
+    dir = sessions.back();
+  }
+  const fs::path array = dir / "slurm" / "array.sbatch", merge = dir / "slurm" / "merge.sbatch";
+  if (!fs::is_regular_file(array) || !fs::is_regular_file(merge))
+    throw InputError(dir.string(),
+                     "not a --slurm session (no slurm/array.sbatch and merge.sbatch)");
+  const std::string script = read_file_text(array);
+  const size_t at = script.find("#SBATCH --array=1-");
+  const int tasks = at == std::string::npos ? 0 : std::atoi(script.c_str() + at + 18);
+  if (tasks < 1) throw InputError(array.string(), "no '#SBATCH --array=1-N' line");
+  if (s.tasks > 0 && s.tasks != tasks)
+    throw InputError("--gpus " + std::to_string(s.tasks),
+                     dir.string() + " has " + std::to_string(tasks) +
+                         " tasks; resume it with as many (or leave --gpus out)");
+  const auto require = [&](bool given, const std::string& text, const std::string& option) {
+    if (given && script.find(text) == std::string::npos)
+      throw InputError(option, array.string() + " runs with another " + option +
+                                   "; leave the option out to resume it (or edit the script)");
+  };
+  require(!s.partition.empty(), "#SBATCH --partition=" + s.partition + "\n", "--partition");
+  require(!s.time.empty(), "#SBATCH --time=" + s.time + "\n", "--time");
+  require(!o.backend.empty(), "'--backend' " + quoted(o.backend), "--backend");
+  require(o.repeat > 0, "'--repeat' " + quoted(std::to_string(o.repeat)), "--repeat");
+  require(!o.only.empty(), "'--only' " + quoted(o.only), "--only");
+  require(o.smoke, "'--smoke'", "--smoke");
+  std::string suite;
+  std::error_code ec;
+  for (const auto& suite_dir : fs::directory_iterator(dir / "shards", ec)) {
+    suite = suite_dir.path().filename().string();
+    for (const auto& shard : fs::directory_iterator(suite_dir.path(), ec))
+      if (fs::is_regular_file(shard.path() / "progress.jsonl") &&
+          read_run_state(shard.path()).locked)
+        throw InputError(shard.path().string(),
+                         "this shard is still being written by a deepvox process (its task "
+                         "still runs?); resume the session when it ended");
+  }
+  if (s.dry_run) {
+    std::printf("# %s\n%s\n# %s\n%s", array.c_str(), script.c_str(), merge.c_str(),
+                read_file_text(merge).c_str());
+    return 0;
+  }
+  return submit_or_print(array, merge, o, s, tasks,
+                         suite.empty() ? dir.parent_path().filename().string() : suite);
 }
 
 }  // namespace
@@ -89,6 +180,7 @@ SlurmScripts slurm_scripts(const SuiteOptions& o, const SlurmOptions& s, const s
 }
 
 int write_slurm_jobs(const SuiteOptions& o, const SlurmOptions& s) {
+  if (o.resume) return resume_slurm_session(o, s);
   const Suite suite = load_suite(resolve_suite_path(o.suite));
   const std::string exe = fs::read_symlink("/proc/self/exe").string();
   const std::string sha = build_git_sha();
@@ -108,23 +200,7 @@ int write_slurm_jobs(const SuiteOptions& o, const SlurmOptions& s) {
   std::ofstream(merge) << scripts.merge;
   fs::permissions(array, fs::perms::owner_exec, fs::perm_options::add);
   fs::permissions(merge, fs::perms::owner_exec, fs::perm_options::add);
-  if (!s.submit) {
-    std::printf(
-        "deepvox suite: wrote %s and %s\nsubmit: jid=$(sbatch --parsable %s) && sbatch "
-        "--dependency=afterany:$jid %s\n",
-        array.c_str(), merge.c_str(), array.c_str(), merge.c_str());
-    return 0;
-  }
-  std::string job = run_command("sbatch --parsable " + quoted(array.string()));
-  job = job.substr(0, job.find(';'));  // "id;cluster" on federations
-  const std::string merge_job =
-      run_command("sbatch --parsable --dependency=afterany:" + job + " " + quoted(merge.string()));
-  std::printf(
-      "deepvox suite: submitted array job %s (%d tasks) and merge job %s; merged report "
-      "under %s/%s/ when done\n",
-      job.c_str(), s.tasks, merge_job.substr(0, merge_job.find(';')).c_str(),
-      fs::absolute(o.out).c_str(), suite.name.c_str());
-  return 0;
+  return submit_or_print(array, merge, o, s, s.tasks, suite.name);
 }
 
 }  // namespace dv

@@ -5,6 +5,8 @@
 // names it). Array tasks are requeue-safe (--requeue): a task that starts again resumes its
 // shard's folder (`--resume`), and one whose deepvox was killed requeues itself (at most 3
 // times). --submit hands both to sbatch; the scripts also run by hand (docs/scale-out.md).
+// `--slurm --resume [DIR]` hands a session's scripts to sbatch again: its tasks resume their
+// shards (a session whose array job was cancelled, timed out or ran out of requeues).
 #pragma once
 
 #include <string>
@@ -14,7 +16,7 @@
 namespace dv {
 
 struct SlurmOptions {
-  int tasks = 1;          // array size (--gpus N)
+  int tasks = 1;          // array size (--gpus N); with --resume 0: the session's
   std::string partition;  // empty: the cluster's default
   std::string time;       // e.g. 02:00:00; empty: the partition's default
   bool submit = false;
@@ -32,7 +34,10 @@ SlurmScripts slurm_scripts(const SuiteOptions& o, const SlurmOptions& s, const s
 
 // Writes (unless dry_run) FOLDER/slurm/array.sbatch and merge.sbatch, prints them (dry_run) or
 // their paths, and with submit runs `sbatch --parsable` on both, the merge job depending on the
-// array. Returns the exit code (sbatch failures are errors naming the command).
+// array. With o.resume: the same for the scripts of the session o.resume_dir (else the newest
+// of the suite under o.out), written before; InputError when it has none, when an option
+// differs from its scripts' or a shard is still being written. Returns the exit code (sbatch
+// failures are errors naming the command).
 int write_slurm_jobs(const SuiteOptions& o, const SlurmOptions& s);
 
 }  // namespace dv

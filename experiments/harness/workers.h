@@ -1,7 +1,8 @@
 // One node, several GPUs, no scheduler: `deepvox suite NAME --gpus N|all` starts one worker
 // process per GPU (CUDA_VISIBLE_DEVICES=k), or with --backend cpu N processes that share the CPU
 // threads, each `deepvox suite ... --shard i/N` into one session folder; shows every worker's
-// progress (read from its status file) and merges the shards at the end (merge.h).
+// progress (read from its status file), starts a killed worker again on its shard, and merges
+// the shards at the end (merge.h); `--resume` continues a session whose workers were stopped.
 #pragma once
 
 #include <string>
@@ -26,8 +27,16 @@ std::vector<std::string> shard_arguments(const SuiteOptions& o, const std::strin
 // (the suite file of o.suite, loaded once by the caller).
 std::string fixed_cost_source(const SuiteOptions& o, const Suite& suite);
 
-// Runs the workers and merges; the merged folder goes to o.out/<suite>/. Exit code of the
-// worst worker (0, 3 some failed, 130 interrupted); the outcome's folder is the merged one.
+// Runs the workers in a new session folder OUT/<suite>/<date>_<sha>-Nworkers/ (with o.resume:
+// the session o.resume_dir, or the newest unmerged one of the suite with `count` workers under
+// o.out, each worker resuming its shard's folder) and merges; the merged folder goes to
+// o.out/<suite>/. A worker killed by a signal is started again on its shard (at most 3 times).
+// Exit code of the worst worker (0, 3 some failed, 130 interrupted: merged with the missing
+// items listed); the outcome's folder is the merged one. A shard that did not finish otherwise
+// is not merged: ResultWriteError when a worker stopped on a full disk, else InputError or
+// Error, naming each shard, its log and the resume command. InputError also for a session that
+// cannot be resumed (no session.json, another suite or worker count, options that differ, a
+// shard still being written).
 SuiteOutcome run_workers(const SuiteOptions& o, int count);
 
 // `deepvox suite NAME --runs N`: N independent process runs of the suite, one after another
