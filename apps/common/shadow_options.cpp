@@ -11,6 +11,17 @@
 
 namespace dv::cli {
 
+namespace {
+
+// The dsm method's default for its parameter `key`, as its table declares it (shown by --help).
+std::string dsm_default(const std::string& key) {
+  for (const ParamSpec& p : shadow_registry().params("dsm"))
+    if (p.key == key) return p.fallback;
+  return "";
+}
+
+}  // namespace
+
 void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
   o.shadows_option =
       cmd->add_option("--shadows", o.name,
@@ -31,11 +42,15 @@ void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
   std::string storages;
   for (const std::string& name : storage_registry().names())
     storages += (storages.empty() ? "" : ", ") + name;
-  cmd->add_option("--storage", o.storage, "dsm: storage strategy (" + storages + ")");
-  cmd->add_option("--dsm-res", o.dsm_res, "dsm: texels per side of each map (its res parameter)");
+  cmd->add_option("--storage", o.storage, "dsm: storage strategy (" + storages + ")")
+      ->default_str(dsm_default("storage"));
+  cmd->add_option("--dsm-res", o.dsm_res, "dsm: texels per side of each map (its res parameter)")
+      ->default_str(dsm_default("res"));
   cmd->add_option("--eps", o.eps,
-                  "dsm: error bound of the compressed visibility functions (its eps parameter)");
-  cmd->add_option("--filter", o.filter, "dsm: none or bilinear (its filter parameter)");
+                  "dsm: error bound of the compressed visibility functions (its eps parameter)")
+      ->default_str(dsm_default("eps"));
+  cmd->add_option("--filter", o.filter, "dsm: none or bilinear (its filter parameter)")
+      ->default_str(dsm_default("filter"));
   cmd->add_option("--voxelizer", o.voxelizer,
                   "transmittance-slicemap: voxelizer filling its grids (see `deepvox list`)");
 }

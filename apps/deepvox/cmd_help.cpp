@@ -1,13 +1,17 @@
-// `deepvox help [--markdown]`: every command's own --help, one after another; with --markdown
-// the page docs/cli.md is (a test keeps the file equal to this output, so the reference cannot
-// drift from the options the commands really take).
+// `deepvox help [COMMAND] [--markdown]`: one command's --help (as `deepvox COMMAND --help`), or
+// every command's, one after another; with --markdown the page docs/cli.md is (a test keeps the
+// file equal to this output, so the reference cannot drift from the options the commands really
+// take).
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "apps/deepvox/commands.h"
+#include "core/error.h"
+#include "core/text.h"
 
 namespace dv::cli {
 
@@ -38,10 +42,29 @@ void print_markdown(CLI::App& app) {
 }  // namespace
 
 Runner add_help(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("help", "every command's --help (--markdown: docs/cli.md)");
+  CLI::App* cmd = app.add_subcommand(
+      "help", "a command's --help, or every command's (--markdown: docs/cli.md)");
   auto markdown = std::make_shared<bool>(false);
+  auto command = std::make_shared<std::string>();
+  cmd->add_option("command", *command, "the command whose --help to print (default: every one)");
   cmd->add_flag("--markdown", *markdown, "as the Markdown of docs/cli.md");
-  return [&app, markdown] {
+  return [&app, markdown, command] {
+    if (!command->empty()) {
+      std::vector<std::string> known;
+      for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+        if (sub->get_name() == *command) {
+          std::printf("%s", help_of(*sub, "deepvox " + sub->get_name()).c_str());
+          return 0;
+        }
+        known.push_back(sub->get_name());
+      }
+      std::string problem = "unknown command '" + *command + "'";
+      if (const std::string nearest = nearest_word(*command, known); !nearest.empty())
+        problem += "; did you mean '" + nearest + "'?";
+      std::string list;
+      for (const std::string& name : known) list += (list.empty() ? "" : ", ") + name;
+      throw InputError("help", problem + " (commands: " + list + ")");
+    }
     if (*markdown) {
       print_markdown(app);
       return 0;

@@ -1,7 +1,10 @@
 // `deepvox info SCENE [--json]`: what a scene holds (objects, triangles, volumes, lights with
 // their colours and units, bounds) and warnings about what will not look as a user expects.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +15,13 @@
 namespace dv::cli {
 
 namespace {
+
+// A number as %.3g prints it.
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
 
 nlohmann::json vec(const dvec3& v) {
   return {v.x, v.y, v.z};
@@ -36,17 +46,33 @@ nlohmann::json describe_light(const Light& l) {
   return light;
 }
 
-// What renders differently from what a user of the source file would expect.
+// "'a'", "'a', 'b' and 'c'", "'a', 'b', 'c' and 4 more" (at most `shown` names).
+std::string name_list(const std::vector<std::string>& names, size_t shown = 3) {
+  std::string out;
+  const size_t listed = std::min(names.size(), shown);
+  for (size_t i = 0; i < listed; ++i) {
+    if (i > 0) out += i + 1 == listed && names.size() == listed ? " and " : ", ";
+    out += "'" + names[i] + "'";
+  }
+  if (names.size() > listed) out += " and " + std::to_string(names.size() - listed) + " more";
+  return out;
+}
+
+// What renders differently from what a user of the source file would expect: one line per
+// kind of surprise, naming the objects it concerns (a model of many glass parts gets one line).
 nlohmann::json warnings(const Scene& scene) {
   nlohmann::json out = nlohmann::json::array();
-  for (const Object& o : scene.objects) {
-    if (o.material.alpha == 0.0 && o.material.transmission > 0.0)
-      out.push_back("object '" + o.name +
-                    "' is fully transmissive (glTF transmission 1): it casts the faint shadow "
-                    "its Fresnel reflectance and its colour leave, not a solid one; the camera "
-                    "sees its highlights, a Fresnel rim and its colour's tint on what is behind "
-                    "it");
-  }
+  std::vector<std::string> glass;
+  for (const Object& o : scene.objects)
+    if (o.material.alpha == 0.0 && o.material.transmission > 0.0) glass.push_back(o.name);
+  if (!glass.empty())
+    out.push_back(
+        (glass.size() == 1
+             ? "object " + name_list(glass) + " is"
+             : std::to_string(glass.size()) + " objects (" + name_list(glass) + ") are") +
+        " fully transmissive (glTF transmission 1): each casts the faint shadow its Fresnel "
+        "reflectance and its colour leave, not a solid one; the camera sees its highlights, a "
+        "Fresnel rim and its colour's tint on what is behind it");
   return out;
 }
 
@@ -113,10 +139,15 @@ Runner add_info(CLI::App& app) {
     std::printf("scene     %s\n", opt->scene.c_str());
     std::printf("objects   %zu (%lld triangles)\n", scene.objects.size(),
                 (long long)j["triangles"].get<int64_t>());
-    for (const auto& o : j["objects"])
-      std::printf("  %-20s %8lld triangles  alpha %.3g  interior %s\n",
+    for (const auto& o : j["objects"]) {
+      // Glass shows its transmission beside its opaque part (alpha 0 alone reads as invisible).
+      std::string surface = "alpha " + number_text(o["alpha"].get<double>());
+      if (o.contains("transmission"))
+        surface += "  transmission " + number_text(o["transmission"].get<double>());
+      std::printf("  %-20s %8lld triangles  %s  interior %s\n",
                   o["name"].get<std::string>().c_str(), (long long)o["triangles"].get<int64_t>(),
-                  o["alpha"].get<double>(), o["interior"].get<std::string>().c_str());
+                  surface.c_str(), o["interior"].get<std::string>().c_str());
+    }
     std::printf("volumes   %zu\n", scene.volumes.size());
     for (const VolumeGrid& v : scene.volumes)
       std::printf("  %-20s %d x %d x %d\n", v.name.c_str(), v.dims.x, v.dims.y, v.dims.z);

@@ -8,6 +8,7 @@
 // JSON.
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "apps/common/error_budget.h"
 #include "apps/common/shadow_options.h"
@@ -23,6 +24,7 @@
 #include "render/io/image.h"
 #include "render/io/output_path.h"
 #include "render/io/tone_mapping.h"
+#include "render/load/gltf_import.h"
 #include "render/load/scene_loader.h"
 
 namespace dv::cli {
@@ -46,7 +48,8 @@ Runner add_render(CLI::App& app) {
     ShadowOptions shadows;
     std::vector<double> view;
     int frames = 1, width = 0, height = 0;
-    double orbit = 0.0, exposure = 0.0;
+    double orbit = 0.0;
+    std::optional<double> exposure;  // unset: the scene's (default_exposure_ev)
     StagingOptions staging;
   };
   auto opt = std::make_shared<Options>();
@@ -63,16 +66,26 @@ Runner add_render(CLI::App& app) {
   cmd->add_option("--backend", opt->backend, "cpu or cuda (default: cuda when a GPU is present)");
   cmd->add_option("--stats", opt->stats, "write timings, counters and run metadata as JSON");
   cmd->add_option("--frames", opt->frames, "number of frames (camera orbits the target)")
-      ->check(CLI::Range(1, 100000));
-  cmd->add_option("--orbit", opt->orbit, "total orbit angle in degrees over all frames");
-  cmd->add_option("--width", opt->width, "override the camera's image width")
-      ->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", opt->height, "override the camera's image height")
-      ->check(CLI::Range(1, 16384));
-  cmd->add_option("--exposure", opt->exposure,
-                  "PNG only: multiply linear values by 2^EV before the tone curve")
-      ->check(CLI::Range(-64.0, 64.0))
+      ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  cmd->add_option("--orbit", opt->orbit, "total orbit angle in degrees over all frames")
+      ->capture_default_str();
+  cmd->add_option("--width", opt->width,
+                  "image width (default: the scene camera's: a JSON scene's own, 640 for glTF "
+                  "and mesh files)")
+      ->check(CLI::Range(1, 16384))
+      ->default_str("camera");
+  cmd->add_option("--height", opt->height,
+                  "image height (default: the scene camera's: a JSON scene's own, else 480, or "
+                  "640 / aspectRatio for a glTF camera)")
+      ->check(CLI::Range(1, 16384))
+      ->default_str("camera");
+  cmd->add_option("--exposure", opt->exposure,
+                  "PNG only: multiply linear values by 2^EV before the tone curve (default: the "
+                  "scene's: 0, or log2(683/pi) = 7.76 when every light is a glTF file's "
+                  "photometric light)")
+      ->check(CLI::Range(-64.0, 64.0))
+      ->default_str("scene");
   cmd->add_option("--tonemap", opt->tonemap, "PNG only: tone curve after the exposure")
       ->check(CLI::IsMember({"none", "reinhard", "aces"}))
       ->capture_default_str();
@@ -92,7 +105,8 @@ Runner add_render(CLI::App& app) {
     mark_wall_phase("scene loaded");
     const Backend backend = opt->backend.empty() ? default_backend() : parse_backend(opt->backend);
     require_backend(backend);
-    const DisplayTransform display{opt->exposure, parse_tone_curve(opt->tonemap)};
+    const double exposure = opt->exposure.value_or(default_exposure_ev(scene));
+    const DisplayTransform display{exposure, parse_tone_curve(opt->tonemap)};
     if (opt->width) scene.camera.width = opt->width;
     if (opt->height) scene.camera.height = opt->height;
     if (!opt->view.empty()) {
@@ -112,7 +126,7 @@ Runner add_render(CLI::App& app) {
         {"meta", opt->stats.empty() ? nlohmann::json::object() : run_metadata(backend)},
         {"scene", opt->scene},
         {"shadows", {{"name", method->name()}, {"params", method->params()}}},
-        {"display", {{"exposure_ev", opt->exposure}, {"tonemap", opt->tonemap}}},
+        {"display", {{"exposure_ev", exposure}, {"tonemap", opt->tonemap}}},
         {"triangles", data.triangle_count()},
         {"bvh_depth", data.bvh_depth()},
         {"frames", nlohmann::json::array()}};

@@ -26,8 +26,10 @@ Runner add_view(CLI::App& app) {
       ->check(CLI::Range(1, 16384));
   cmd->add_option("--height", s.height, "override the camera's image height")
       ->check(CLI::Range(1, 16384));
-  cmd->add_option("--exposure", s.exposure, "multiply linear values by 2^EV (as render's PNG)")
-      ->check(CLI::Range(-64.0, 64.0));
+  cmd->add_option("--exposure", s.exposure,
+                  "multiply linear values by 2^EV (as render's PNG; default: the scene's)")
+      ->check(CLI::Range(-64.0, 64.0))
+      ->default_str("scene");
   cmd->add_option("--tonemap", s.tonemap, "tone curve after the exposure (as render's PNG)")
       ->check(CLI::IsMember({"none", "reinhard", "aces"}))
       ->capture_default_str();

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   CLI::App app{"deepvox " DEEPVOX_VERSION
                ": deep shadow maps and voxelization for translucent scenes (research testbed)",
                "deepvox"};
+  app.set_version_flag("--version", dv::version_text(), "print the version, commit and build");
   app.require_subcommand(1);
   dv::remember_command_line(argc, argv);
 #if DEEPVOX_WITH_GL

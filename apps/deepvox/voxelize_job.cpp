@@ -66,8 +66,9 @@ nlohmann::json run_voxelize_job(const VoxelizeJob& job, const RunMetadataSource&
   const Aabb given = job.bounds.empty() ? Aabb{} : parse_voxel_bounds(job.bounds);
 
   // The input loads while the CUDA driver starts in the background (main.cpp); the backend
-  // query below waits for the driver. The model alone: no staged ground plane to voxelize.
-  const Scene scene = load_scene(job.input, {.ground = GroundPlane::off});
+  // query below waits for the driver. The model alone: no staged ground plane to voxelize, and
+  // no staged lights (nothing is lit).
+  const Scene scene = load_scene(job.input, {.ground = GroundPlane::off, .lights = false});
   const TriangleSoup soup = triangle_soup(scene);
   mark_wall_phase("input loaded");
   const Backend backend = voxelize_job_backend(job);

@@ -17,6 +17,7 @@
 #include "render/io/display_encoding.h"
 #include "render/io/dsm_export.h"
 #include "render/io/layer_heatmap.h"
+#include "render/load/gltf_import.h"
 #include "render/load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
 #include "strategies/storage/deep_shadow_maps.h"
@@ -63,11 +64,12 @@ ViewerState::ViewerState(const ViewerSetup& setup)
     : setup_(setup),
       move_(setup.start),
       backend_(setup.backend.empty() ? default_backend() : parse_backend(setup.backend)),
-      transform_{setup.exposure, parse_tone_curve(setup.tonemap)},
+      transform_{setup.exposure.value_or(0.0), parse_tone_curve(setup.tonemap)},
       shadows_(setup.shadows) {
   require_backend(backend_);
   method_ = cli::make_shadow_method(shadows_);
   scene_ = load_scene(setup.scene_path, setup.staging);
+  transform_.exposure_ev = setup.exposure.value_or(default_exposure_ev(scene_));
   camera_ = scene_.camera;
   if (setup.width) camera_.width = setup.width;
   if (setup.height) camera_.height = setup.height;
@@ -355,7 +357,7 @@ std::string ViewerState::render_command(const std::string& out) const {
   if (!shadows_.voxelizer.empty()) cmd += " --voxelizer " + shadows_.voxelizer;
   cmd +=
       " --width " + std::to_string(camera_.width) + " --height " + std::to_string(camera_.height);
-  if (setup_.exposure != 0.0) cmd += " --exposure " + number_text(setup_.exposure);
+  if (setup_.exposure) cmd += " --exposure " + number_text(*setup_.exposure);
   if (setup_.tonemap != ViewerSetup{}.tonemap) cmd += " --tonemap " + setup_.tonemap;
   cmd += cli::staging_flag(setup_.staging);
   const CameraMove& m = move_;

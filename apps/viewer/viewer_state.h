@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -32,7 +33,7 @@ struct ViewerSetup {
   cli::ShadowOptions shadows;
   std::string backend;  // "" = default_backend()
   int width = 0, height = 0;
-  double exposure = 0.0;
+  std::optional<double> exposure;  // unset: the scene's (default_exposure_ev), as render
   std::string tonemap = to_string(kDefaultToneCurve);  // render's default
   StagingOptions staging;
   CameraMove start;  // the camera R returns to is the scene's; this is where the viewer starts

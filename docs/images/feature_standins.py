@@ -26,7 +26,7 @@ Sample-model stand-ins for the thumbnails (docs/images/look_thumbnails.py --set 
   glass-vase-flowers.gltf     like GlassVaseFlowers: a clear glass vase (transmission 1, volume
                               thickness) with alpha-masked leaf and blossom quads;
   damaged-helmet.gltf         like DamagedHelmet: a white-ish textured rounded helmet with vertex
-                              normals and an emissive visor (deepvox ignores emission);
+                              normals and an emissive visor;
   duck.gltf                   like Duck: a yellow textured duck with a camera in the file looking
                               from behind it (-z), no lights.
 
@@ -76,7 +76,9 @@ def look_rotation(eye, target, up=(0.0, 1.0, 0.0)):
 
 
 def spot(g, eye, target, candela, inner=0.35, outer=0.5):
-    """A node with a spot light at eye shining at target."""
+    """A node with a spot light at eye shining at target. Its candela are meant for the
+    exposure glTF lights are seen at, log2(683 / pi) EV (docs/rendering.md): 27.6 cd there look
+    as 6000 cd did at 0 EV."""
     g.node(translation=list(eye), rotation=look_rotation(eye, target),
            extensions=g.light("spot", candela,
                               spot={"innerConeAngle": inner, "outerConeAngle": outer}))
@@ -159,7 +161,7 @@ def red_glass_slab(path):
     g.node(name="red glass", mesh=g.mesh(*box((-0.6, 0.7, -0.6), (0.6, 0.8, 0.6)), glass))
     g.node(name="block", mesh=g.mesh(*box((0.9, 0.0, -0.2), (1.3, 0.4, 0.2)),
                                      g.material((0.9, 0.9, 0.9))))
-    spot(g, (0.8, 3.0, 1.0), (0.2, 0.0, 0.0), 7500, inner=0.45, outer=0.6)
+    spot(g, (0.8, 3.0, 1.0), (0.2, 0.0, 0.0), 34.5, inner=0.45, outer=0.6)
     g.write(path)
 
 
@@ -180,7 +182,7 @@ def alpha_mask_quad(path):
                                            "doubleSided": True,
                                            "pbr": {"baseColorTexture": {"index": texture}}})
     g.node(name="cut-out quad", mesh=surface(g, quad(1.6, 1.6, (0, 0.9, 0)), cutout))
-    spot(g, (0.3, 2.6, 2.6), (0.0, 0.0, -0.8), 6000, inner=0.5, outer=0.65)
+    spot(g, (0.3, 2.6, 2.6), (0.0, 0.0, -0.8), 27.6, inner=0.5, outer=0.65)
     g.write(path)
 
 
@@ -197,7 +199,7 @@ def tinted_medium_glass(path):
                                               "attenuationColor": [0.2, 0.5, 0.95],
                                               "attenuationDistance": 0.5})
     g.node(name="blue medium", mesh=g.mesh(*box((-0.5, 0.0, -0.5), (0.5, 1.0, 0.5)), medium))
-    spot(g, (0.4, 2.8, 3.2), (0.0, 0.3, -0.2), 9000, inner=0.45, outer=0.6)
+    spot(g, (0.4, 2.8, 3.2), (0.0, 0.3, -0.2), 41.4, inner=0.45, outer=0.6)
     g.write(path)
 
 

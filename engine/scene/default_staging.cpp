@@ -110,7 +110,7 @@ std::optional<double> add_ground_plane(Scene& scene) {
 }
 
 bool stage_scene(Scene& scene, const StagingOptions& options) {
-  const bool staged = scene.lights.empty();
+  const bool staged = options.lights && scene.lights.empty();
   const bool ground =
       options.ground == GroundPlane::on || (options.ground == GroundPlane::staged && staged);
   const Aabb casters = world_bounds(scene);

@@ -48,12 +48,14 @@ enum class GroundPlane { staged, on, off };
 
 struct StagingOptions {
   GroundPlane ground = GroundPlane::staged;
+  // false: no lights are staged either (a command that reads only the geometry, as voxelize).
+  bool lights = true;
 };
 
 // Stages a loaded scene (its camera set): a scene without lights gets a ground plane (unless
 // ground is off) and then default_lights from its camera, fitted to its bounds and that ground;
-// a scene with lights gets only a ground, and only when ground is on. Returns whether the
-// lights were staged.
+// a scene with lights gets only a ground, and only when ground is on; options.lights false
+// stages no lights (and no ground unless it is on). Returns whether the lights were staged.
 bool stage_scene(Scene& scene, const StagingOptions& options);
 
 }  // namespace dv

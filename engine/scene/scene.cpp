@@ -122,6 +122,8 @@ void validate_scene(Scene& scene) {
                        "texture coordinates");
     if (!(m.coverage_factor >= 0.0 && m.coverage_factor <= 1.0))
       throw InputError(where, "material coverage factor must lie in [0, 1]");
+    if (!finite(m.emission) || m.emission.x < 0.0 || m.emission.y < 0.0 || m.emission.z < 0.0)
+      throw InputError(where, "material emission must be finite and >= 0");
     if (!(m.alpha >= 0.0 && m.alpha <= 1.0))
       throw InputError(where, "material alpha must lie in [0,1]");
     if (!finite(m.color)) throw InputError(where, "material colour is not finite");

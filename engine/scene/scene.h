@@ -67,6 +67,10 @@ struct Material {
   double alpha_cutoff = 0.5;
   double coverage_factor = 1.0;
   glm::dmat3 uv_transform{1.0};
+  // Light the surface emits towards the camera (glTF emissiveFactor times emissiveStrength),
+  // added in the camera pass where the surface covers (alpha + transmission); it lights nothing
+  // else and casts no shadow.
+  dvec3 emission{0.0};
 };
 
 // One control point of a piecewise-linear transfer function: density -> colour and extinction

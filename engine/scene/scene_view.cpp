@@ -88,6 +88,7 @@ ObjectView make_object_view(const Scene& scene, const Object& obj,
   o.alpha_cutoff = m.alpha_cutoff;
   o.coverage_factor = m.coverage_factor;
   o.uv_transform = m.uv_transform;
+  o.emission = m.emission;
   o.world_to_grid = dmat4(1.0);
   o.step = 0.0;
   if (o.volume >= 0) {

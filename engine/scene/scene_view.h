@@ -34,6 +34,7 @@ struct ObjectView {
   double alpha_cutoff;
   double coverage_factor;
   glm::dmat3 uv_transform;
+  dvec3 emission;  // Material::emission (camera pass only)
 };
 
 // A texture's place in SceneView::texels (RGBA8 rows from the top) and its sampler.

@@ -481,12 +481,16 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
 
 // "- scale-out: 2 GPUs on 1 host (node1); missing shards: 2 of 2" for a merged folder.
 // The machine's state at the start (run_metadata.h's machine_state; "unknown" for what a run
-// could not read, and for folders written before it was recorded).
+// could not read, and for folders written before it was recorded). A CPU run says so instead of
+// a GPU line of unknowns, and names a GPU it read but did not use.
 std::string machine_lines(const Json& run) {
   const Json machine = run.value("machine", Json::object());
   const auto at = [&](const char* key) {
     return machine.contains(key) ? cell(machine[key]) : std::string("unknown");
   };
+  const std::string os = "- OS: " + at("os") + ", kernel " + at("kernel") + "\n";
+  const bool cpu_run = run.value("backend", Json("")) == "cpu";
+  if (cpu_run && at("nvidia_driver") == "unknown") return "- GPU: none used (CPU run)\n" + os;
   const auto mhz = [&](const char* now, const char* max) {
     return at(now) + " of " + at(max) + " MHz";
   };
@@ -497,12 +501,12 @@ std::string machine_lines(const Json& run) {
     cuda = " (CUDA driver API " + cell(c.value(api, Json("unknown"))) + ", runtime " +
            cell(c.value("runtime_version", Json("unknown"))) + ")";
   }
-  return "- GPU: NVIDIA driver " + at("nvidia_driver") + cuda + ", SM clock " +
+  return std::string(cpu_run ? "- GPU (present, not used: CPU run): " : "- GPU: ") +
+         "NVIDIA driver " + at("nvidia_driver") + cuda + ", SM clock " +
          mhz("sm_clock_mhz", "sm_clock_max_mhz") + ", memory clock " +
          mhz("memory_clock_mhz", "memory_clock_max_mhz") + ", persistence mode " +
          at("persistence_mode") + ", compute mode " + at("compute_mode") +
-         ", shared with other compute processes: " + at("gpu_shared") + "\n- OS: " + at("os") +
-         ", kernel " + at("kernel") + "\n";
+         ", shared with other compute processes: " + at("gpu_shared") + "\n" + os;
 }
 
 std::string scale_out_line(const Json& meta) {

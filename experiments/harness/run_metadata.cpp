@@ -208,6 +208,11 @@ std::string build_git_sha() {
   return DEEPVOX_GIT_SHA;
 }
 
+std::string version_text() {
+  return std::string("deepvox ") + DEEPVOX_VERSION + "\ncommit " + build_git_sha() + "\nbuild " +
+         DEEPVOX_BUILD_TYPE + ", " + __VERSION__ + ", CUDA " + (kBuiltWithCuda ? "yes" : "no");
+}
+
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);) {

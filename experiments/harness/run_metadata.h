@@ -27,6 +27,10 @@ std::string utc_time_now();
 // The commit the binary was built from: 12 hex digits, "-dirty" appended when tracked files
 // differed, or "unknown".
 std::string build_git_sha();
+
+// `deepvox --version`: the version, the commit built (with -dirty), build type, compiler and
+// whether CUDA was built in, one item a line.
+std::string version_text();
 // gethostname(), or "unknown".
 std::string host_name();
 // The first line of /proc/cpuinfo's "model name", or "unknown".

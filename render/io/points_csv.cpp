@@ -2,6 +2,7 @@
 #include "render/io/points_csv.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -74,10 +75,11 @@ void write_transmittance_csv(const std::string& path, const std::vector<dvec3>& 
   for (int l = 0; l < light_count; ++l)
     out << ",light" << l << "_r,light" << l << "_g,light" << l << "_b";
   out << "\n";
+  // The shortest text that reads back as the same double (0.148, not 0.14799999999999999).
   char buf[64];
   auto put = [&](double v) {
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    out << buf;
+    const std::to_chars_result written = std::to_chars(buf, buf + sizeof buf, v);
+    out.write(buf, written.ptr - buf);
   };
   for (size_t i = 0; i < points.size(); ++i) {
     put(points[i].x), out << ",", put(points[i].y), out << ",", put(points[i].z);

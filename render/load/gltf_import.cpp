@@ -29,6 +29,7 @@
 #include "core/text.h"
 #include "engine/scene/default_staging.h"
 #include "engine/scene/mesh_topology.h"
+#include "render/load/gltf_images.h"
 #include "render/load/gltf_materials.h"
 
 namespace dv {
@@ -91,7 +92,8 @@ void check_glb_header(const std::string& path, const std::vector<unsigned char>&
                                " bytes but the file has " + std::to_string(bytes.size()));
 }
 
-Model parse_model(const std::string& path) {
+// Parses the file; embedded images that cannot be decoded go to `undecodable`, not an error.
+Model parse_model(const std::string& path, gltf::ImageFailures& undecodable) {
   std::vector<unsigned char> bytes = read_whole_file(path);
   bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   if (!binary && lowercase_extension(path) == ".glb")
@@ -101,6 +103,7 @@ Model parse_model(const std::string& path) {
   std::string base_dir = std::filesystem::path(path).parent_path().string();
   if (base_dir.empty()) base_dir = ".";
   tinygltf::TinyGLTF loader;
+  gltf::install_image_decoder(loader, undecodable);
   Model model;
   std::string err, warn;
   bool ok = false;
@@ -358,8 +361,12 @@ dmat4 local_transform(const tinygltf::Node& node, const std::string& where) {
 
 class Importer {
  public:
-  Importer(std::string path, const Model& model, const GltfImportOptions& options)
-      : path_(std::move(path)), model_(model), options_(options) {}
+  Importer(std::string path, Model& model, gltf::ImageFailures undecodable,
+           const GltfImportOptions& options)
+      : path_(std::move(path)),
+        model_(model),
+        undecodable_(std::move(undecodable)),
+        options_(options) {}
 
   Scene run();
 
@@ -369,18 +376,21 @@ class Importer {
                               TriangleMesh& out, size_t vertex_count);
   const MappedMaterial& material(int index);
   int texture(int gltf_index, const std::string& where);
+  bool image_usable(int image_index, const std::string& where);
   void add_node(int node_index, const dmat4& world);
   void add_light(const tinygltf::Node& node, const std::string& where, const dmat4& world);
   void finish_camera();
   std::string at(const std::string& what) const { return path_ + ": " + what; }
 
   std::string path_;
-  const Model& model_;
+  Model& model_;
+  gltf::ImageFailures undecodable_;  // embedded images that could not be decoded
   GltfImportOptions options_;
   Scene scene_;
   std::map<std::pair<int, int>, int> primitive_meshes_;  // (mesh, primitive) -> scene mesh or -1
   std::map<int, MappedMaterial> materials_;
-  std::map<int, int> textures_;  // glTF texture -> scene texture
+  std::map<int, int> textures_;  // glTF texture -> scene texture, -1: its image is unusable
+  std::map<int, bool> usable_images_;
   bool warned_normal_maps_ = false;
   bool has_camera_ = false;
   dmat4 camera_world_{1.0};
@@ -471,9 +481,31 @@ void Importer::read_corner_attributes(const tinygltf::Primitive& prim, const std
     for (int k = 0; k < 3; ++k) out.corner_uvs.push_back(uv[t[k]]);
 }
 
+// Whether image `image_index` can be used; the first time it cannot (an embedded one that did
+// not decode, an external file that is refused, missing or undecodable: read here,
+// render/load/gltf_images.h), one warning at `where` names it and why.
+bool Importer::image_usable(int image_index, const std::string& where) {
+  auto known = usable_images_.find(image_index);
+  if (known != usable_images_.end()) return known->second;
+  tinygltf::Image& image = model_.images[size_t(image_index)];
+  std::string problem;
+  if (auto failed = undecodable_.find(image_index); failed != undecodable_.end()) {
+    problem = failed->second;
+  } else if (image.image.empty()) {
+    std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+    if (folder.empty()) folder = ".";
+    problem =
+        image.uri.empty() ? "no image data" : gltf::read_external_image(image, image_index, folder);
+  }
+  if (!problem.empty())
+    log_warning(where + ": " + problem + "; the materials using it draw their factors without it");
+  return usable_images_.emplace(image_index, problem.empty()).first->second;
+}
+
 // The scene texture of glTF texture `gltf_index`: its image decoded to RGBA8 (16-bit images
 // keep their high bytes) and its sampler's wrap modes and magnification filter (no mipmaps:
-// minification filters are read as the magnification filter).
+// minification filters are read as the magnification filter). -1, with one warning naming the
+// image and why, when the image cannot be used: the materials then draw their factors.
 int Importer::texture(int gltf_index, const std::string& where) {
   auto found = textures_.find(gltf_index);
   if (found != textures_.end()) return found->second;
@@ -488,8 +520,10 @@ int Importer::texture(int gltf_index, const std::string& where) {
   const tinygltf::Image& image = model_.images[size_t(src.source)];
   std::string image_where =
       at(quoted_name(image.name.empty() ? image.uri : image.name, "image", src.source));
-  if (image.image.empty() || image.width < 1 || image.height < 1)
-    throw InputError(image_where, "image could not be read (missing file or undecodable data)");
+  if (!image_usable(src.source, image_where)) {
+    textures_.emplace(gltf_index, -1);
+    return -1;
+  }
   const size_t texels = size_t(image.width) * size_t(image.height);
   const size_t bytes_per = size_t(image.bits / 8);
   if (image.component != 4 || (image.bits != 8 && image.bits != 16) ||
@@ -536,7 +570,18 @@ const MappedMaterial& Importer::material(int index) {
   const tinygltf::Material& m = index >= 0 ? model_.materials[size_t(index)] : fallback;
   std::string where = at(quoted_name(m.name, "material", index));
   MappedMaterial mapped = map_gltf_material(m, where);
-  if (mapped.gltf_texture >= 0) mapped.material.base_texture = texture(mapped.gltf_texture, where);
+  if (mapped.gltf_texture >= 0) {
+    mapped.material.base_texture = texture(mapped.gltf_texture, where);
+    if (mapped.material.base_texture < 0) {  // unusable image: the factor alone, as untextured
+      tinygltf::Material untextured = m;
+      untextured.pbrMetallicRoughness.baseColorTexture = tinygltf::TextureInfo();
+      mapped = map_gltf_material(untextured, where);
+    }
+  }
+  if (mapped.emissive_texture)
+    log_warning(where +
+                ": emissiveTexture is not read (deepvox draws no emissive textures), so this "
+                "material's emission is not drawn");
   if (m.normalTexture.index >= 0 && !warned_normal_maps_) {
     warned_normal_maps_ = true;
     log_warning(where +
@@ -701,6 +746,10 @@ Scene Importer::run() {
   if (options_.default_lights && stage_scene(scene_, options_.staging))
     log_info(path_ + ": no lights in the file; added the default key and fill lights" +
              (scene_.objects.back().name == "ground" ? " and a ground plane" : ""));
+  // The file's own lights are photometric: the scene is seen at the exposure that shows them as
+  // glTF viewers do (0 when the lights are staged).
+  const double exposure_ev = default_exposure_ev(scene_);
+  for (Object& obj : scene_.objects) put_on_display_scale(obj.material, -exposure_ev);
   scene_.source = path_;
   validate_scene(scene_);
   return std::move(scene_);
@@ -709,13 +758,30 @@ Scene Importer::run() {
 }  // namespace
 
 Scene load_gltf_scene(const std::string& path, const GltfImportOptions& options) {
-  Model model = parse_model(path);
+  gltf::ImageFailures undecodable;
+  Model model = parse_model(path, undecodable);
   check_extensions(path, model);
-  return Importer(path, model, options).run();
+  return Importer(path, model, std::move(undecodable), options).run();
 }
 
 double photometric_to_radiometric(double photometric) {
   return photometric / kLumensPerWatt;
+}
+
+double photometric_exposure_ev() {
+  return std::log2(kLumensPerWatt / kPi);
+}
+
+void put_on_display_scale(Material& material, double ev) {
+  material.ambient *= std::exp2(ev);
+  material.emission *= std::exp2(ev);
+}
+
+double default_exposure_ev(const Scene& scene) {
+  const bool photometric =
+      !scene.lights.empty() && std::all_of(scene.lights.begin(), scene.lights.end(),
+                                           [](const Light& l) { return !l.source_unit.empty(); });
+  return photometric ? photometric_exposure_ev() : 0.0;
 }
 
 bool is_gltf_file(const std::string& path) {

@@ -11,7 +11,7 @@
 //     URI: dv::InputError naming the file. tinygltf's own warnings become dv::log_warning.
 //   - extensionsRequired may only name KHR_lights_punctual, KHR_materials_transmission,
 //     KHR_materials_volume, KHR_materials_ior, KHR_materials_emissive_strength and
-//     KHR_texture_transform (emission changes nothing here: deepvox has no emission). Any other
+//     KHR_texture_transform. Any other
 //     (KHR_mesh_quantization, KHR_draco_mesh_compression, ...) is an InputError naming it.
 //     Unknown names in extensionsUsed only warn.
 // Nodes and meshes
@@ -58,6 +58,15 @@
 //     spec's luminous efficacy of 683 lm/W: I = candela / 683 W/sr, E = lux / 683 W/m^2
 //     (photometric_to_radiometric). So a 100 cd lamp 0.5 m away lights a white diffuse
 //     surface to 400 / 683 = 0.59. The original value and unit are kept for `info`.
+//   - Exposure: glTF viewers (the Khronos Sample Viewer, three.js) take candela and lux as
+//     linear light at exposure 1 with a Lambertian BRDF of colour / pi, so a white surface
+//     under E lux shows E / pi, and sample models are lit for that (PointLightIntensityTest's
+//     lights are 1 cd). A scene whose lights are all a glTF file's is therefore seen at
+//     log2(683 / pi) = 7.76 EV (default_exposure_ev, render's and view's default --exposure),
+//     which shows exactly that; the lights keep their radiometric values, so the oracle and
+//     every shadow method are untouched. Ambient level and emission are display quantities
+//     (0.1 a dim ambient, 1 a white emitter, as in a staged scene at 0 EV) and are stored times
+//     2^-EV (put_on_display_scale). Staged scenes stay at 0 EV.
 //   - range (point and spot, 0 = none) multiplies the 1/d^2 falloff by the spec's window
 //     clamp(1 - (d / range)^4, 0, 1).
 //   - No light at all: dv::stage_scene (engine/scene/default_staging.h) once the camera is
@@ -72,17 +81,26 @@
 //   - Phong from PBR roughness r: specular = 0.2 * (1 - r) + 0.04 (a dielectric's 4 % plus a
 //     gloss term that fades with roughness); shininess = 2 / max(r^4, 1e-4) - 2 clamped to
 //     [1, 512] (the Blinn-Phong exponent whose lobe matches a GGX lobe of alpha = r^2).
-//   - baseColorTexture: its image (PNG or JPEG via stb_image: a data: URI, an external file
-//     beside the .gltf, or a .glb buffer view; unreadable or missing: InputError naming the
-//     image) becomes a dv::Texture (8-bit RGBA, 16-bit images keep their high byte; RGB is
+//   - baseColorTexture: its image (PNG or JPEG via stb_image: a data: URI, an external file in
+//     the .gltf's folder, or a .glb buffer view; render/load/gltf_images.h says how URIs are
+//     resolved) becomes a dv::Texture (8-bit RGBA, 16-bit images keep their high byte; RGB is
 //     sRGB and decoded to linear when sampled), with its sampler's wrapS/wrapT (REPEAT,
 //     CLAMP_TO_EDGE, MIRRORED_REPEAT) and magFilter (NEAREST, else bilinear; no mipmaps).
 //     KHR_texture_transform (offset, rotation, scale, texCoord) on it becomes
-//     Material::uv_transform. The colour is baseColorFactor times the texel; the coverage a
+//     Material::uv_transform, uv' = T R S uv with R = [[cos, sin], [-sin, cos]] (rows; the
+//     extension's example picks the lower-left quadrant with it). An image that is missing,
+//     refused (outside the model's folder) or undecodable does not refuse the model: one
+//     warning names it and why, and its materials draw baseColorFactor as if untextured (their
+//     coverage from the factor). The colour is baseColorFactor times the texel; the coverage a
 //     below is computed per point from baseColorFactor alpha times the texel's alpha
 //     (engine/scene/texture_sampling.h), in the oracle, the camera pass and every shadow
 //     method. A primitive whose material has a texture but lacks its TEXCOORD set is an
 //     InputError. normalTexture is ignored with one warning per file (vertex normals shade).
+//   - Emission: emissiveFactor times KHR_materials_emissive_strength's emissiveStrength becomes
+//     Material::emission (on the display scale, see "Exposure"), light the camera sees added
+//     where the surface covers; it lights nothing else. emissiveTexture is not read: such a
+//     material's emission is dropped (the factor alone would light the whole surface, not the
+//     texture's pattern) with one warning naming the material.
 //   - Coverage a = 1 for OPAQUE, the baseColorFactor alpha for BLEND, and 1 or 0 for MASK
 //     (alpha >= alphaCutoff or not); t = KHR_materials_transmission transmissionFactor (0
 //     without the extension). Material::alpha = a (1 - t) (the opaque part), ::transmission =
@@ -120,6 +138,19 @@ inline constexpr double kLumensPerWatt = 683.0;
 
 // candela -> W/sr (point, spot) or lux -> W/m^2 (directional): photometric / 683.
 double photometric_to_radiometric(double photometric);
+
+// log2(683 / pi) = 7.76: at this exposure a white Lambertian surface under E lux shows E / pi,
+// as glTF viewers show photometric lights (see "Units" above).
+double photometric_exposure_ev();
+
+// photometric_exposure_ev() when the scene has lights and every one came from a glTF file
+// (Light::source_unit set), else 0: the exposure its units are meant to be seen at.
+double default_exposure_ev(const Scene& scene);
+
+// Ambient level and emission are display quantities (0.1 is a dim ambient, an emission of 1 a
+// white pixel, before the tone curve): a scene seen at exposure EV stores them times 2^-EV.
+// Multiplies them by 2^ev.
+void put_on_display_scale(Material& material, double ev);
 
 struct GltfImportOptions {
   bool default_lights = true;  // stage the scene (dv::stage_scene) when the file has no light

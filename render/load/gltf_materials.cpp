@@ -31,7 +31,6 @@ double number_field(const tinygltf::Value& object, const char* key, double fallb
   return value.GetNumberAsDouble();
 }
 
-
 bool unit_range(double v) {
   return v >= 0.0 && v <= 1.0;
 }
@@ -83,7 +82,10 @@ dvec2 pair_field(const tinygltf::Value& object, const char* key, dvec2 fallback,
 }
 
 // KHR_texture_transform on the base-colour texture: uv' = T(offset) R(rotation) S(scale) uv
-// (the extension's matrix, column-major like glm), and its texCoord override.
+// with R = [[cos, sin], [-sin, cos]] (rows): u' = u cos + v sin, v' = -u sin + v cos. The
+// ratified extension writes R column-major as mat3(cos, -sin, 0, sin, cos, 0, 0, 0, 1); its
+// example (offset [0, 1], rotation pi/2, scale 0.5 picks the image's lower-left quadrant, v
+// pointing down) holds only with this sign. And its texCoord override.
 void read_texture_transform(const tinygltf::Value& ext, const std::string& where,
                             MappedMaterial& out) {
   const dvec2 offset = pair_field(ext, "offset", dvec2(0.0), where);
@@ -91,13 +93,34 @@ void read_texture_transform(const tinygltf::Value& ext, const std::string& where
   const double rotation = number_field(ext, "rotation", 0.0, where);
   const double c = std::cos(rotation), s = std::sin(rotation);
   const glm::dmat3 translate(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
-  const glm::dmat3 rotate(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
+  const glm::dmat3 rotate(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);  // columns, as glm takes them
   const glm::dmat3 scaling(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
   out.material.uv_transform = translate * rotate * scaling;
   const double texcoord = number_field(ext, "texCoord", double(out.texcoord), where);
   require(texcoord >= 0.0 && texcoord == std::floor(texcoord) && texcoord < 64.0, where,
           "texCoord must be a small integer >= 0");
   out.texcoord = int(texcoord);
+}
+
+// emissiveFactor times KHR_materials_emissive_strength's emissiveStrength, on the scale glTF
+// viewers display it (1: a pixel of 1 before the tone curve); the importer puts it on the
+// scene's light scale. An emissiveTexture is not read: then the emission is dropped (the factor
+// alone would light the whole surface, not the texture's pattern) and the importer warns.
+void read_emission(const tinygltf::Material& m, const std::string& where, MappedMaterial& out) {
+  const std::vector<double>& factor = m.emissiveFactor;
+  if (factor.empty()) return;  // glTF's default material (tinygltf fills only parsed ones)
+  require(factor.size() == 3 && std::all_of(factor.begin(), factor.end(), unit_range), where,
+          "emissiveFactor must be 3 numbers in [0, 1]");
+  double strength = 1.0;
+  if (const tinygltf::Value* ext =
+          find_extension(m.extensions, "KHR_materials_emissive_strength")) {
+    const std::string ext_where = where + ": KHR_materials_emissive_strength";
+    strength = number_field(*ext, "emissiveStrength", 1.0, ext_where);
+    require(strength >= 0.0, ext_where, "emissiveStrength must be >= 0");
+  }
+  out.emissive_texture = m.emissiveTexture.index >= 0;
+  if (!out.emissive_texture)
+    out.material.emission = dvec3(factor[0], factor[1], factor[2]) * strength;
 }
 
 }  // namespace
@@ -154,6 +177,7 @@ MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string&
   }
   if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_volume"))
     out.interior = volume_interior(*ext, where + ": KHR_materials_volume");
+  read_emission(m, where, out);
   return out;
 }
 

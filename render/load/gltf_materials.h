@@ -20,6 +20,8 @@ struct MappedMaterial {
   Interior interior;
   int gltf_texture = -1;
   int texcoord = 0;
+  // An emissiveTexture the material has (deepvox does not read it: its emission is dropped).
+  bool emissive_texture = false;
 };
 
 // The extension object `name` of an extension map, or nullptr.

@@ -121,6 +121,8 @@ struct Loader {
   StagingOptions staging;
   std::map<std::string, int> mesh_files;  // path -> mesh index (loaded once)
   std::map<std::string, int> volume_names;
+  double imported_exposure_ev = 0.0;  // the imported glTF's (its ambient and emission's scale)
+  size_t imported_objects = 0;        // the scene's first objects are the imported ones
 
   std::string resolve(const std::string& p) const {
     fs::path path(p);
@@ -255,7 +257,10 @@ struct Loader {
     }
     Scene imported = load_gltf_scene(resolve(file), {.default_lights = false});
     scene.meshes = std::move(imported.meshes);
+    scene.textures = std::move(imported.textures);
     scene.objects = std::move(imported.objects);
+    imported_exposure_ev = default_exposure_ev(imported);
+    imported_objects = scene.objects.size();
     if (keep_lights) scene.lights = std::move(imported.lights);
     for (Light& light : scene.lights) {
       light.intensity *= light_scale;
@@ -300,7 +305,15 @@ struct Loader {
     r.finish();
     if (scene.objects.empty()) throw InputError(file, "scene has no objects");
     if (scene.lights.empty() && !imports) throw InputError(file, "scene has no lights");
+    // Only an imported glTF's photometric lights alone (light_scale or not) keep its exposure;
+    // the display quantities (ambient, emission, background) follow the exposure the scene
+    // ends with, the imported objects' from the exposure they were imported at.
     stage_scene(scene, staged);
+    const double exposure_ev = default_exposure_ev(scene);
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+      put_on_display_scale(scene.objects[i].material,
+                           (i < imported_objects ? imported_exposure_ev : 0.0) - exposure_ev);
+    scene.background *= std::exp2(-exposure_ev);
   }
 };
 

@@ -112,7 +112,13 @@ TEST_F(Runner, TinySuiteWritesEveryFileAndTheOracleMatchesItself) {
   std::ifstream report(folder / "report.md");
   const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
   EXPECT_NE(md.find("## methods (shadow)"), std::string::npos);
-  EXPECT_NE(md.find("- GPU: NVIDIA driver "), std::string::npos);
+  // A CPU run: no line of unknown GPU fields; a GPU it could read is named as not used.
+  if (meta["run"]["machine"]["nvidia_driver"] == "unknown") {
+    EXPECT_NE(md.find("- GPU: none used (CPU run)\n"), std::string::npos);
+    EXPECT_EQ(md.find("NVIDIA driver"), std::string::npos);
+  } else {
+    EXPECT_NE(md.find("- GPU (present, not used: CPU run): NVIDIA driver "), std::string::npos);
+  }
   EXPECT_NE(md.find("- OS: "), std::string::npos);
   EXPECT_NE(md.find("## voxels (voxelize)"), std::string::npos);
   EXPECT_NE(md.find("ran 8 of 8 experiments"), std::string::npos);

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -693,6 +694,126 @@ TEST(Heatmap, GridOfLabelledFaces) {
         white += labelled.at(x, y) == dvec3(1.0);
     EXPECT_GT(white, 10) << "no label above face " << f;
   }
+}
+
+// --version names the version, the commit and the build.
+TEST_F(Cli, VersionNamesCommitAndBuild) {
+  const CommandResult r = run("--version");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const char* needle : {"deepvox 0.", "\ncommit ", "\nbuild ", "CUDA "})
+    EXPECT_NE(r.output.find(needle), std::string::npos) << needle << " in " << r.output;
+}
+
+// `deepvox help COMMAND` is `deepvox COMMAND --help`; an unknown command exits 2 naming it.
+TEST_F(Cli, HelpOfOneCommand) {
+  const CommandResult help = run("help render");
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  EXPECT_EQ(help.output, run("render --help").output);
+  const CommandResult bad = run("help rendr");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("unknown command 'rendr'; did you mean 'render'?"), std::string::npos)
+      << bad.output;
+}
+
+// render --help shows the defaults of the dsm shortcuts (the dsm's parameter table) and of the
+// image size (the scene camera's).
+TEST_F(Cli, RenderHelpShowsDefaults) {
+  const std::string help = run("render --help").output;
+  for (const char* needle : {"--storage TEXT=", "--dsm-res INT=", "--eps FLOAT=", "--filter TEXT=",
+                             "16384]=camera", "--exposure FLOAT:FLOAT in [-64 - 64]=scene"})
+    EXPECT_NE(help.find(needle), std::string::npos) << needle << " in " << help;
+}
+
+// voxelize reads only geometry: no staged lights, and no word about them.
+TEST_F(Cli, VoxelizeSaysNothingAboutLights) {
+  test::GltfBuilder b;
+  b.add_node({{"mesh", test::add_box_mesh(b)}});
+  const std::string gltf = b.write_gltf(path("box.gltf"));
+  const CommandResult r =
+      run("voxelize " + gltf + " --backend cpu --res 32x32x32 --out " + path("box.binvox"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("light"), std::string::npos) << r.output;
+  const CommandResult info = run("info " + gltf);  // info still stages them, and says so
+  EXPECT_NE(info.output.find("added the default key and fill lights"), std::string::npos)
+      << info.output;
+}
+
+// info: glass shows its transmission, and one warning line covers every glass object.
+TEST_F(Cli, InfoShowsTransmissionAndOneWarningForManyGlassObjects) {
+  test::GltfBuilder b;
+  b.use_extension("KHR_materials_transmission");
+  const int glass = b.add_material(
+      {{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}});
+  const int mesh = test::add_box_mesh(b, {{"material", glass}});
+  for (int i = 0; i < 5; ++i)
+    b.add_node({{"name", "pane" + std::to_string(i)},
+                {"mesh", mesh},
+                {"translation", {3.0 * i, 0.0, 0.0}}});
+  const CommandResult r = run("info " + b.write_gltf(path("panes.gltf")));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("alpha 0  transmission 1  interior none"), std::string::npos) << r.output;
+  size_t warnings = 0;
+  for (size_t at = r.output.find("\nwarning "); at != std::string::npos;
+       at = r.output.find("\nwarning ", at + 1))
+    ++warnings;
+  EXPECT_EQ(warnings, 1u) << r.output;
+  EXPECT_NE(r.output.find("5 objects ('pane0', 'pane1', 'pane2' and 2 more) are fully "
+                          "transmissive"),
+            std::string::npos)
+      << r.output;
+}
+
+// A missing base-colour image no longer refuses the model: info and render go on, warning.
+TEST_F(Cli, MissingBaseColourImageWarnsAndRenders) {
+  test::GltfBuilder b;
+  const std::vector<float> uv = {0, 0, 1, 0, 1, 1, 0, 1};
+  b.doc["images"] = nlohmann::json::array({{{"uri", "lost.png"}}});
+  b.doc["textures"] = nlohmann::json::array({{{"source", 0}}});
+  const int material =
+      b.add_material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+  b.add_node(
+      {{"mesh",
+        b.add_mesh({{"attributes",
+                     {{"POSITION", b.add_positions({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0})},
+                      {"TEXCOORD_0", b.add_accessor(b.add_view(uv.data(), 32), 5126, 4, "VEC2")}}},
+                    {"indices", b.add_indices({0, 1, 2, 0, 2, 3})},
+                    {"material", material}})}});
+  const std::string gltf = b.write_gltf(path("lost.gltf"));
+  const CommandResult info = run("info " + gltf);
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("lost.png: file not found"), std::string::npos) << info.output;
+  const CommandResult r =
+      run("render " + gltf + " --backend cpu --width 24 --height 18 --out " + path("l.png"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// A glTF lit by its own photometric lights renders at log2(683 / pi) EV unless --exposure says
+// otherwise; a staged one at 0 EV.
+TEST_F(Cli, PhotometricLightsSetTheDefaultExposure) {
+  test::GltfBuilder b;
+  b.use_extension("KHR_lights_punctual");
+  b.add_node({{"mesh", test::add_box_mesh(b)}});
+  const int lamp = b.add_light({{"type", "point"}, {"intensity", 20.0}});
+  b.add_node(
+      {{"translation", {0, 3, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", lamp}}}}}});
+  const std::string gltf = b.write_gltf(path("lamp.gltf"));
+  const auto exposure = [&](const std::string& extra) {
+    const CommandResult r = run("render " + gltf + " --backend cpu --width 24 --height 18 --out " +
+                                path("x.png") + " --stats " + path("x.json") + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream in(path("x.json"));
+    return nlohmann::json::parse(in)["display"]["exposure_ev"].get<double>();
+  };
+  EXPECT_NEAR(exposure(""), std::log2(683.0 / 3.14159265358979323846), 1e-12);
+  EXPECT_EQ(exposure(" --exposure 0"), 0.0);
+  test::GltfBuilder bare;
+  bare.add_node({{"mesh", test::add_box_mesh(bare)}});
+  const CommandResult r = run("render " + bare.write_gltf(path("bare.gltf")) +
+                              " --backend cpu --width 24 --height 18 --out " + path("b.png") +
+                              " --stats " + path("b.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(path("b.json"));
+  EXPECT_EQ(nlohmann::json::parse(in)["display"]["exposure_ev"].get<double>(), 0.0);
 }
 
 }  // namespace

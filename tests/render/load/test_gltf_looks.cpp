@@ -53,6 +53,11 @@ Scene box_before_wall(const ScratchDir& dir, const json& material, bool from_abo
   Scene scene = load_gltf_scene(b.write_gltf(dir.file("box.gltf")));
   Material& wall = scene.objects[0].material;  // shows its colour whatever the lighting
   wall.ambient = 1.0, wall.diffuse = 0.0, wall.specular = 0.0;
+  // The file's sun is photometric, so its ambient level is stored for log2(683 / pi) EV
+  // (gltf_import.h, "Exposure"); these tests look at the linear image, at 0 EV.
+  Material& box = scene.objects[1].material;
+  EXPECT_NEAR(box.ambient * std::exp2(photometric_exposure_ev()), 0.1, 1e-15);
+  box.ambient = 0.1;
   scene.camera.width = 64;
   scene.camera.height = 48;
   return scene;

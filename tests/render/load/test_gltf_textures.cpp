@@ -1,8 +1,9 @@
 // glTF textures (issue 39): base-colour images decoded from data: URIs, external files and .glb
 // buffer views with their samplers; TEXCOORD and NORMAL read per triangle corner; MASK and
-// BLEND kept for per-point coverage; a missing image named in the error; normal maps loaded
-// with a warning. And the committed textured stand-in (tests/data/textured/textured_sphere.glb)
-// renders with its base colour and smooth vertex normals.
+// BLEND kept for per-point coverage; normal maps loaded with a warning (images that cannot be
+// used: tests/render/load/test_gltf_images.cpp). And the committed textured stand-in
+// (tests/data/textured/textured_sphere.glb) renders with its base colour and smooth vertex
+// normals.
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -98,17 +99,6 @@ TEST(GltfTextures, GlbImageNormalsAndNormalMapWarning) {
   ASSERT_EQ(sphere.corner_uvs.size(), 3 * sphere.triangles.size());
   for (size_t c = 0; c < sphere.corner_normals.size(); c += 37)
     EXPECT_NEAR(glm::length(sphere.corner_normals[c]), 1.0, 1e-6);
-}
-
-TEST(GltfTextures, MissingImageFileIsNamed) {
-  ScratchDir dir;
-  GltfBuilder b = textured_quad({{"uri", "no-such-image.png"}}, "MASK");
-  try {
-    load_gltf_scene(b.write_gltf(dir.file("quad.gltf")));
-    FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("no-such-image.png"), std::string::npos) << e.what();
-  }
 }
 
 TEST(GltfTextures, TextureWithoutTexcoordsIsAnError) {
