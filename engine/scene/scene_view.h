@@ -34,6 +34,9 @@ struct ObjectView {
   double alpha_cutoff;
   double coverage_factor;
   glm::dmat3 uv_transform;
+  // The base-colour texture has colour (texture_has_colour, engine/scene/scene.h): glass it
+  // covers tints light even under a grey factor.
+  bool texture_colour;
 };
 
 // A texture's place in SceneView::texels (RGBA8 rows from the top) and its sampler.
