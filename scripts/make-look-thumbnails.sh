@@ -3,16 +3,18 @@
 # two deepvox binaries, through docs/images/look_thumbnails.py, and prints how much of each
 # image is clipped to pure white.
 #
-#   scripts/make-look-thumbnails.sh BEFORE_DEEPVOX [AFTER_DEEPVOX] [--set looks|samples] [--size WxH]
+#   scripts/make-look-thumbnails.sh BEFORE_DEEPVOX [AFTER_DEEPVOX] [--set looks|samples|shadows] [--size WxH]
 #
 # AFTER_DEEPVOX defaults to this tree's build/bin/deepvox. --set samples renders the stand-ins
 # of the Khronos sample models TransmissionTest, GlassVaseFlowers, DamagedHelmet and Duck
-# (docs/images/feature_standins.py) into docs/images/<model>-{before,after}.png; --set looks
-# (the default) the lamp, transmission, attenuation and bunny thumbnails.
+# (docs/images/feature_standins.py) into docs/images/<model>-{before,after}.png; --set shadows
+# the shadow stand-ins of issue 50 (textured glass pane, glass cube and BLEND quad on the
+# ground, folded cloth under glass) the same way; --set looks (the default) the lamp,
+# transmission, attenuation and bunny thumbnails.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 if [[ $# -lt 1 || "$1" == -* ]]; then
-  sed -n '2,11p' "$0" >&2
+  sed -n '2,13p' "$0" >&2
   exit 2
 fi
 before="$1"

@@ -30,8 +30,20 @@ Sample-model stand-ins for the thumbnails (docs/images/look_thumbnails.py --set 
   duck.gltf                   like Duck: a yellow textured duck with a camera in the file looking
                               from behind it (-z), no lights.
 
+Shadow stand-ins of issue 50's thumbnails and measurements (look_thumbnails.py --set shadows),
+all without lights, so that `render` stages them (ground, key and fill):
+
+  textured-glass-pane.gltf    like StainedGlassLamp's panes: a horizontal glass pane
+                              (transmission 1, white factor) whose base-colour PNG holds red,
+                              blue, yellow and green panels in dark leading, on an opaque post;
+  glass-cube-contact.gltf     a red glass cube (transmission 1) resting on the staged ground;
+  blend-quad-contact.gltf     a BLEND quad of alpha 0.5 lying on the staged ground;
+  transmission-cloth.gltf     like TransmissionTest's cloth: a wavy, folded checker cloth under a
+                              blue glass ellipsoid and a red glass sphere.
+
 Usage: feature_standins.py [OUT_DIR]            the feature scenes (default experiments/assets/gltf)
        feature_standins.py --samples OUT_DIR    the sample-model stand-ins
+       feature_standins.py --shadows OUT_DIR    the shadow stand-ins
        feature_standins.py --check DIR          exit 1 naming every feature scene in DIR that is
                                                 not this script's output
 """
@@ -301,11 +313,91 @@ def duck(path):
     g.write(path)
 
 
+def textured_glass_pane(path):
+    g = Gltf()
+    colours = [(220, 40, 40), (40, 70, 220), (240, 200, 40), (40, 170, 70)]
+
+    def panel(x, y):  # 2 x 2 coloured panels of 16 texels in 2-texel dark leading
+        if x % 16 < 2 or y % 16 < 2:
+            return (40, 40, 40, 255)
+        return colours[(x // 16) + 2 * (y // 16)] + (255,)
+    stained = g.material((1, 1, 1), roughness=0.05,
+                         fields={"pbr": {"baseColorTexture": {
+                             "index": g.texture(png(32, 32, panel))}}},
+                         KHR_materials_transmission={"transmissionFactor": 1.0})
+    pos, tris = box((-0.6, 0.7, -0.6), (0.6, 0.74, 0.6))
+    uvs = [((p[0] + 0.6) / 1.2, (p[2] + 0.6) / 1.2) for p in pos]
+    g.node(name="stained pane", mesh=g.mesh(pos, tris, stained, None, uvs))
+    g.node(name="post", mesh=g.mesh(*box((-0.04, 0.0, -0.04), (0.04, 0.7, 0.04)),
+                                    g.material((0.3, 0.25, 0.2))))
+    g.write(path)
+
+
+def glass_cube_contact(path):
+    g = Gltf()
+    red = g.material((1.0, 0.2, 0.2), roughness=0.05,
+                     KHR_materials_transmission={"transmissionFactor": 1.0})
+    g.node(name="red glass cube", mesh=g.mesh(*box((-0.5, 0.0, -0.5), (0.5, 1.0, 0.5)), red))
+    g.write(path)
+
+
+def blend_quad_contact(path):
+    g = Gltf()
+    half = g.material((0.2, 0.4, 0.9), alpha=0.5, fields={"alphaMode": "BLEND",
+                                                          "doubleSided": True})
+    pos = [(-0.5, 0.0, -0.5), (0.5, 0.0, -0.5), (0.5, 0.0, 0.5), (-0.5, 0.0, 0.5)]
+    g.node(name="blend quad", mesh=g.mesh(pos, [(0, 2, 1), (0, 3, 2)], half))
+    g.write(path)
+
+
+def transmission_cloth(path, cells=96):
+    """A cloth draped in folds (height a sum of waves across x and z; steep enough that folds
+    shadow their neighbours under the staged key) in 8 x 8 checker squares, two meshes with
+    smooth vertex normals; a blue glass ellipsoid and a red glass sphere above it."""
+    g = Gltf()
+    size = 1.6
+    k1, k2 = 2 * math.pi / 0.5, 2 * math.pi / 0.9
+
+    def height(x, z):
+        return 0.12 * math.sin(k1 * x) + 0.04 * math.sin(k2 * (z + 0.3 * x))
+
+    def normal(x, z):
+        dx = 0.12 * k1 * math.cos(k1 * x) + 0.04 * k2 * 0.3 * math.cos(k2 * (z + 0.3 * x))
+        dz = 0.04 * k2 * math.cos(k2 * (z + 0.3 * x))
+        return normalize((-dx, 1.0, -dz))
+    parts = ([], [], []), ([], [], [])
+    step = 2 * size / cells
+    for i in range(cells):
+        for j in range(cells):
+            pos, normals, tris = parts[(i * 8 // cells + j * 8 // cells) % 2]
+            n = len(pos)
+            for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                x, z = -size + (i + di) * step, -size + (j + dj) * step
+                pos.append((x, height(x, z), z))
+                normals.append(normal(x, z))
+            tris += [(n, n + 2, n + 1), (n, n + 3, n + 2)]
+    for (pos, normals, tris), colour in zip(parts, ((0.8, 0.8, 0.8), (0.15, 0.15, 0.2))):
+        g.node(name="cloth", mesh=g.mesh(pos, tris, g.material(colour), normals))
+    blue = g.material((0.3, 0.45, 1.0), roughness=0.05,
+                      KHR_materials_transmission={"transmissionFactor": 1.0})
+    red = g.material((1.0, 0.25, 0.25), roughness=0.05,
+                     KHR_materials_transmission={"transmissionFactor": 1.0})
+    g.node(name="blue glass",
+           mesh=surface(g, ellipsoid((0.45, 0.25, 0.3), (-0.45, 0.5, 0.1)), blue))
+    g.node(name="red sphere",
+           mesh=surface(g, ellipsoid((0.3, 0.3, 0.3), (0.5, 0.5, -0.1)), red))
+    g.write(path)
+
+
 FEATURES = {"red-glass-slab.gltf": red_glass_slab, "alpha-mask-quad.gltf": alpha_mask_quad,
             "tinted-medium-glass.gltf": tinted_medium_glass,
             "textured-torus.gltf": textured_torus}
 SAMPLES = {"transmission-test.gltf": transmission, "glass-vase-flowers.gltf": glass_vase_flowers,
            "damaged-helmet.gltf": damaged_helmet, "duck.gltf": duck}
+SHADOWS = {"textured-glass-pane.gltf": textured_glass_pane,
+           "glass-cube-contact.gltf": glass_cube_contact,
+           "blend-quad-contact.gltf": blend_quad_contact,
+           "transmission-cloth.gltf": transmission_cloth}
 
 
 def write_all(scenes, out):
@@ -337,6 +429,8 @@ if __name__ == "__main__":
         sys.exit(1 if stale else 0)
     if args[:1] == ["--samples"] and len(args) == 2:
         write_all(SAMPLES, args[1])
+    elif args[:1] == ["--shadows"] and len(args) == 2:
+        write_all(SHADOWS, args[1])
     elif len(args) <= 1 and not (args and args[0].startswith("-")):
         default = os.path.join(ROOT, "experiments", "assets", "gltf")
         write_all(FEATURES, args[0] if args else default)

@@ -10,9 +10,12 @@ background. --size 640x480 measures at the default resolution. Two sets:
           flag the old binary lacks);
   --set samples: the sample-model stand-ins of feature_standins.py (TransmissionTest,
           GlassVaseFlowers, DamagedHelmet, Duck), both binaries at their defaults (issue 39:
-          before = the code before it, after = this tree).
+          before = the code before it, after = this tree);
+  --set shadows: the shadow stand-ins of feature_standins.py (a glass pane coloured by its
+          texture, a red glass cube and a BLEND quad resting on the ground, a folded cloth under
+          glass), both binaries at their defaults (issue 50).
 
-Usage: look_thumbnails.py BEFORE_DEEPVOX AFTER_DEEPVOX [--set looks|samples] [--size WxH]
+Usage: look_thumbnails.py BEFORE_DEEPVOX AFTER_DEEPVOX [--set looks|samples|shadows] [--size WxH]
                           [--out docs/images]
 (scripts/make-look-thumbnails.sh runs it.)
 """
@@ -85,7 +88,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("before")
     parser.add_argument("after")
-    parser.add_argument("--set", default="looks", choices=("looks", "samples"))
+    parser.add_argument("--set", default="looks", choices=("looks", "samples", "shadows"))
     parser.add_argument("--size", default="200x150")
     parser.add_argument("--out", default=os.path.join(ROOT, "docs", "images"))
     args = parser.parse_args()
@@ -99,10 +102,10 @@ def main():
                   ("transmission", os.path.join(tmp, "transmission.gltf"), ()),
                   ("attenuation", os.path.join(tmp, "attenuation.gltf"), ()),
                   ("bunny", bunny, ("--ground",))]
-        if args.set == "samples":
-            feature_standins.write_all(feature_standins.SAMPLES, tmp)
-            scenes = [(name[:-len(".gltf")], os.path.join(tmp, name), ())
-                      for name in feature_standins.SAMPLES]
+        if args.set in ("samples", "shadows"):
+            chosen = feature_standins.SAMPLES if args.set == "samples" else feature_standins.SHADOWS
+            feature_standins.write_all(chosen, tmp)
+            scenes = [(name[:-len(".gltf")], os.path.join(tmp, name), ()) for name in chosen]
         for name, scene, after_flags in scenes:
             for when, binary, flags in (("before", args.before, ()),
                                         ("after", args.after, after_flags)):

@@ -89,9 +89,8 @@ std::optional<double> add_ground_plane(Scene& scene) {
     if (o.name == "ground") return std::nullopt;
   const Aabb bounds = world_bounds(scene);
   const dvec3 centre = centre_of(bounds);
-  const double half = 3.0 * bounding_radius(bounds);
-  // A hair below the bounds so the model's own bottom faces never tie with the ground.
-  const double y = (bounds.empty() ? 0.0 : bounds.lo.y) - 1e-4 * half;
+  const double radius = bounding_radius(bounds), half = 3.0 * radius;
+  const double y = (bounds.empty() ? 0.0 : bounds.lo.y) - kGroundGapRadii * radius;
   TriangleMesh mesh;
   mesh.name = "ground";
   mesh.positions = {{centre.x - half, y, centre.z - half},

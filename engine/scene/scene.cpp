@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "engine/scene/mesh_topology.h"
@@ -32,6 +34,34 @@ const char* to_string(InteriorKind kind) {
       return "volume";
   }
   return "?";
+}
+
+bool texture_has_colour(const Texture& texture) {
+  const std::vector<uint8_t>& rgba = texture.rgba;
+  for (size_t i = 0; i + 2 < rgba.size(); i += 4) {
+    const int r = rgba[i], g = rgba[i + 1], b = rgba[i + 2];
+    if (std::max({r, g, b}) - std::min({r, g, b}) > kGreyTexelTolerance) return true;
+  }
+  return false;
+}
+
+namespace {
+
+bool grey(const dvec3& c) {
+  return c.x == c.y && c.y == c.z;
+}
+
+}  // namespace
+
+bool object_tints_light(const Scene& scene, const Object& object) {
+  const Material& m = object.material;
+  const bool textured_colour =
+      m.base_texture >= 0 && texture_has_colour(scene.textures[size_t(m.base_texture)]);
+  const bool glass = m.transmission > 0.0 && object.interior.kind == InteriorKind::none &&
+                     (!grey(m.color) || textured_colour);
+  const bool medium = object.interior.kind == InteriorKind::constant &&
+                      object.interior.sigma > 0.0 && !grey(object.interior.sigma_tint);
+  return glass || medium;
 }
 
 Aabb world_bounds(const Scene& scene) {

@@ -169,6 +169,19 @@ const char* to_string(InteriorKind kind);
 // World-space bounds of all objects (vertices after transforms).
 Aabb world_bounds(const Scene& scene);
 
+// How far apart (in sRGB bytes) a texel's R, G and B may be and the texel still count as grey.
+inline constexpr int kGreyTexelTolerance = 2;
+
+// Whether some texel of `texture` has colour: two of its RGB bytes differ by more than
+// kGreyTexelTolerance. A base-colour texture with colour tints what crosses glass it covers, so
+// the shadow methods must carry colour for it, not only for a coloured factor.
+bool texture_has_colour(const Texture& texture);
+
+// Whether crossings of `object` can tint light (the host form of tints_light,
+// engine/scene/surface_transmittance.h): thin-walled glass whose base colour (factor, or the
+// texels of its base-colour texture) is not grey, or a tinted constant medium.
+bool object_tints_light(const Scene& scene, const Object& object);
+
 // Checks invariants the renderer and oracle rely on (indices in range, finite numbers, closed
 // meshes for interiors, sorted transfer functions); throws InputError naming scene.source.
 // Closed meshes of objects with an interior are oriented outward (the oracle relies on it).

@@ -89,6 +89,8 @@ ObjectView make_object_view(const Scene& scene, const Object& obj,
   o.coverage_factor = m.coverage_factor;
   o.uv_transform = m.uv_transform;
   o.emission = m.emission;
+  o.texture_colour =
+      m.base_texture >= 0 && texture_has_colour(scene.textures[size_t(m.base_texture)]);
   o.world_to_grid = dmat4(1.0);
   o.step = 0.0;
   if (o.volume >= 0) {

@@ -35,6 +35,9 @@ struct ObjectView {
   double coverage_factor;
   glm::dmat3 uv_transform;
   dvec3 emission;  // Material::emission (camera pass only)
+  // The base-colour texture has colour (texture_has_colour, engine/scene/scene.h): glass it
+  // covers tints light even under a grey factor.
+  bool texture_colour;
 };
 
 // A texture's place in SceneView::texels (RGBA8 rows from the top) and its sampler.

@@ -49,10 +49,13 @@ DV_HD inline double material_coverage(const ObjectView& o) {
 }
 
 // Whether crossings of this object can tint (any channel differs): glass with a coloured base
-// on a thin-walled object, or a tinted constant medium inside.
+// (its factor, or a base-colour texture with colour) on a thin-walled object, or a tinted
+// constant medium inside. object_tints_light (engine/scene/scene.h) is the same on the host's
+// Scene.
 DV_HD inline bool tints_light(const ObjectView& o) {
-  const bool glass_tint = o.transmission > 0.0 && o.interior == InteriorKind::none &&
-                          !(o.color.x == o.color.y && o.color.y == o.color.z);
+  const bool coloured_base =
+      !(o.color.x == o.color.y && o.color.y == o.color.z) || (o.texture >= 0 && o.texture_colour);
+  const bool glass_tint = o.transmission > 0.0 && o.interior == InteriorKind::none && coloured_base;
   const dvec3& s = o.sigma_rgb;
   const bool medium_tint = o.interior == InteriorKind::constant && !(s.x == s.y && s.y == s.z);
   return glass_tint || medium_tint;

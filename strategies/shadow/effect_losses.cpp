@@ -22,27 +22,23 @@ namespace {
 constexpr std::array<const char*, 6> kMethods = {
     "none", "shadowmap", "dsm", "transmittance-slicemap", "reference", "auto"};
 
-bool grey(const dvec3& c) {
-  return std::abs(c.x - c.y) < 1e-9 && std::abs(c.y - c.z) < 1e-9;
-}
-
 // The rows' words for shadowmap and the slicemap's opaque map say 0.5.
 static_assert(kDepthMapOpaqueAlpha == 0.5);
+// The textured-glass row's words say 2/255.
+static_assert(kGreyTexelTolerance == 2);
 
-// Whether crossings of `o` tint light, as tints_light (engine/scene/surface_transmittance.h)
-// decides it: thin-walled glass of a coloured base, or a tinted constant medium.
-bool tints_shadows(const Object& o) {
-  const bool glass = o.material.transmission > 0.0 && o.interior.kind == InteriorKind::none &&
-                     !grey(o.material.color);
-  const bool medium = o.interior.kind == InteriorKind::constant && o.interior.sigma > 0.0 &&
-                      !grey(o.interior.sigma_tint);
-  return glass || medium;
+// Glass whose colour comes from its base-colour texture: the texture has coloured texels, so the
+// colour channels switch on for it even under a grey factor.
+bool glass_coloured_by_texture(const Scene& scene, const Object& o) {
+  const Material& m = o.material;
+  return m.transmission > 0.0 && o.interior.kind == InteriorKind::none && m.base_texture >= 0 &&
+         texture_has_colour(scene.textures[size_t(m.base_texture)]);
 }
 
 struct EffectRow {
   const char* one;   // the effect, for one object
   const char* many;  // for several
-  bool (*shows)(const Object& o);
+  bool (*shows)(const Scene& scene, const Object& o);
   std::array<const char*, kMethods.size()> treatment;  // per kMethods entry
 };
 
@@ -50,7 +46,7 @@ struct EffectRow {
 const EffectRow kEffects[] = {
     {"translucent caster (0 < alpha < 1)",
      "translucent casters (0 < alpha < 1)",
-     [](const Object& o) {
+     [](const Scene&, const Object& o) {
        return o.material.alpha > 0.0 && o.material.alpha < 1.0 && o.material.transmission <= 0.0;
      },
      {"dropped (no shadows)",
@@ -62,7 +58,7 @@ const EffectRow kEffects[] = {
       "kept as dsm keeps it: the planner runs dsm for every light that reaches it"}},
     {"alpha-textured caster (MASK or BLEND)",
      "alpha-textured casters (MASK or BLEND)",
-     [](const Object& o) {
+     [](const Scene&, const Object& o) {
        return o.material.base_texture >= 0 && o.material.alpha_mode != AlphaMode::opaque;
      },
      {"dropped (no shadows)",
@@ -79,7 +75,7 @@ const EffectRow kEffects[] = {
       "every light that reaches it"}},
     {"transmissive (glass) caster",
      "transmissive (glass) casters",
-     [](const Object& o) { return o.material.transmission > 0.0; },
+     [](const Scene&, const Object& o) { return o.material.transmission > 0.0; },
      {"dropped (no shadows)",
       "approximated: a glass layer, one per texel: the crossing rule (Fresnel at the texel "
       "ray's angle, tint) multiplied over the texel's glass crossings, applied beyond the "
@@ -94,7 +90,7 @@ const EffectRow kEffects[] = {
       "kept as dsm keeps it: the planner runs dsm for every light that reaches it"}},
     {"constant medium",
      "constant media",
-     [](const Object& o) { return o.interior.kind == InteriorKind::constant; },
+     [](const Scene&, const Object& o) { return o.interior.kind == InteriorKind::constant; },
      {"dropped (no shadows)",
       "thresholded at its boundary: a full shadow where the medium's opacity across the "
       "object's thinnest extent d, 1 - exp(-sigma d), or its surface alpha reaches 0.5, else "
@@ -107,7 +103,7 @@ const EffectRow kEffects[] = {
       "kept as dsm keeps it: the planner runs dsm for every light that reaches it"}},
     {"volume",
      "volumes",
-     [](const Object& o) { return o.interior.kind == InteriorKind::volume; },
+     [](const Scene&, const Object& o) { return o.interior.kind == InteriorKind::volume; },
      {"dropped (no shadows)",
       "thresholded at its boundary: a full shadow where 1 - exp(-sigma_max d), sigma_max its "
       "transfer function's largest extinction and d the object's thinnest extent, reaches 0.5, "
@@ -121,7 +117,7 @@ const EffectRow kEffects[] = {
       "that reaches it"}},
     {"tinted medium or coloured glass",
      "tinted media or coloured glass objects",
-     tints_shadows,
+     object_tints_light,
      {"dropped (no shadows)",
       "coloured glass kept in the glass layer (one colour filter per texel); a tinted medium's "
       "colour dropped: its boundary casts grey",
@@ -132,6 +128,20 @@ const EffectRow kEffects[] = {
       "kept (exact, per colour channel)",
       "kept as dsm keeps it (the colour side channel): the planner runs dsm for every light "
       "that reaches it"}},
+    {"glass coloured by its base-colour texture",
+     "glass objects coloured by their base-colour textures",
+     glass_coloured_by_texture,
+     {"dropped (no shadows)",
+      "kept in the glass layer: the crossing rule takes the texture's colour where each texel's "
+      "ray crosses the glass (one colour filter per texel)",
+      "colour side channel on, because the texture has coloured texels (R, G, B differing by "
+      "more than 2/255) even where the factor is grey: its pass samples the texture's colour "
+      "where each texel's ray crosses the glass",
+      "kept in the opaque depth map's glass layer, the texture's colour where each texel's ray "
+      "crosses the glass (one colour filter per texel)",
+      "kept (exact: the texel's colour at every crossing)",
+      "kept as dsm keeps it (the colour side channel, on for the texture's colour): the planner "
+      "runs dsm for every light that reaches it"}},
 };
 
 }  // namespace
@@ -140,7 +150,8 @@ std::vector<EffectTreatment> effect_treatments(const Scene& scene, const std::st
   const auto column = std::find(kMethods.begin(), kMethods.end(), method);
   std::vector<EffectTreatment> out;
   for (const EffectRow& row : kEffects) {
-    const int n = int(std::count_if(scene.objects.begin(), scene.objects.end(), row.shows));
+    const int n = int(std::count_if(scene.objects.begin(), scene.objects.end(),
+                                    [&](const Object& o) { return row.shows(scene, o); }));
     if (n == 0) continue;
     out.push_back({n == 1 ? row.one : row.many, n,
                    column == kMethods.end() ? "not described for this method"

@@ -1,6 +1,7 @@
 // The crossing rule (engine/scene/surface_transmittance.h): surfaces without transmission pass
 // exactly 1 - alpha, glass passes (1 - Fresnel) times its colour (white with an interior), the
-// coverage argument scales both, and luminance leaves grey values bit for bit.
+// coverage argument scales both, luminance leaves grey values bit for bit, and glass tints
+// where its factor or its base-colour texture has colour.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -48,6 +49,22 @@ TEST(SurfaceTransmittance, ThinGlassPassesOneMinusFresnelTimesItsColour) {
   EXPECT_NEAR(half.y, 0.5 + 0.5 * 0.96 * 0.25, 1e-15);
   // Grazing: Fresnel reflects nearly everything.
   EXPECT_LT(surface_transmittance(red, 0.01, 1.0, red.color).x, 0.1);
+}
+
+TEST(SurfaceTransmittance, GreyGlassTintsWhereItsTextureHasColour) {
+  ObjectView pane = glass({1.0, 1.0, 1.0});
+  pane.texture = -1;
+  EXPECT_FALSE(tints_light(pane));
+  pane.texture = 0;
+  EXPECT_FALSE(tints_light(pane));  // a grey texture
+  pane.texture_colour = true;
+  EXPECT_TRUE(tints_light(pane));
+  pane.texture = -1;  // the flag means nothing without a texture
+  EXPECT_FALSE(tints_light(pane));
+  pane.texture = 0;
+  pane.transmission = 0.0;  // an opaque surface tints nothing, whatever its texture
+  pane.alpha = 1.0;
+  EXPECT_FALSE(tints_light(pane));
 }
 
 TEST(SurfaceTransmittance, GlassAroundAMediumAddsOnlyFresnel) {

@@ -285,9 +285,11 @@ TEST(DefaultStaging, GroundPlaneLiesBelowTheBoundsAndCatchesTheKeyLightsShadow) 
   const Object& ground = b.scene.objects[1];
   EXPECT_EQ(ground.name, "ground");
   const Aabb ground_box = world_bounds(b.scene);
+  // kGroundGapRadii of the bounding-sphere radius below: 0.0087 for the unit box.
+  const double radius = 0.5 * glm::length(box.extent());
   for (const dvec3& v : b.scene.meshes[ground.mesh].positions) {
     EXPECT_LT(v.y, box.lo.y);
-    EXPECT_GT(v.y, box.lo.y - 1e-3);
+    EXPECT_NEAR(v.y, box.lo.y - kGroundGapRadii * radius, 1e-12);
   }
   EXPECT_LT(ground_box.lo.x, box.lo.x - 2.0);
   EXPECT_GT(ground_box.hi.z, box.hi.z + 2.0);
