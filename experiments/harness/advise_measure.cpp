@@ -98,8 +98,7 @@ AdviseMeasurement AdviseMeasurer::measure_with(const ShadowConfig& config, uint6
   const SceneData& data = cache_.data(path_);
   const Camera view = camera();
   try {
-    // The points and the oracle's answers first: the oracle's run between the method's
-    // generation and its probe would leave the method answering without its maps.
+    // The points and the oracle's answers (once per seed, cached) before the timed runs.
     const StratifiedProbes& probes = strata(seed);
     TimedRepeats repeats = timed(config, view);
     m.frame_ms = repeats.frame_ms();
