@@ -1,10 +1,13 @@
 // `--shadows auto --error-budget E` (issue 41): before the method is made, the auto method's
-// parameters are chosen for the scene: the cheapest configuration the calibrated error model
-// (experiments/harness/error_model.h) predicts keeps every light's camera-visible p95 |T' - T|
-// within E, from the scene's light statistics (caster kinds, how many, the smallest caster as
-// the light sees it); when the model cannot predict a light, the configurations auto takes are
-// measured on the scene as `deepvox advise` does (a short search, the pick verified at fresh
-// points). --explain prints the choice and why (ShadowOptions::budget_explanation).
+// parameters are chosen for the scene so that the p95 |T' - T| in every stratum of the probe
+// points (experiments/harness/probe_strata.h: lit, umbra, partial, media) stays within E: the
+// calibrated error model (experiments/harness/error_model.h) proposes the cheapest
+// configuration from the scene's light statistics (caster kinds, how many, the smallest caster
+// as the light sees it), and its proposal is measured on the scene's strata at fresh points
+// (the model was calibrated on the camera's points alone); when the model cannot predict a
+// light or its proposal misses E, the configurations auto takes are measured on the scene as
+// `deepvox advise` does (a short search, the pick verified at fresh points; no image bound).
+// --explain prints the choice, the strata and the worst one (ShadowOptions::budget_explanation).
 #pragma once
 
 #include <string>

@@ -32,8 +32,10 @@ void add_shadow_options(CLI::App* cmd, ShadowOptions& o) {
                   "shadow config JSON (what `deepvox advise` writes): its method and parameters; "
                   "--param and the dsm shortcuts override its parameters");
   cmd->add_option("--error-budget", o.error_budget,
-                  "auto: per light the cheapest configuration predicted (calibrated model, else "
-                  "measured as advise does) to keep the camera-visible p95 |T' - T| within E")
+                  "auto: the cheapest configuration that keeps the p95 |T' - T| within E in "
+                  "every stratum of the probe points (lit, umbra, partial, media): the "
+                  "calibrated model's proposal measured on the scene, else measured as advise "
+                  "does")
       ->check(CLI::Range(1e-6, 1.0));
   cmd->add_flag("--explain", o.explain,
                 "print what the shadow method drops or approximates of the scene's effects and "

@@ -6,8 +6,8 @@
 // scene's effects. --config FILE takes the method and its parameters from a shadow config file
 // (strategies/shadow/shadow_config.h: what `deepvox advise` writes); --param and the shortcuts
 // given beside it override its parameters. --error-budget E asks `auto` for the cheapest
-// configuration predicted to keep the camera-visible p95 error within E (apps/common/error_budget.h
-// resolves it once the scene is loaded).
+// configuration that keeps the p95 error within E in every stratum of the probe points
+// (apps/common/error_budget.h resolves it once the scene is loaded).
 #pragma once
 
 #include <memory>

@@ -18,14 +18,16 @@ namespace {
 constexpr int kVerifyTries = 3;
 
 std::string progress_line(const AdviseResult& r, size_t index) {
-  char text[256];
+  char text[512];
   if (!r.measurement.ok)
     std::snprintf(text, sizeof text, "[%zu] %s: failed (%s)", index + 1,
                   r.config.param_line().c_str(), r.measurement.failure.c_str());
   else
-    std::snprintf(text, sizeof text, "[%zu] %s: p95 %.4g, max %.3g, %.3f ms, %.2f MB", index + 1,
-                  r.config.param_line().c_str(), r.measurement.error_p95, r.measurement.error_max,
-                  r.measurement.frame_ms, r.measurement.bytes / 1e6);
+    std::snprintf(text, sizeof text,
+                  "[%zu] %s: p95 %.4g (%s), max %.3g, edge %.4f, %.3f ms, %.2f MB", index + 1,
+                  r.config.param_line().c_str(), r.measurement.error_p95,
+                  to_string(r.measurement.worst_stratum()), r.measurement.error_max,
+                  r.measurement.image_edge, r.measurement.frame_ms, r.measurement.bytes / 1e6);
   return text;
 }
 
@@ -59,6 +61,10 @@ void time_contenders(AdviseMeasurer& measurer, const AdviseOptions& o,
 }
 
 }  // namespace
+
+ShadowConfig default_shadow_config() {
+  return {"auto", {}};
+}
 
 double Advice::chosen_ms(size_t index) const {
   for (const FinalTiming& t : final_timing)
@@ -98,20 +104,39 @@ Advice advise(SceneCache& cache, const AdviseOptions& o) {
   advice.light_count = measurer.light_count();
   advice.width = measurer.width();
   advice.height = measurer.height();
+  advice.budgets = o.budgets;
+  advice.strata_counts = measurer.strata(o.settings.seed).counts_text();
+  if (o.progress)
+    o.progress("probe strata (seed " + std::to_string(o.settings.seed) +
+               "): " + advice.strata_counts);
+  const bool measure_default = !o.speed_only && !o.budgets.image_error;
   const std::vector<AdviseFamily> space = advise_space_for(measurer, o.auto_only, o.max_res);
   AdviseSearchLimits limits;
-  limits.max_evaluations = o.exhaustive ? 1 << 20 : o.max_evaluations;
+  limits.max_evaluations = (o.exhaustive ? 1 << 20 : o.max_evaluations) - (measure_default ? 1 : 0);
   limits.stop = [] { return interrupt_requested(); };
+  std::optional<AdviseResult> defaults;
+  if (measure_default && limits.max_evaluations >= 0 && !interrupt_requested()) {
+    defaults = AdviseResult{{-1, {}}, default_shadow_config(), {}};
+    defaults->measurement = measurer.measure(defaults->config);
+    if (defaults->measurement.ok) advice.budgets.image_error = defaults->measurement.image_edge;
+  }
   const AdviseMeasure measure = [&](const ShadowConfig& c) { return measurer.measure(c); };
   const AdviseProgress progress = [&](const std::vector<AdviseResult>& results) {
     if (o.progress) o.progress(progress_line(results.back(), results.size() - 1));
   };
   advice.results = o.exhaustive ? advise_sweep(space, measure, limits, progress)
-                                : advise_search(space, o.budgets, measure, limits, progress);
+                                : advise_search(space, advice.budgets, measure, limits, progress);
+  if (defaults) {
+    advice.default_index = advice.results.size();
+    advice.results.push_back(*defaults);
+    if (o.progress)
+      o.progress(progress_line(advice.results.back(), advice.results.size() - 1) +
+                 " (the default: its image edge error bounds the pick's)");
+  }
   advice.interrupted = interrupt_requested();
   advice.front = advise_front(advice.results);
   advice.verify_seed = o.settings.seed + kVerifySeedOffset;
-  std::vector<size_t> candidates = advise_picks(advice.results, o.budgets);
+  std::vector<size_t> candidates = advise_picks(advice.results, advice.budgets);
   if (!interrupt_requested()) time_contenders(measurer, o, candidates, advice);
   int tries = 0;
   for (size_t i : candidates) {
@@ -120,13 +145,16 @@ Advice advise(SceneCache& cache, const AdviseOptions& o) {
     advice.verified = measurer.verify(advice.results[i].config, advice.verify_seed);
     if (o.progress)
       o.progress("verify " + advice.results[i].config.param_line() + " at fresh points: p95 " +
-                 std::to_string(advice.verified.error_p95));
+                 std::to_string(advice.verified.error_p95) + " (" +
+                 to_string(advice.verified.worst_stratum()) + ")");
     // The costs were budgeted in the search; the fresh points decide the error.
-    if (advice.verified.ok && advice.verified.error_p95 <= o.budgets.error) {
+    if (advice.verified.ok && advice.budgets.within_error(advice.verified)) {
       advice.pick = i;
       break;
     }
   }
+  if (advice.tried)
+    advice.verified_strata_counts = measurer.strata(advice.verify_seed).counts_text();
   advice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return advice;
 }

@@ -6,6 +6,10 @@
 // the search's: a pick whose verified error misses the bound gives way to the next cheapest, at
 // most three tries),
 // and the outputs: a table, JSON, a shadow config file and an SVG plot (advise_report.h).
+// The error is judged per stratum of the probe points (advise_measure.h). Unless asked for speed
+// only or given an image bound, the default configuration (`auto` with its defaults) is measured
+// too and its image edge error bounds the pick's: advise never picks a configuration whose
+// image is worse than the defaults' (the default itself is a candidate).
 // `--shadows auto --error-budget` runs it too, over the configurations `auto` takes, for a
 // scene its error model cannot predict. Ctrl-C (interrupt.h) ends the search; what was
 // measured is kept and the pick is made from it.
@@ -30,6 +34,8 @@ inline constexpr uint64_t kVerifySeedOffset = 1000003;
 // one's search time, at most this many, timed again in interleaved rounds.
 inline constexpr double kFinalTimingBand = 1.5;
 inline constexpr size_t kFinalTimingMost = 6;
+// The default configuration: what render takes without shadow options.
+ShadowConfig default_shadow_config();
 
 struct AdviseOptions {
   std::string scene;
@@ -40,6 +46,7 @@ struct AdviseOptions {
   bool auto_only = false;   // only what the auto method takes (its dsm parameters)
   int max_res = 0;          // > 0: no map resolution above it (small machines)
   int final_rounds = 5;     // interleaved rounds of the final timing; 0: none
+  bool speed_only = false;  // no image bound unless budgets.image_error names one
   // A line per measurement ("[12] dsm compact res=512 ...: p95 0.004, 1.2 ms"), for progress.
   std::function<void(const std::string&)> progress;
 };
@@ -56,8 +63,11 @@ struct Advice {
   std::vector<size_t> front;              // advise_front(results)
   std::optional<size_t> pick;             // the verified pick, when one is
   std::optional<size_t> tried;            // the last candidate verified (pick or not)
+  std::optional<size_t> default_index;    // the default configuration's result, when measured
+  AdviseBudgets budgets;                  // the options' with the image bound applied
   AdviseMeasurement verified;             // its measurement at fresh points
   uint64_t verify_seed = 0;
+  std::string strata_counts, verified_strata_counts;  // StratifiedProbes::counts_text
   int light_count = 0;
   int width = 0, height = 0;
   bool interrupted = false;

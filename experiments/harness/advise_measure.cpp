@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "core/error.h"
-#include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/shadow_measure.h"
 #include "strategies/shadow/effect_planner.h"
@@ -19,18 +18,6 @@ namespace {
 
 constexpr int kDefaultWidth = 320;
 
-// Per light the summary of |T' - T| over `set`'s points of class `only`.
-std::vector<ErrorSummary> light_errors(const ProbeResults& r, const ProbeSet& set,
-                                       ProbeClass only) {
-  std::vector<std::vector<double>> errors(size_t(std::max(r.light_count, 0)));
-  for (size_t i = 0; i < r.transmittance.size(); ++i)
-    if (set.points.classes[i / size_t(r.light_count)] == only)
-      errors[i % size_t(r.light_count)].push_back(std::abs(r.transmittance[i] - set.exact[i]));
-  std::vector<ErrorSummary> out;
-  for (std::vector<double>& e : errors) out.push_back(summarize_errors(std::move(e)));
-  return out;
-}
-
 }  // namespace
 
 AdviseMeasurer::AdviseMeasurer(SceneCache& cache, std::string scene_path, AdviseSettings s)
@@ -40,8 +27,9 @@ AdviseMeasurer::AdviseMeasurer(SceneCache& cache, std::string scene_path, Advise
   if (settings_.height <= 0)
     settings_.height = std::max(
         1, int(std::lround(double(settings_.width) * camera.height / std::max(camera.width, 1))));
-  const AdviseSceneKind k = kind();
-  media_ = k.media;
+  const SceneData& host = cache_.host_data(path_);
+  for (int l = 0; l < int(host.host_lights().size()); ++l)
+    casters_ = casters_ || !light_reach(host, l).casters.empty();
 }
 
 AdviseSceneKind AdviseMeasurer::kind() const {
@@ -59,10 +47,13 @@ int AdviseMeasurer::light_count() const {
   return int(cache_.host_data(path_).host_lights().size());
 }
 
+const StratifiedProbes& AdviseMeasurer::strata(uint64_t seed) {
+  return cache_.stratified_probes(path_, settings_.width, settings_.height,
+                                  {settings_.probes, settings_.stratum_min, seed});
+}
+
 double AdviseMeasurer::oracle_ms() {
-  const ProbeSet& visible = cache_.visible_probes(path_, settings_.width, settings_.height,
-                                                  settings_.probes, settings_.seed);
-  return visible.oracle_ms +
+  return strata(settings_.seed).oracle_ms +
          cache_.reference(path_, settings_.width, settings_.height).milliseconds;
 }
 
@@ -107,31 +98,32 @@ AdviseMeasurement AdviseMeasurer::measure_with(const ShadowConfig& config, uint6
   const SceneData& data = cache_.data(path_);
   const Camera view = camera();
   try {
+    // The points and the oracle's answers (once per seed, cached) before the timed runs.
+    const StratifiedProbes& probes = strata(seed);
     TimedRepeats repeats = timed(config, view);
     m.frame_ms = repeats.frame_ms();
     m.bytes = method_bytes(repeats.last.stats);
     ShadowMethod& method = *repeats.last.method;
-    const ProbeSet& visible =
-        cache_.visible_probes(path_, settings_.width, settings_.height, settings_.probes, seed);
-    const std::vector<ErrorSummary> errors = light_errors(
-        probe_transmittance(cache_.backend(), data, method, visible.points.points, &view), visible,
-        ProbeClass::visible);
-    for (const ErrorSummary& e : errors) {
-      m.light_p95.push_back(e.p95);
-      m.light_max.push_back(e.max);
-      m.error_p95 = std::max(m.error_p95, e.p95);
+    if (!probes.points.empty())
+      m.strata = stratum_errors(
+          probes,
+          probe_transmittance(cache_.backend(), data, method, probes.points, &view).transmittance);
+    bool some_shadow = false;
+    for (Stratum s : kAllStrata) {
+      const StratumError& e = m.strata[size_t(s)];
+      m.error_p95 = std::max(m.error_p95, e.judged());
       m.error_max = std::max(m.error_max, e.max);
+      if (is_shadow(s)) {
+        some_shadow = some_shadow || e.count > 0;
+        m.shadows_measured = m.shadows_measured && !e.few;
+      }
     }
-    if (media_) {
-      const ProbeSet& medium = cache_.probes(path_, settings_.probes, 1.0, seed);
-      for (const ErrorSummary& e : light_errors(
-               probe_transmittance(cache_.backend(), data, method, medium.points.points, &view),
-               medium, ProbeClass::medium))
-        m.light_medium_p95.push_back(e.p95);
-    }
-    m.image_rmse = image_error(repeats.frame.render.image,
-                               cache_.reference(path_, settings_.width, settings_.height).image)
-                       .rmse;
+    m.shadows_measured = m.shadows_measured && (some_shadow || !casters_);
+    const ImageError image =
+        image_error(repeats.frame.render.image,
+                    cache_.reference(path_, settings_.width, settings_.height).image);
+    m.image_rmse = image.rmse;
+    m.image_edge = image.edge_error;
     m.ok = true;
   } catch (const Error& e) {  // a storage's limit, a backend it does not run on: not a pick
     m.ok = false;

@@ -1,12 +1,13 @@
 // How `deepvox advise` measures one shadow configuration on the user's scene (issue 41), with
-// the suite harness's own pieces (SceneCache's probes with the exact oracle and reference
-// render, shadow_measure.h's timed repetitions and memory figure, error_summary.h, image
-// error): per light the p95 and max of |T' - T| at camera-visible probe points (and the p95 at
-// points inside media where the scene has them, reported beside), the image RMSE at a small
-// size against the oracle's render, the warm frame time (median generation + median render on
-// the chosen backend) and the method's bytes. The budget is checked against the worst light's
-// camera-visible p95: what the image weights (probe_points.h says why medium points along the
-// camera rays are left out; the world-uniform medium points are shown, not budgeted).
+// the suite harness's own pieces (SceneCache's stratified probes with the exact oracle and
+// reference render, shadow_measure.h's timed repetitions and memory figure, image error): per
+// stratum of the probe points (probe_strata.h: lit, umbra, partial, media; camera-visible first,
+// then the light's view of the receivers where the camera sees too little shadow) the count,
+// p95 and max of |T' - T| over every (point, light) sample, the image RMSE and edge error at a
+// small size against the oracle's render, the warm frame time (median generation + median
+// render on the chosen backend) and the method's bytes. The bound is checked against every
+// stratum: where shadows cover little of the view, a p95 over the camera's points alone is 0
+// for every configuration whatever it does in the shadows.
 // verify() repeats the error measurement on fresh probe points (another seed) for the pick;
 // interleaved_frame_ms() times configurations again, alternating them, for the final choice.
 #pragma once
@@ -25,6 +26,7 @@ namespace dv {
 struct AdviseSettings {
   int width = 0, height = 0;  // the small image; 0: the camera's, scaled to at most 320 wide
   int probes = 2000;          // camera-visible probe points (and as many inside media)
+  int stratum_min = 200;      // samples wanted per shadow stratum (probe_strata.h)
   uint64_t seed = 1;          // the search's points; verify() takes another
   int repeat = 3;             // timed repetitions after a warm-up
 };
@@ -49,6 +51,8 @@ class AdviseMeasurer {
   int light_count() const;
   // The exact oracle's time for the search's probe points and reference render, ms.
   double oracle_ms();
+  // The stratified probe points of `seed` (the search's: settings' seed).
+  const StratifiedProbes& strata(uint64_t seed);
 
  private:
   AdviseMeasurement measure_with(const ShadowConfig& config, uint64_t seed);
@@ -60,7 +64,7 @@ class AdviseMeasurer {
   SceneCache& cache_;
   std::string path_;
   AdviseSettings settings_;
-  bool media_ = false;
+  bool casters_ = false;  // some light reaches a caster
 };
 
 }  // namespace dv

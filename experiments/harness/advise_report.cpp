@@ -20,24 +20,64 @@ std::string format(const char* pattern, double value) {
 
 nlohmann::json measurement_json(const AdviseMeasurement& m) {
   if (!m.ok) return {{"ok", false}, {"failure", m.failure}};
-  nlohmann::json j = {{"ok", true},
-                      {"error_p95", m.error_p95},
-                      {"error_max", m.error_max},
-                      {"light_p95", m.light_p95},
-                      {"light_max", m.light_max},
-                      {"image_rmse", m.image_rmse},
-                      {"frame_ms", m.frame_ms},
-                      {"bytes", m.bytes}};
-  if (!m.light_medium_p95.empty()) j["light_medium_p95"] = m.light_medium_p95;
-  return j;
+  nlohmann::json strata = nlohmann::json::object();
+  for (Stratum s : kAllStrata) {
+    const StratumError& e = m.strata[size_t(s)];
+    strata[to_string(s)] = {{"count", e.count}, {"p95", e.p95}, {"max", e.max}, {"few", e.few}};
+  }
+  return {{"ok", true},
+          {"error_p95", m.error_p95},
+          {"error_max", m.error_max},
+          {"worst_stratum", to_string(m.worst_stratum())},
+          {"strata", strata},
+          {"shadows_measured", m.shadows_measured},
+          {"image_rmse", m.image_rmse},
+          {"image_edge", m.image_edge},
+          {"frame_ms", m.frame_ms},
+          {"bytes", m.bytes}};
+}
+
+std::vector<size_t> stratum_front(const std::vector<AdviseResult>& results, Stratum s) {
+  std::vector<size_t> order;
+  for (size_t i = 0; i < results.size(); ++i) {
+    const AdviseMeasurement& m = results[i].measurement;
+    if (m.ok && m.strata[size_t(s)].count > 0 && std::isfinite(m.frame_ms)) order.push_back(i);
+  }
+  const auto error = [&](size_t i) { return results[i].measurement.strata[size_t(s)].judged(); };
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const AdviseMeasurement &x = results[a].measurement, &y = results[b].measurement;
+    return x.frame_ms != y.frame_ms ? x.frame_ms < y.frame_ms : error(a) < error(b);
+  });
+  std::vector<size_t> front;
+  for (size_t i : order)
+    if (front.empty() || error(i) < error(front.back())) front.push_back(i);
+  return front;
+}
+
+std::string strata_text(const AdviseMeasurement& m) {
+  std::string text = "per stratum:";
+  for (Stratum s : kAllStrata) {
+    const StratumError& e = m.strata[size_t(s)];
+    if (e.count == 0) continue;
+    text += std::string(" ") + to_string(s) + (e.few ? " max " : " p95 ") +
+            format("%.4g", e.judged()) + " (" + std::to_string(e.count) + ")";
+  }
+  return text + "; worst " + to_string(m.worst_stratum()) + " " + format("%.4g", m.error_p95);
 }
 
 std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
   std::ostringstream out;
+  out << "probe strata: " << a.strata_counts << "\n";
   out << "Pareto front (" << a.front.size() << " of " << a.results.size()
-      << " measured; p95/max |T' - T| at camera-visible probes, worst light; image RMSE at "
+      << " measured; p95 |T' - T| per stratum over every light, p95 the worst of them (the max "
+         "where a stratum has too few points); image RMSE and edge error at "
       << a.width << "x" << a.height << "):\n";
-  out << "   p95       max     image    frame ms   MB       configuration\n";
+  out << "   p95       lit       umbra     partial   media     edge     rmse     frame ms   MB  "
+         "     configuration\n";
+  const auto stratum = [](const AdviseMeasurement& m, Stratum s) {
+    const StratumError& e = m.strata[size_t(s)];
+    return e.count == 0 ? std::string("-         ") : format("%-9.4g ", e.judged());
+  };
   for (size_t i : a.front) {
     const AdviseResult& r = a.results[i];
     const AdviseMeasurement& m = r.measurement;
@@ -45,11 +85,17 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
     out << (pick                ? "=> "
             : budgets.met_by(m) ? " + "
                                 : "   ")
-        << format("%-9.4g ", m.error_p95) << format("%-9.3g ", m.error_max)
-        << format("%-8.4f ", m.image_rmse) << format("%-10.3f ", m.frame_ms)
-        << format("%-8.2f ", m.bytes / 1e6) << r.config.param_line() << "\n";
+        << format("%-9.4g ", m.error_p95) << stratum(m, Stratum::lit) << stratum(m, Stratum::umbra)
+        << stratum(m, Stratum::partial) << stratum(m, Stratum::media)
+        << format("%-8.4f ", m.image_edge) << format("%-8.4f ", m.image_rmse)
+        << format("%-10.3f ", m.frame_ms) << format("%-8.2f ", m.bytes / 1e6)
+        << r.config.param_line() << (a.default_index && *a.default_index == i ? " (default)" : "")
+        << "\n";
   }
-  out << "(=> the pick, + meets the bound " << budgets.error;
+  out << "(=> the pick, + meets the bound " << budgets.error << " in every stratum";
+  if (budgets.image_error)
+    out << " and edge error " << format("%.4f", *budgets.image_error)
+        << (a.default_index ? " (the default's)" : "");
   if (budgets.frame_ms) out << " and " << *budgets.frame_ms << " ms";
   if (budgets.bytes) out << " and " << *budgets.bytes / 1e6 << " MB";
   out << ")\n";
@@ -57,13 +103,17 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
     const AdviseMeasurement& m = a.results[*a.pick].measurement;
     out << "pick: " << a.results[*a.pick].config.param_line() << "\n  search p95 "
         << format("%.4g", m.error_p95) << ", verified p95 at fresh points (seed " << a.verify_seed
-        << ") " << format("%.4g", a.verified.error_p95) << " <= " << budgets.error << ", "
-        << format("%.3f", a.chosen_ms(*a.pick)) << " ms, " << format("%.2f", m.bytes / 1e6)
-        << " MB\n";
+        << ") " << format("%.4g", a.verified.error_p95) << " <= " << budgets.error
+        << ", worst stratum " << to_string(a.verified.worst_stratum()) << ", edge "
+        << format("%.4f", m.image_edge) << ", " << format("%.3f", a.chosen_ms(*a.pick)) << " ms, "
+        << format("%.2f", m.bytes / 1e6) << " MB\n";
+    out << "  verified " << strata_text(a.verified)
+        << "\n  fresh points: " << a.verified_strata_counts << "\n";
   } else if (a.tried) {
     out << "no pick: the cheapest candidates' verified p95 ("
-        << format("%.4g", a.verified.error_p95) << " for "
-        << a.results[*a.tried].config.param_line() << ") misses " << budgets.error << "\n";
+        << format("%.4g", a.verified.error_p95) << " in " << to_string(a.verified.worst_stratum())
+        << " for " << a.results[*a.tried].config.param_line() << ") misses " << budgets.error
+        << "\n";
   } else {
     out << "no pick: no measured configuration meets the bound and budgets\n";
   }
@@ -80,9 +130,8 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
 }
 
 nlohmann::json pick_notes(const Advice& a, const AdviseOptions& o) {
-  nlohmann::json advice = {{"scene", o.scene},
-                           {"error_bound", o.budgets.error},
-                           {"metric", "p95 |T' - T| at camera-visible probes, worst light"}};
+  nlohmann::json advice = {
+      {"scene", o.scene}, {"error_bound", o.budgets.error}, {"metric", kAdviseMetric}};
   if (a.pick) {
     advice["search"] = measurement_json(a.results[*a.pick].measurement);
     advice["verified"] = measurement_json(a.verified);
@@ -103,12 +152,19 @@ nlohmann::json advice_json(const Advice& a, const AdviseOptions& o) {
                       {"seed", o.settings.seed},
                       {"results", nlohmann::json::array()},
                       {"front", a.front}};
+  j["metric"] = kAdviseMetric;
+  j["strata_counts"] = a.strata_counts;
+  j["stratum_min"] = o.settings.stratum_min;
+  if (a.budgets.image_error) j["image_bound"] = *a.budgets.image_error;
+  j["default_index"] = a.default_index ? nlohmann::json(*a.default_index) : nlohmann::json();
   if (o.budgets.frame_ms) j["budget_ms"] = *o.budgets.frame_ms;
   if (o.budgets.bytes) j["budget_bytes"] = *o.budgets.bytes;
   for (const AdviseResult& r : a.results)
     j["results"].push_back({{"shadows", r.config.to_json()["shadows"]},
                             {"param_line", r.config.param_line()},
                             {"measured", measurement_json(r.measurement)}});
+  j["strata_fronts"] = nlohmann::json::object();
+  for (Stratum st : kAllStrata) j["strata_fronts"][to_string(st)] = stratum_front(a.results, st);
   j["final_timing"] = nlohmann::json::array();
   for (const Advice::FinalTiming& t : a.final_timing)
     j["final_timing"].push_back({{"index", t.index},
@@ -121,6 +177,7 @@ nlohmann::json advice_json(const Advice& a, const AdviseOptions& o) {
     j["verified"] = measurement_json(a.verified);
     j["verified_index"] = *a.tried;
     j["verify_seed"] = a.verify_seed;
+    j["verified_strata_counts"] = a.verified_strata_counts;
   }
   return j;
 }
@@ -134,8 +191,11 @@ std::string advice_svg(const Advice& a, const AdviseBudgets& budgets) {
     if (r.measurement.ok) {
       x0 = std::min(x0, r.measurement.frame_ms);
       x1 = std::max(x1, r.measurement.frame_ms);
-      y0 = std::min(y0, std::max(r.measurement.error_p95, kFloor));
-      y1 = std::max(y1, std::max(r.measurement.error_p95, kFloor));
+      for (const StratumError& e : r.measurement.strata) {
+        if (e.count == 0) continue;
+        y0 = std::min(y0, std::max(e.judged(), kFloor));
+        y1 = std::max(y1, std::max(e.judged(), kFloor));
+      }
     }
   if (x1 <= 0) x0 = 0.1, x1 = 1;
   x0 = std::max(x0, 1e-4) / 1.2, x1 = x1 * 1.2, y0 /= 1.5, y1 *= 1.5;
@@ -153,7 +213,7 @@ std::string advice_svg(const Advice& a, const AdviseBudgets& budgets) {
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n"
     << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     << "<text x=\"" << kLeft << "\" y=\"18\" font-size=\"13\">deepvox advise: p95 |T' - T| "
-    << "(camera-visible probes) against frame time, log-log</text>\n"
+    << "(worst stratum, blue; each stratum's front dashed) against frame time, log-log</text>\n"
     << "<line x1=\"" << kLeft << "\" y1=\"" << kH - kBottom << "\" x2=\"" << kW - kRight
     << "\" y2=\"" << kH - kBottom << "\" stroke=\"black\"/>\n"
     << "<line x1=\"" << kLeft << "\" y1=\"" << kTop << "\" x2=\"" << kLeft << "\" y2=\""
@@ -171,6 +231,20 @@ std::string advice_svg(const Advice& a, const AdviseBudgets& budgets) {
       s << "<circle cx=\"" << px(r.measurement.frame_ms) << "\" cy=\""
         << py(r.measurement.error_p95) << "\" r=\"3\" fill=\"#999\"><title>"
         << r.config.param_line() << "</title></circle>\n";
+  // The front per stratum (its error against frame time), thin and coloured, labelled.
+  const char* colours[kStrata] = {"#6a6", "#222", "#d80", "#a3c"};
+  for (Stratum st : kAllStrata) {
+    const std::vector<size_t> front = stratum_front(a.results, st);
+    if (front.empty()) continue;
+    const char* colour = colours[size_t(st)];
+    s << "<polyline fill=\"none\" stroke=\"" << colour
+      << "\" stroke-width=\"1\" stroke-dasharray=\"2,2\" points=\"";
+    for (size_t i : front)
+      s << px(a.results[i].measurement.frame_ms) << ","
+        << py(a.results[i].measurement.strata[size_t(st)].judged()) << " ";
+    s << "\"/>\n<text x=\"" << kW - kRight - 90 << "\" y=\"" << kTop + 14 * (1 + int(st))
+      << "\" fill=\"" << colour << "\">" << to_string(st) << " front</text>\n";
+  }
   s << "<polyline fill=\"none\" stroke=\"#06c\" stroke-width=\"1.5\" points=\"";
   for (size_t i : a.front)
     s << px(a.results[i].measurement.frame_ms) << "," << py(a.results[i].measurement.error_p95)

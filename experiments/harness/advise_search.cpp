@@ -19,8 +19,19 @@ bool AdviseBudgets::within_cost(const AdviseMeasurement& m) const {
   return (!frame_ms || m.frame_ms <= *frame_ms) && (!bytes || m.bytes <= *bytes);
 }
 
+bool AdviseBudgets::within_error(const AdviseMeasurement& m) const {
+  return m.error_p95 <= error && (!image_error || m.image_edge <= *image_error);
+}
+
 bool AdviseBudgets::met_by(const AdviseMeasurement& m) const {
-  return m.ok && m.error_p95 <= error && within_cost(m);
+  return m.ok && within_error(m) && within_cost(m);
+}
+
+Stratum AdviseMeasurement::worst_stratum() const {
+  Stratum worst = Stratum::lit;
+  for (Stratum s : kAllStrata)
+    if (strata[size_t(s)].judged() > strata[size_t(worst)].judged()) worst = s;
+  return worst;
 }
 
 bool dominates(const AdviseMeasurement& a, const AdviseMeasurement& b) {
@@ -128,7 +139,8 @@ std::vector<AdviseResult> advise_search(const std::vector<AdviseFamily>& space,
     // Expand the front only: a dominated point's branch ends here.
     for (size_t i : advise_front(results)) {
       const AdviseMeasurement& m = results[i].measurement;
-      const bool finer = m.error_p95 > budgets.error && budgets.within_cost(m);
+      const bool finer =
+          (!budgets.within_error(m) || !m.shadows_measured) && budgets.within_cost(m);
       for (const AdvisePoint& q : neighbours(space, results[i].point, finer))
         if (!seen.count(q)) queue.push_back(q);
     }

@@ -7,16 +7,20 @@
 // unmeasured neighbours (one axis one step) of the points on the front (error, frame time,
 // bytes): a dominated point's branch ends. A front point that meets the error bound and the
 // budgets is refined only towards coarser (cheaper) neighbours; one that breaks the time or
-// memory budget likewise; the others both ways. It ends when nothing is left to expand, after
-// `max_evaluations`, or when `stop` says so (Ctrl-C, a deadline): what was measured is kept.
+// memory budget likewise; the others both ways, and so does one whose shadow strata are not
+// measured (AdviseMeasurement::shadows_measured: no early stop on a false zero). It ends when
+// nothing is left to expand, after `max_evaluations`, or when `stop` says so (Ctrl-C, a deadline):
+// what was measured is kept.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "experiments/harness/probe_strata.h"
 #include "strategies/shadow/shadow_config.h"
 
 namespace dv {
@@ -46,16 +50,23 @@ struct AdvisePoint {
 
 ShadowConfig config_at(const std::vector<AdviseFamily>& space, const AdvisePoint& point);
 
-// What measuring one configuration gives (advise_measure.h fills it).
+// What measuring one configuration gives (advise_measure.h fills it). The error is per stratum
+// of the probe points (probe_strata.h): error_p95 is the worst stratum's judged figure (its p95,
+// its max where it has too few samples for a p95), what the bound is checked against.
 struct AdviseMeasurement {
   bool ok = false;                          // false: it failed (failure says why), never on a front
   std::string failure;                      // e.g. a storage's limit
-  double error_p95 = 0.0, error_max = 0.0;  // over the lights: the worst light's p95 and max
-  std::vector<double> light_p95, light_max;  // per light, camera-visible probes
-  std::vector<double> light_medium_p95;      // per light, probes inside media (empty: none)
+  double error_p95 = 0.0, error_max = 0.0;  // over the strata: the worst judged p95, the max
+  std::array<StratumError, kStrata> strata{};
+  // Every shadow stratum that holds samples has enough for a p95, and some shadow stratum
+  // holds samples where the lights reach casters: a zero error is not a false zero.
+  bool shadows_measured = true;
   double image_rmse = 0.0;
-  double frame_ms = 0.0;  // median generation + median render, warm
+  double image_edge = 0.0;  // image_metrics.h's edge error against the reference render
+  double frame_ms = 0.0;    // median generation + median render, warm
   double bytes = 0.0;
+  // The stratum of the worst judged error (lit when every one is 0).
+  Stratum worst_stratum() const;
 };
 
 struct AdviseResult {
@@ -65,11 +76,13 @@ struct AdviseResult {
 };
 
 struct AdviseBudgets {
-  double error = 0.02;             // p95 |T' - T| at the camera-visible probes, worst light
-  std::optional<double> frame_ms;  // --budget-ms
-  std::optional<double> bytes;     // --memory-mb, in bytes
+  double error = 0.02;                // per stratum: p95 |T' - T| (the max where too few samples)
+  std::optional<double> image_error;  // most image_edge (advise: by default the default's)
+  std::optional<double> frame_ms;     // --budget-ms
+  std::optional<double> bytes;        // --memory-mb, in bytes
   bool within_cost(const AdviseMeasurement& m) const;
-  bool met_by(const AdviseMeasurement& m) const;  // ok, error and costs
+  bool within_error(const AdviseMeasurement& m) const;  // the probe error and the image bound
+  bool met_by(const AdviseMeasurement& m) const;        // ok, error and costs
 };
 
 // Whether `a` dominates `b`: both measured, a no worse in error (p95), frame time and bytes and

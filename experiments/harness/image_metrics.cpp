@@ -53,6 +53,42 @@ void add_squared_difference(const Image& a, const Image& b, size_t pixel, double
   }
 }
 
+// Per pixel the Sobel gradient magnitude of the 8-bit sRGB luminance (Rec. 709 weights on the
+// encoded values in [0, 1]), divided by 4: a unit step between two pixel columns reads 1. The
+// border repeats its pixels.
+std::vector<double> edge_strength(const Image& image) {
+  const int w = image.width, h = image.height;
+  std::vector<double> luma(size_t(w) * h);
+  for (size_t p = 0; p < luma.size(); ++p)
+    luma[p] = (0.2126 * srgb_byte(image.rgb[p * 3]) + 0.7152 * srgb_byte(image.rgb[p * 3 + 1]) +
+               0.0722 * srgb_byte(image.rgb[p * 3 + 2])) /
+              255.0;
+  const auto at = [&](int x, int y) {
+    return luma[size_t(std::clamp(y, 0, h - 1)) * w + size_t(std::clamp(x, 0, w - 1))];
+  };
+  std::vector<double> strength(luma.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double gx = (at(x + 1, y - 1) + 2.0 * at(x + 1, y) + at(x + 1, y + 1)) -
+                        (at(x - 1, y - 1) + 2.0 * at(x - 1, y) + at(x - 1, y + 1));
+      const double gy = (at(x - 1, y + 1) + 2.0 * at(x, y + 1) + at(x + 1, y + 1)) -
+                        (at(x - 1, y - 1) + 2.0 * at(x, y - 1) + at(x + 1, y - 1));
+      strength[size_t(y) * w + x] = std::sqrt(gx * gx + gy * gy) / 4.0;
+    }
+  return strength;
+}
+
+double edge_error(const Image& image, const Image& reference) {
+  const size_t pixels = size_t(image.width) * image.height;
+  if (pixels == 0) return 0.0;
+  const std::vector<double> a = edge_strength(image), b = edge_strength(reference);
+  double sum = 0.0;
+  for (size_t p = 0; p < pixels; ++p)
+    sum += std::min(1.0, std::max(largest_channel_difference(image, reference, p) / 255.0,
+                                  std::abs(a[p] - b[p])));
+  return sum / double(pixels);
+}
+
 }  // namespace
 
 ImageError image_error(const Image& image, const Image& reference) {
@@ -67,6 +103,7 @@ ImageError image_error(const Image& image, const Image& reference) {
   e.psnr_db =
       e.rmse > 0.0 ? 20.0 * std::log10(1.0 / e.rmse) : std::numeric_limits<double>::infinity();
   e.fraction_over_8 = pixels ? double(over) / double(pixels) : 0.0;
+  e.edge_error = edge_error(image, reference);
   return e;
 }
 

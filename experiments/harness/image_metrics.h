@@ -4,6 +4,12 @@
 // difference image (largest channel difference x4, grey) for the report's image strip. PNGs are
 // encoded in memory and written atomically (durable_file.h): a killed run leaves no half file,
 // and a full disk is a ResultWriteError that stops the run instead of a silently short file.
+// The edge error serves where shadow edges matter (a stair-stepped edge changes few pixels by
+// much, which RMSE dilutes), with the intent of FLIP (Andersson et al. 2020: colour and feature
+// differences, the larger per pixel): per pixel the larger of the largest channel difference
+// and the difference of the two images' edge strengths (Sobel gradient magnitude of the 8-bit
+// sRGB luminance, divided by 4 so a unit step reads 1), averaged over the image; 0 for equal
+// images, at most 1.
 // The RMSE also comes binned by view depth (issue 38: is a method's shadow better near the
 // camera, where the image has its large texels?), the depth of the surface each pixel sees.
 #pragma once
@@ -22,6 +28,7 @@ struct ImageError {
   double rmse = 0.0;
   double psnr_db = 0.0;
   double fraction_over_8 = 0.0;
+  double edge_error = 0.0;
 };
 
 // InputError when the sizes differ.

@@ -81,6 +81,25 @@ const ProbeSet& SceneCache::visible_probes(const std::string& path, int width, i
   return visible_probes_.emplace(key, with_oracle(path, std::move(points))).first->second;
 }
 
+const StratifiedProbes& SceneCache::stratified_probes(const std::string& path, int width,
+                                                      int height, const StrataSettings& settings) {
+  const auto key = std::make_tuple(path, width, height, settings.camera_points,
+                                   settings.stratum_min, settings.seed);
+  auto it = strata_.find(key);
+  if (it != strata_.end()) return it->second;
+  bool media = false;
+  for (const Object& o : scene(path).objects)
+    media = media || o.interior.kind != InteriorKind::none;
+  const Oracle oracle = [&](const std::vector<dvec3>& points) {
+    const ProbeSet set = with_oracle(path, {points, std::vector<ProbeClass>(points.size())});
+    return OracleAnswers{set.exact, set.light_count, set.oracle_ms};
+  };
+  StratifiedProbes probes =
+      make_stratified_probes(scene(path), host_data(path), sight(path, width, height).surface,
+                             camera_at(path, width, height), media, settings, oracle);
+  return strata_.emplace(key, std::move(probes)).first->second;
+}
+
 ReferenceRender& SceneCache::reference(const std::string& path, int width, int height) {
   const auto key = std::make_tuple(path, width, height);
   auto it = references_.find(key);

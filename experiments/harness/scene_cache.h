@@ -1,7 +1,8 @@
 // What a suite run computes once and shares between experiments: loaded scenes, their kernel
 // data (in host memory, and in device memory on CUDA), probe points with the exact oracle's
 // answers, reference renders, and the camera's view (the surface each pixel sees, its depth)
-// with the camera-visible probe points drawn from it. Keyed by resolved scene path and the settings
+// with the camera-visible probe points drawn from it, and the stratified probe points
+// (probe_strata.h) of the camera's view. Keyed by resolved scene path and the settings
 // that shape them.
 #pragma once
 
@@ -16,6 +17,7 @@
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_view.h"
 #include "experiments/harness/probe_points.h"
+#include "experiments/harness/probe_strata.h"
 
 namespace dv {
 
@@ -57,6 +59,10 @@ class SceneCache {
   // `count` points of sight(path, width, height) (make_visible_probe_points) with the oracle.
   const ProbeSet& visible_probes(const std::string& path, int width, int height, int count,
                                  uint64_t seed);
+  // The stratified points of the camera's view at width x height (make_stratified_probes, with
+  // the media points when some object has an interior).
+  const StratifiedProbes& stratified_probes(const std::string& path, int width, int height,
+                                            const StrataSettings& settings);
 
  private:
   // The scene's camera at `width` x `height` (the experiment's image size).
@@ -74,6 +80,7 @@ class SceneCache {
   std::map<std::tuple<std::string, int, int>, ReferenceRender> references_;
   std::map<std::tuple<std::string, int, int>, CameraSight> sights_;
   std::map<std::tuple<std::string, int, int, int, uint64_t>, ProbeSet> visible_probes_;
+  std::map<std::tuple<std::string, int, int, int, int, uint64_t>, StratifiedProbes> strata_;
 };
 
 }  // namespace dv
