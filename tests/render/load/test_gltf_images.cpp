@@ -5,8 +5,6 @@
 // out by hand.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -43,11 +41,6 @@ void write_test_png(const std::string& path) {
       rgb.insert(rgb.end(), t.begin(), t.end());
     }
   write_png_bytes(path, 4, 4, rgb);
-}
-
-std::vector<unsigned char> file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // The unit quad (0,0,0)-(1,1,0) facing +z with TEXCOORD_0 (u, v) = (x, 1 - y), material
