@@ -8,7 +8,7 @@
 # AFTER_DEEPVOX defaults to this tree's build/bin/deepvox. --set samples renders the stand-ins
 # of the Khronos sample models TransmissionTest, GlassVaseFlowers, DamagedHelmet and Duck
 # (docs/images/feature_standins.py) into docs/images/<model>-{before,after}.png; --set shadows
-# the shadow stand-ins of issue 50 (textured glass pane, glass cube and BLEND quad on the
+# the shadow stand-ins (textured glass pane, glass cube and BLEND quad on the
 # ground, folded cloth under glass) the same way; --set looks (the default) the lamp,
 # transmission, attenuation and bunny thumbnails.
 set -euo pipefail

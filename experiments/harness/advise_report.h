@@ -1,4 +1,4 @@
-// What `deepvox advise` shows and writes (issue 41): the probe strata's counts, the Pareto front
+// What `deepvox advise` shows and writes: the probe strata's counts, the Pareto front
 // as a table (the worst stratum's p95 and each stratum's, image edge error and RMSE, frame time,
 // bytes; the pick and the default marked), the pick's verified error per stratum, the whole
 // advice as JSON (every measurement, the front, the pick with its predicted and verified error),

@@ -86,8 +86,9 @@ inline std::vector<fs::path> result_folders(const fs::path& root) {
   return out;
 }
 
-// `deepvox ARGS...` started with its output in `log`.
-inline pid_t spawn(std::vector<std::string> args, const fs::path& log) {
+// `deepvox ARGS...` started with its output in `log`; with `own_group` in a process group of its
+// own (so that a test can kill it with its workers).
+inline pid_t spawn(std::vector<std::string> args, const fs::path& log, bool own_group = false) {
   args.insert(args.begin(), kBinary);
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -96,9 +97,16 @@ inline pid_t spawn(std::vector<std::string> args, const fs::path& log) {
   posix_spawn_file_actions_init(&files);
   posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   posix_spawn_file_actions_adddup2(&files, 1, 2);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  if (own_group) {
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
+  }
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, kBinary.c_str(), &files, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid, kBinary.c_str(), &files, &attr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&files);
+  posix_spawnattr_destroy(&attr);
   EXPECT_EQ(rc, 0) << "cannot start " << kBinary;
   return pid;
 }

@@ -65,29 +65,6 @@ int markers(const fs::path& folder) {
   return n;
 }
 
-// `deepvox ARGS...` started in a process group of its own (so that the test can kill it with
-// its workers), its output in `log`.
-pid_t spawn_group(std::vector<std::string> args, const fs::path& log) {
-  args.insert(args.begin(), kBinary);
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  posix_spawn_file_actions_adddup2(&files, 1, 2);
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attr, 0);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, kBinary.c_str(), &files, &attr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&files);
-  posix_spawnattr_destroy(&attr);
-  EXPECT_EQ(rc, 0) << "cannot start " << kBinary;
-  return pid;
-}
-
 int wait_exit(pid_t pid) {
   int status = 0;
   waitpid(pid, &status, 0);
@@ -118,9 +95,9 @@ class LongRuns : public Resume {};
 TEST_F(LongRuns, GpusSessionKilledWholeResumesEachShardToTheRowsOfOneRun) {
   const SuiteOutcome plain = run("plain");
   const fs::path out = dir_ / "out", root = out / "resumable", log = dir_ / "gpus.log";
-  const pid_t parent = spawn_group({"suite", suite_, "--backend", "cpu", "--gpus", "2", "--costs",
-                                    "estimate", "--out", out.string()},
-                                   log);
+  const pid_t parent = spawn({"suite", suite_, "--backend", "cpu", "--gpus", "2", "--costs",
+                              "estimate", "--out", out.string()},
+                             log, /*own_group=*/true);
   // Killed, parent and workers at once (a node that went down), once a shard has a complete
   // experiment.
   fs::path session;
@@ -181,9 +158,9 @@ TEST_F(LongRuns, GpusSessionKilledWholeResumesEachShardToTheRowsOfOneRun) {
 TEST_F(LongRuns, KilledWorkerRestartsOnItsShardInsteadOfAPartialMerge) {
   const SuiteOutcome plain = run("plain");
   const fs::path out = dir_ / "out", root = out / "resumable", log = dir_ / "gpus.log";
-  const pid_t parent = spawn_group({"suite", suite_, "--backend", "cpu", "--gpus", "2", "--costs",
-                                    "estimate", "--out", out.string()},
-                                   log);
+  const pid_t parent = spawn({"suite", suite_, "--backend", "cpu", "--gpus", "2", "--costs",
+                              "estimate", "--out", out.string()},
+                             log, /*own_group=*/true);
   // Shard 1's worker, by the pid its meta.json records, once it completed an experiment.
   fs::path session, shard;
   ASSERT_TRUE(wait_for([&] {
