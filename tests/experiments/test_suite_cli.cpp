@@ -85,13 +85,19 @@ TEST(SuiteCli, SigintStopsARunningSuiteWithRowsAndAReport) {
   argv.push_back(nullptr);
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, kBinary.c_str(), nullptr, nullptr, argv.data(), environ), 0);
-  // Wait until the first experiment's rows are written, then press Ctrl-C.
+  // Wait until the first experiment is recorded in the result folder, then press Ctrl-C. The
+  // folder is filled under a hidden ".new-PID.partial" name and renamed into place, so only a
+  // progress marker in a visible folder proves the first rows are there.
   fs::path rows;
   for (int i = 0; i < 600 && rows.empty(); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     std::error_code ec;
-    for (const auto& e : fs::recursive_directory_iterator(out, ec))
-      if (e.path().filename() == "rows.csv") rows = e.path();
+    for (const auto& e : fs::recursive_directory_iterator(out, ec)) {
+      const fs::path folder = e.path().parent_path();
+      if (e.path().filename() == "progress.jsonl" && folder.filename().string()[0] != '.' &&
+          fs::file_size(e.path(), ec) > 0)
+        rows = folder / "rows.csv";
+    }
   }
   ASSERT_FALSE(rows.empty()) << "the suite wrote no rows";
   kill(pid, SIGINT);
@@ -102,7 +108,8 @@ TEST(SuiteCli, SigintStopsARunningSuiteWithRowsAndAReport) {
   std::ifstream report(rows.parent_path() / "report.md");
   const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
   EXPECT_NE(md.find("interrupted after "), std::string::npos) << md;
-  EXPECT_EQ(md.find("of 40 experiments") == std::string::npos, false) << md;
+  EXPECT_NE(md.find("of 40 experiments"), std::string::npos) << md;
+  EXPECT_EQ(md.find("after 0 of 40"), std::string::npos) << md;
   EXPECT_EQ(md.find("after 40 of 40"), std::string::npos) << md;
 }
 
