@@ -235,4 +235,16 @@ std::array<StratumError, kStrata> stratum_errors(const StratifiedProbes& probes,
   return out;
 }
 
+double worst_judged(const std::array<StratumError, kStrata>& errors) {
+  double worst = 0.0;
+  for (const StratumError& e : errors) worst = std::max(worst, e.judged());
+  return worst;
+}
+
+double largest_error(const std::array<StratumError, kStrata>& errors) {
+  double largest = 0.0;
+  for (const StratumError& e : errors) largest = std::max(largest, e.max);
+  return largest;
+}
+
 }  // namespace dv

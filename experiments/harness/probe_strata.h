@@ -114,5 +114,9 @@ struct StratumError {
 // Per stratum the error of `transmittance` ([point * light_count + light] at probes.points).
 std::array<StratumError, kStrata> stratum_errors(const StratifiedProbes& probes,
                                                  const std::vector<double>& transmittance);
+// What an error bound E is checked against: the worst stratum's judged error (0 with no
+// samples); and the largest error of any sample.
+double worst_judged(const std::array<StratumError, kStrata>& errors);
+double largest_error(const std::array<StratumError, kStrata>& errors);
 
 }  // namespace dv
