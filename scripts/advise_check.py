@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The check of `deepvox advise` and `--shadows auto --error-budget` (issue 41), run by
-scripts/advise-check.sh: per scene (built-in ones, the held-out ones the error model never
-saw, and small-shadows, whose shadows cover under 5 % of the view) the exhaustive sweep once (`advise --exhaustive`), then per error bound E: `advise` (timed;
+scripts/advise-check.sh: per scene (small-shadows, whose shadows cover under 5 % of the view;
+two glTF scenes; the built-in ones and the held-out ones the error model never saw) the exhaustive sweep once (`advise --exhaustive`), then per error bound E: `advise` (timed;
 its pick verified at fresh points) and `advise --auto-budget` (what auto --error-budget picks,
 measured at the same fresh points). The error is advise's: p95 |T' - T| in every stratum of the
 probe points (lit, umbra, partial, media); the per-stratum p95 of every pick and of auto's
@@ -10,7 +10,8 @@ choice at fresh points is reported. The sweep's cheapest meets E and the sweep's
 OUT/summary.md with pass/fail per criterion: the pick's verified p95 <= E; its frame time within 1.25x of the sweep's
 cheapest configuration meeting E, the two timed alternately in one process (`advise --time`,
 --rounds interleaved rounds, medians: one measurement of a ~1 ms frame varies by 10-30 %
-between measurements, so the sweep's own times cannot decide a 1.25x bound); auto's p95 <= E;
+between measurements, so the sweep's own times cannot decide a 1.25x bound); the pick's image
+edge error <= the default configuration's; auto's p95 <= E;
 advise on knecht-fig56 within 60 s (cuda) or 300 s (cpu)."""
 import argparse
 import json
@@ -27,6 +28,10 @@ HELDOUT = ["experiments/scenes/heldout/smoke-ring.json",
            "experiments/scenes/heldout/glass-stack.json",
            "experiments/scenes/heldout/opaque-bunnies.json"]
 SMALL_SHADOWS = ["experiments/scenes/small-shadows.json"]
+# glTF scenes as a user brings them (their own floor, spot light and camera): a thin red glass
+# slab, and an alpha-MASK quad whose cut-outs cast hard-edged shadows (GlassBrokenWindow-like).
+GLTF = ["experiments/assets/gltf/red-glass-slab.gltf",
+        "experiments/assets/gltf/alpha-mask-quad.gltf"]
 BOUNDS = [0.005, 0.02, 0.05]
 STRATA = ["lit", "umbra", "partial", "media"]
 TIME_RATIO = 1.25
@@ -35,6 +40,10 @@ CONFIG_FORMAT = {"format": "deepvox-shadow-config", "version": 1}
 
 def fmt(v):
     return "-" if v is None else f"{v:.3f}"
+
+
+def fmt4(v):
+    return "-" if v is None else f"{v:.4f}"
 
 
 def ratio(row):
@@ -90,6 +99,40 @@ def stem(scene):
     return os.path.splitext(os.path.basename(scene))[0]
 
 
+def write_summary(a, rows, limit_s):
+    """OUT/summary.json and OUT/summary.md of the rows so far (written after every scene, so
+    that a run cut short keeps what it measured)."""
+    meta = {"backend": a.backend, "host": platform.node(), "cpus": os.cpu_count(),
+            "load_average": os.getloadavg(), "command": " ".join(sys.argv),
+            "advise_time_limit_s": limit_s}
+    json.dump({"meta": meta, "rows": rows}, open(os.path.join(a.out, "summary.json"), "w"),
+              indent=1)
+    verdict = lambda v: "n/a" if v is None else ("pass" if v else "FAIL")
+    with open(os.path.join(a.out, "summary.md"), "w") as f:
+        f.write(f"# advise check ({a.backend}, {meta['cpus']} CPUs, load {meta['load_average']})\n\n"
+                "| scene | E | pick | verified p95 | verified per stratum | pick ms | "
+                "sweep's cheapest ms | pick / cheapest | auto p95 (by) | auto per stratum | "
+                "pick edge (default's) | advise s | verified | time | image | auto |\n|" +
+                " --- |" * 16 + "\n")
+        for r in rows:
+            f.write(f"| {stem(r['scene'])}{' (held out)' if r['held_out'] else ''} | {r['E']} | "
+                    f"{r.get('pick', '-')} | {r.get('pick_verified_p95', '-')} | "
+                    f"{strata_text(r.get('pick_verified_strata', {}))} | "
+                    f"{fmt(r.get('pick_ms'))} | {fmt(r.get('cheapest_ms'))} | "
+                    f"{fmt(ratio(r))} | "
+                    f"{r.get('auto_p95', '-')} ({r.get('auto_by', '-')}) | "
+                    f"{strata_text(r.get('auto_verified_strata', {}))} | "
+                    f"{fmt4(r.get('pick_image_edge'))} ({fmt4(r.get('image_bound'))}) | "
+                    f"{r['advise_s']:.1f} | {verdict(r['pass_verified'])} | "
+                    f"{verdict(r['pass_time'])} | {verdict(r['pass_image'])} | "
+                    f"{verdict(r['pass_auto'])} |\n")
+        f.write("\nn/a: no configuration of the sweep meets E on this scene. pick ms and "
+                "sweep's cheapest ms: medians of the two timed alternately in one process "
+                f"({a.rounds} interleaved rounds, `advise --time`); ratio 1 where the pick is "
+                "the sweep's cheapest. Per stratum: the p95 |T' - T| at fresh points (the max "
+                "where a stratum has too few points), strata without points left out.\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--deepvox", default="build/bin/deepvox")
@@ -101,7 +144,7 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--rounds", type=int, default=9,
                     help="interleaved rounds timing the pick against the sweep's cheapest")
-    ap.add_argument("--scenes", nargs="*", default=BUILTIN + HELDOUT + SMALL_SHADOWS)
+    ap.add_argument("--scenes", nargs="*", default=SMALL_SHADOWS + GLTF + BUILTIN + HELDOUT)
     ap.add_argument("--bounds", nargs="*", type=float, default=BOUNDS)
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
@@ -175,37 +218,14 @@ def main():
                                 row["time_ratio"] <= TIME_RATIO) if feasible else None
             row["pass_auto"] = (row.get("auto_p95") is not None and row["auto_p95"] <= bound) \
                 if feasible else None
+            row["pass_image"] = (row["pick_image_edge"] <= image_bound) \
+                if row.get("pick_image_edge") is not None and image_bound is not None else None
             if name == "knecht-fig56":
                 row["pass_advise_time"] = seconds <= limit_s
             rows.append(row)
             print(json.dumps(row), flush=True)
-    meta = {"backend": a.backend, "host": platform.node(), "cpus": os.cpu_count(),
-            "load_average": os.getloadavg(), "command": " ".join(sys.argv),
-            "advise_time_limit_s": limit_s}
-    json.dump({"meta": meta, "rows": rows}, open(os.path.join(a.out, "summary.json"), "w"),
-              indent=1)
-    verdict = lambda v: "n/a" if v is None else ("pass" if v else "FAIL")
-    with open(os.path.join(a.out, "summary.md"), "w") as f:
-        f.write(f"# advise check ({a.backend}, {meta['cpus']} CPUs, load {meta['load_average']})\n\n"
-                "| scene | E | pick | verified p95 | verified per stratum | pick ms | "
-                "sweep's cheapest ms | pick / cheapest | auto p95 (by) | auto per stratum | "
-                "advise s | verified | time | auto |\n|" + " --- |" * 14 + "\n")
-        for r in rows:
-            f.write(f"| {stem(r['scene'])}{' (held out)' if r['held_out'] else ''} | {r['E']} | "
-                    f"{r.get('pick', '-')} | {r.get('pick_verified_p95', '-')} | "
-                    f"{strata_text(r.get('pick_verified_strata', {}))} | "
-                    f"{fmt(r.get('pick_ms'))} | {fmt(r.get('cheapest_ms'))} | "
-                    f"{fmt(ratio(r))} | "
-                    f"{r.get('auto_p95', '-')} ({r.get('auto_by', '-')}) | "
-                    f"{strata_text(r.get('auto_verified_strata', {}))} | "
-                    f"{r['advise_s']:.1f} | {verdict(r['pass_verified'])} | "
-                    f"{verdict(r['pass_time'])} | {verdict(r['pass_auto'])} |\n")
-        f.write("\nn/a: no configuration of the sweep meets E on this scene. pick ms and "
-                "sweep's cheapest ms: medians of the two timed alternately in one process "
-                f"({a.rounds} interleaved rounds, `advise --time`); ratio 1 where the pick is "
-                "the sweep's cheapest. Per stratum: the p95 |T' - T| at fresh points (the max "
-                "where a stratum has too few points), strata without points left out.\n")
-    failed = [r for r in rows for k in ("pass_verified", "pass_time", "pass_auto",
+        write_summary(a, rows, limit_s)
+    failed = [r for r in rows for k in ("pass_verified", "pass_time", "pass_image", "pass_auto",
                                         "pass_advise_time") if r.get(k) is False]
     print(f"{len(rows)} rows, {len(failed)} with a failed criterion -> {a.out}/summary.md")
     return 1 if failed else 0

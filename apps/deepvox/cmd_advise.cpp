@@ -153,14 +153,17 @@ Runner add_advise(CLI::App& app) {
       ->check(CLI::Range(10, 1000000))
       ->capture_default_str();
   cmd->add_option("--stratum-min", opt->settings.stratum_min,
-                  "probe samples wanted per shadow stratum (umbra, partial) for its p95")
+                  "probe samples wanted per surface stratum (lit, umbra, partial) for its p95")
       ->check(CLI::Range(20, 1000000))
       ->capture_default_str();
   cmd->add_option("--repeat", opt->settings.repeat, "timed repetitions after a warm-up")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   cmd->add_option("--max-evaluations", opt->max_evaluations,
-                  "most configurations the search measures")
+                  "most configurations the search measures before its pick is verified; each "
+                  "round whose candidates the fresh points reject measures up to " +
+                      std::to_string(kResumeEvaluations) + " more, " +
+                      std::to_string(kResumedRounds) + " rounds at most")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_flag("--exhaustive", opt->exhaustive,

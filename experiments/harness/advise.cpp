@@ -15,6 +15,7 @@ namespace dv {
 
 namespace {
 
+// Per round, the cheapest candidates verified at fresh points.
 constexpr int kVerifyTries = 3;
 
 std::string progress_line(const AdviseResult& r, size_t index) {
@@ -124,35 +125,53 @@ Advice advise(SceneCache& cache, const AdviseOptions& o) {
   const AdviseProgress progress = [&](const std::vector<AdviseResult>& results) {
     if (o.progress) o.progress(progress_line(results.back(), results.size() - 1));
   };
-  advice.results = o.exhaustive ? advise_sweep(space, measure, limits, progress)
-                                : advise_search(space, advice.budgets, measure, limits, progress);
-  if (defaults) {
-    advice.default_index = advice.results.size();
-    advice.results.push_back(*defaults);
-    if (o.progress)
-      o.progress(progress_line(advice.results.back(), advice.results.size() - 1) +
-                 " (the default: its image edge error bounds the pick's)");
-  }
-  advice.interrupted = interrupt_requested();
-  advice.front = advise_front(advice.results);
+  std::vector<AdviseResult> searched =
+      o.exhaustive ? advise_sweep(space, measure, limits, progress)
+                   : advise_search(space, advice.budgets, measure, limits, progress);
+  if (defaults && o.progress)
+    o.progress(progress_line(*defaults, searched.size()) +
+               " (the default: its image edge error bounds the pick's)");
   advice.verify_seed = o.settings.seed + kVerifySeedOffset;
-  std::vector<size_t> candidates = advise_picks(advice.results, advice.budgets);
-  if (!interrupt_requested()) time_contenders(measurer, o, candidates, advice);
-  int tries = 0;
-  for (size_t i : candidates) {
-    if (tries++ == kVerifyTries || interrupt_requested()) break;
-    advice.tried = i;
-    advice.verified = measurer.verify(advice.results[i].config, advice.verify_seed);
-    if (o.progress)
-      o.progress("verify " + advice.results[i].config.param_line() + " at fresh points: p95 " +
-                 std::to_string(advice.verified.error_p95) + " (" +
-                 to_string(advice.verified.worst_stratum()) + ")");
-    // The costs were budgeted in the search; the fresh points decide the error.
-    if (advice.verified.ok && advice.budgets.within_error(advice.verified)) {
-      advice.pick = i;
-      break;
+  for (int round = 0;; ++round) {
+    advice.results = searched;
+    if (defaults) {
+      advice.default_index = advice.results.size();
+      advice.results.push_back(*defaults);
     }
+    advice.front = advise_front(advice.results);
+    std::vector<size_t> candidates = advise_picks(advice.results, advice.budgets);
+    advice.final_timing.clear();
+    if (!interrupt_requested()) time_contenders(measurer, o, candidates, advice);
+    int tries = 0;
+    for (size_t i : candidates) {
+      if (tries++ == kVerifyTries || interrupt_requested()) break;
+      advice.tried = i;
+      advice.verified = measurer.verify(advice.results[i].config, advice.verify_seed);
+      if (o.progress)
+        o.progress("verify " + advice.results[i].config.param_line() + " at fresh points: p95 " +
+                   std::to_string(advice.verified.error_p95) + " (" +
+                   to_string(advice.verified.worst_stratum()) + ")");
+      // The costs were budgeted in the search; the fresh points decide the error.
+      if (advice.verified.ok && advice.budgets.within_error(advice.verified)) {
+        advice.pick = i;
+        break;
+      }
+      AdviseResult& rejected = i < searched.size() ? searched[i] : *defaults;
+      rejected.measurement.add_fresh_points(advice.verified);
+      advice.results[i].measurement = rejected.measurement;
+    }
+    if (advice.pick || tries == 0 || interrupt_requested() || round == kResumedRounds) break;
+    if (o.exhaustive) continue;  // every point is measured: the next candidates are verified
+    limits.max_evaluations = int(searched.size()) + kResumeEvaluations;
+    if (o.progress)
+      o.progress(
+          "the fresh points rejected the cheapest candidates: the search resumes from "
+          "the corrected front (" +
+          std::to_string(kResumeEvaluations) + " more at most)");
+    searched = advise_search(space, advice.budgets, measure, limits, progress, std::move(searched));
   }
+  advice.front = advise_front(advice.results);
+  advice.interrupted = interrupt_requested();
   if (advice.tried)
     advice.verified_strata_counts = measurer.strata(advice.verify_seed).counts_text();
   advice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();

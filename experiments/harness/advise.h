@@ -3,8 +3,10 @@
 // (advise_measure.h), the Pareto front, the cheapest configuration that meets the error bound
 // and the budgets (the near-cheapest candidates timed again in interleaved rounds, so that
 // timing jitter does not decide a near tie), verified on fresh probe points (another seed than
-// the search's: a pick whose verified error misses the bound gives way to the next cheapest, at
-// most three tries),
+// the search's: a candidate whose verified error misses the bound gives way to the next
+// cheapest, three per round; when a round rejects them all, their fresh errors are folded into
+// their measurements and the search resumes from the corrected front for a few more
+// measurements, a few rounds at most),
 // and the outputs: a table, JSON, a shadow config file and an SVG plot (advise_report.h).
 // The error is judged per stratum of the probe points (advise_measure.h). Unless asked for speed
 // only or given an image bound, the default configuration (`auto` with its defaults) is measured
@@ -34,6 +36,10 @@ inline constexpr uint64_t kVerifySeedOffset = 1000003;
 // one's search time, at most this many, timed again in interleaved rounds.
 inline constexpr double kFinalTimingBand = 1.5;
 inline constexpr size_t kFinalTimingMost = 6;
+// After a round of verification that rejected its candidates, the search resumes from the
+// corrected front for at most this many more measurements, at most this many times.
+inline constexpr int kResumeEvaluations = 8;
+inline constexpr int kResumedRounds = 4;
 // The default configuration: what render takes without shadow options.
 ShadowConfig default_shadow_config();
 

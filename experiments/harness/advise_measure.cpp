@@ -108,11 +108,11 @@ AdviseMeasurement AdviseMeasurer::measure_with(const ShadowConfig& config, uint6
       m.strata = stratum_errors(
           probes,
           probe_transmittance(cache_.backend(), data, method, probes.points, &view).transmittance);
+    m.error_p95 = worst_judged(m.strata);
+    m.error_max = largest_error(m.strata);
     bool some_shadow = false;
     for (Stratum s : kAllStrata) {
       const StratumError& e = m.strata[size_t(s)];
-      m.error_p95 = std::max(m.error_p95, e.judged());
-      m.error_max = std::max(m.error_max, e.max);
       if (is_shadow(s)) {
         some_shadow = some_shadow || e.count > 0;
         m.shadows_measured = m.shadows_measured && !e.few;

@@ -26,7 +26,7 @@ namespace dv {
 struct AdviseSettings {
   int width = 0, height = 0;  // the small image; 0: the camera's, scaled to at most 320 wide
   int probes = 2000;          // camera-visible probe points (and as many inside media)
-  int stratum_min = 200;      // samples wanted per shadow stratum (probe_strata.h)
+  int stratum_min = 200;      // samples wanted per surface stratum (probe_strata.h)
   uint64_t seed = 1;          // the search's points; verify() takes another
   int repeat = 3;             // timed repetitions after a warm-up
 };

@@ -31,6 +31,7 @@ nlohmann::json measurement_json(const AdviseMeasurement& m) {
           {"worst_stratum", to_string(m.worst_stratum())},
           {"strata", strata},
           {"shadows_measured", m.shadows_measured},
+          {"rejected_at_fresh_points", m.rejected_at_fresh_points},
           {"image_rmse", m.image_rmse},
           {"image_edge", m.image_edge},
           {"frame_ms", m.frame_ms},
@@ -90,7 +91,7 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
         << format("%-8.4f ", m.image_edge) << format("%-8.4f ", m.image_rmse)
         << format("%-10.3f ", m.frame_ms) << format("%-8.2f ", m.bytes / 1e6)
         << r.config.param_line() << (a.default_index && *a.default_index == i ? " (default)" : "")
-        << "\n";
+        << (m.rejected_at_fresh_points ? " (rejected at fresh points)" : "") << "\n";
   }
   out << "(=> the pick, + meets the bound " << budgets.error << " in every stratum";
   if (budgets.image_error)

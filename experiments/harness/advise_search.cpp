@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include "strategies/shadow/strategy_catalog.h"
 #include "strategies/storage/dsm_storage.h"
@@ -35,6 +36,20 @@ Stratum AdviseMeasurement::worst_stratum() const {
   for (Stratum s : kAllStrata)
     if (strata[size_t(s)].judged() > strata[size_t(worst)].judged()) worst = s;
   return worst;
+}
+
+void AdviseMeasurement::add_fresh_points(const AdviseMeasurement& fresh) {
+  rejected_at_fresh_points = true;
+  if (!fresh.ok) {
+    ok = false;
+    failure = "at fresh points: " + fresh.failure;
+    return;
+  }
+  for (size_t s = 0; s < kStrata; ++s)
+    if (fresh.strata[s].judged() > strata[s].judged()) strata[s] = fresh.strata[s];
+  error_p95 = std::max(error_p95, fresh.error_p95);
+  error_max = std::max(error_max, fresh.error_max);
+  shadows_measured = shadows_measured && fresh.shadows_measured;
 }
 
 bool dominates(const AdviseMeasurement& a, const AdviseMeasurement& b) {
@@ -151,9 +166,11 @@ AdviseFamily advise_storage_family(const CatalogEntry& storage, const AdviseAxis
 std::vector<AdviseResult> advise_search(const std::vector<AdviseFamily>& space,
                                         const AdviseBudgets& budgets, const AdviseMeasure& measure,
                                         const AdviseSearchLimits& limits,
-                                        const AdviseProgress& progress) {
-  std::vector<AdviseResult> results;
+                                        const AdviseProgress& progress,
+                                        std::vector<AdviseResult> earlier) {
+  std::vector<AdviseResult> results = std::move(earlier);
   std::set<AdvisePoint> seen;
+  for (const AdviseResult& r : results) seen.insert(r.point);
   std::vector<AdvisePoint> queue;
   for (size_t f = 0; f < space.size(); ++f) queue.push_back({int(f), space[f].start});
   while (!queue.empty()) {
@@ -164,8 +181,13 @@ std::vector<AdviseResult> advise_search(const std::vector<AdviseFamily>& space,
       if (progress) progress(results);
     }
     queue.clear();
-    // Expand the front only: a dominated point's branch ends here.
-    for (size_t i : advise_front(results)) {
+    // Expand the front only: a dominated point's branch ends here. A point the fresh points
+    // rejected is expanded too, dominated or not: the configurations just finer than one that
+    // looked good are the likely ones.
+    std::vector<size_t> expand = advise_front(results);
+    for (size_t i = 0; i < results.size(); ++i)
+      if (results[i].measurement.rejected_at_fresh_points) expand.push_back(i);
+    for (size_t i : expand) {
       const AdviseMeasurement& m = results[i].measurement;
       const bool finer =
           (!budgets.within_error(m) || !m.shadows_measured) && budgets.within_cost(m);

@@ -65,8 +65,15 @@ struct AdviseMeasurement {
   double image_edge = 0.0;  // image_metrics.h's edge error against the reference render
   double frame_ms = 0.0;    // median generation + median render, warm
   double bytes = 0.0;
+  // Set when a verification at fresh points missed the bound: the figures above then hold the
+  // worse of the search's and the fresh points' (add_fresh_points).
+  bool rejected_at_fresh_points = false;
   // The stratum of the worst judged error (lit when every one is 0).
   Stratum worst_stratum() const;
+  // Folds in a measurement of the same configuration at fresh points that missed the bound:
+  // per stratum the worse judged error, the worse p95 and max, and the mark, so that the front,
+  // the picks and a resumed search see what the fresh points saw.
+  void add_fresh_points(const AdviseMeasurement& fresh);
 };
 
 struct AdviseResult {
@@ -115,11 +122,15 @@ using AdviseMeasure = std::function<AdviseMeasurement(const ShadowConfig&)>;
 // Called after each measurement: the results so far and the one just added.
 using AdviseProgress = std::function<void(const std::vector<AdviseResult>&)>;
 
-// The coarse-to-fine walk (see the file comment); results in measuring order.
+// The coarse-to-fine walk (see the file comment); results in measuring order. `earlier`
+// continues a walk: its points are not measured again, and its front (as its measurements now
+// read, e.g. after add_fresh_points) and its points rejected at fresh points are expanded; the
+// limits count its results too.
 std::vector<AdviseResult> advise_search(const std::vector<AdviseFamily>& space,
                                         const AdviseBudgets& budgets, const AdviseMeasure& measure,
                                         const AdviseSearchLimits& limits,
-                                        const AdviseProgress& progress = {});
+                                        const AdviseProgress& progress = {},
+                                        std::vector<AdviseResult> earlier = {});
 // Every point of the space measured (the exhaustive sweep `advise --exhaustive` runs as the
 // search's check), within the same limits.
 std::vector<AdviseResult> advise_sweep(const std::vector<AdviseFamily>& space,

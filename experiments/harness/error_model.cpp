@@ -107,7 +107,7 @@ nlohmann::json ErrorModel::to_json() const {
                       {"version", version},
                       {"source", source},
                       {"margin", margin},
-                      {"metric", "probe_error_visible:p95"},
+                      {"metric", metric},
                       {"scenes", nlohmann::json::array()}};
   for (const CalibrationScene& s : scenes) {
     nlohmann::json scene = {{"scene", s.scene},
@@ -140,8 +140,9 @@ ErrorModel read_error_model(const std::string& path) {
                                "): regenerate it with `deepvox advise --calibrate RUN_DIR`");
   m.source = r.raw("source");
   m.margin = r.number("margin");
-  if (r.string("metric") != "probe_error_visible:p95")
-    r.fail("metric", "this build predicts probe_error_visible:p95 only");
+  m.metric = r.string("metric");
+  if (m.metric != kStrataMetric && m.metric != kVisibleMetric)
+    r.fail("metric", std::string("this build predicts ") + kStrataMetric + " or " + kVisibleMetric);
   for (JsonReader& s : r.children("scenes")) {
     CalibrationScene scene;
     scene.scene = s.string("scene");
@@ -211,12 +212,16 @@ ErrorModel calibrate_error_model(const std::string& run_dir) {
   // Per scene, per item: the figures the model keeps.
   std::map<std::string, std::map<int, CalibratedConfig>> items;
   std::map<std::string, std::map<int, int>> have;  // bit 1: p95, 2: frame_ms, 4: bytes
+  const bool stratified = std::any_of(rows.begin(), rows.end(), [](const Row& row) {
+    return row.metric + ":" + row.stat == kStrataMetric;
+  });
+  model.metric = stratified ? kStrataMetric : kVisibleMetric;
   for (const Row& row : rows) {
     if (row.kind != "shadow" || row.strategy != "dsm") continue;
     CalibratedConfig& c = items[row.scene][row.item];
     c.shadows.name = "auto";
     c.shadows.params = params_of(row.params);
-    if (row.metric == "probe_error_visible" && row.stat == "p95") {
+    if (row.metric + ":" + row.stat == model.metric) {
       c.p95 = row.value;
       have[row.scene][row.item] |= 1;
     } else if (row.metric == "frame_ms" && row.stat == "value") {

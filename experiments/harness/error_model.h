@@ -27,7 +27,12 @@
 namespace dv {
 
 inline constexpr const char* kErrorModelFormat = "deepvox-error-model";
-inline constexpr int kErrorModelVersion = 1;
+// Version 2 adds the metric the configs' errors are (version 1: the camera-visible p95 only).
+inline constexpr int kErrorModelVersion = 2;
+// The errors a model holds: the stratified error advise judges (probe_strata.h: the worst
+// stratum's judged p95), or in older models the camera-visible p95, blind to small shadows.
+inline constexpr const char* kStrataMetric = "strata_error:judged";
+inline constexpr const char* kVisibleMetric = "probe_error_visible:p95";
 
 enum class LightKind : uint8_t { none, opaque, translucent, media };
 const char* to_string(LightKind k);
@@ -54,8 +59,9 @@ struct CalibrationScene {
 
 struct ErrorModel {
   int version = kErrorModelVersion;
-  nlohmann::json source;  // the run it came from: folder, commit, backend, command
-  double margin = 1.25;   // predictions are the calibrated error times this
+  nlohmann::json source;               // the run it came from: folder, commit, backend, command
+  double margin = 1.25;                // predictions are the calibrated error times this
+  std::string metric = kStrataMetric;  // what CalibratedConfig::p95 is
   std::vector<CalibrationScene> scenes;
   nlohmann::json to_json() const;
 };
@@ -67,9 +73,10 @@ void write_error_model(const std::string& path, const ErrorModel& model);
 // source tree or the install's share/deepvox): its path, InputError when none is found.
 std::string default_error_model_path();
 
-// The model from a suite run folder (rows.csv, meta.json): the dsm items' camera-visible p95,
-// frame time and bytes per scene; the scenes are loaded (resolved as the suite resolved them)
-// for their light statistics.
+// The model from a suite run folder (rows.csv, meta.json): the dsm items' error (the stratified
+// strata_error:judged where the run has it, run with the setting strata_points; else the
+// camera-visible p95), frame time and bytes per scene; the scenes are loaded (resolved as the
+// suite resolved them) for their light statistics.
 ErrorModel calibrate_error_model(const std::string& run_dir);
 
 struct LightPrediction {

@@ -181,20 +181,25 @@ StratifiedProbes make_stratified_probes(const Scene& scene, const SceneData& hos
   // 3: each light's view of the receivers behind its casters.
   const SceneView& view = host.view();
   const RasterProjection projection = make_camera_projection(camera, view.bounds);
-  for (int round = 0; round < kLightViewRounds && builder.shadow_short(); ++round) {
+  for (int round = 0; round < kLightViewRounds && builder.surface_short(); ++round) {
     const ProbePoints through =
         make_probe_points(scene, host, kLightViewCandidatesPerMin * std::max(s.stratum_min, 1), 0.0,
                           s.seed + kLightViewSeedStride * uint64_t(round + 1));
     std::vector<dvec3> receivers;
-    for (const LightView& light : host.host_lights())
-      for (const dvec3& p : through.points) {
+    for (const dvec3& p : through.points) {
+      // The uniform point itself where the camera sees it (lit where no caster is between it
+      // and a light: what a spot light's narrow cone leaves the camera's pixels too few of).
+      if (seen_by_camera(view, projection, camera.position, p)) receivers.push_back(p);
+      for (const LightView& light : host.host_lights()) {
         dvec3 r;
         if (receiver_behind(view, light, p, r) &&
             seen_by_camera(view, projection, camera.position, r))
           receivers.push_back(r);
       }
+    }
     const size_t before = builder.sample_count();
-    builder.add(receivers, ProbeSource::light_view, false, {Stratum::umbra, Stratum::partial});
+    builder.add(receivers, ProbeSource::light_view, false,
+                {Stratum::lit, Stratum::umbra, Stratum::partial});
     if (builder.sample_count() == before) break;  // the camera sees none of these shadows
   }
   // 4: inside media.
@@ -228,6 +233,18 @@ std::array<StratumError, kStrata> stratum_errors(const StratifiedProbes& probes,
     out[size_t(s)] = {int(summary.count), summary.p95, summary.max, probes.few(s), upper};
   }
   return out;
+}
+
+double worst_judged(const std::array<StratumError, kStrata>& errors) {
+  double worst = 0.0;
+  for (const StratumError& e : errors) worst = std::max(worst, e.judged());
+  return worst;
+}
+
+double largest_error(const std::array<StratumError, kStrata>& errors) {
+  double largest = 0.0;
+  for (const StratumError& e : errors) largest = std::max(largest, e.max);
+  return largest;
 }
 
 }  // namespace dv

@@ -8,11 +8,11 @@
 //  2. while a surface stratum (lit, umbra, partial) holds fewer than `stratum_min` samples, more
 //     of the pixels the camera sees, in the same uniform draw, keeping only samples of the short
 //     strata;
-//  3. while a shadow stratum (umbra, partial) still does (the camera sees too little shadow at this
-//  size), each light's view
-//     of the receivers: from the light through a uniform surface point (probe_points.h), the
-//     nearest visible surface behind it, kept where the camera sees it (between the pixel centres
-//     of the measuring size: shadows too small for its pixels), again only samples of the short
+//  3. while a surface stratum still does (the camera sees too little shadow at this size, or too
+//     little lit ground inside a narrow spot cone), each light's view of the receivers: a
+//     uniform surface point (probe_points.h) and, from each light through it, the nearest
+//     surface behind it, each kept where the camera sees it (between the pixel centres of the
+//     measuring size: shadows too small for its pixels), again only samples of the short
 //     strata;
 //  4. with media, as many world-uniform points inside media (probe_points.h) as the first
 //     camera draw or the stratum minimum, whichever is more, all their samples.
@@ -54,7 +54,7 @@ enum class ProbeSource : uint8_t { camera, light_view, medium };
 
 struct StrataSettings {
   int camera_points = 2000;  // the first camera-visible draw
-  int stratum_min = 200;     // samples wanted per shadow stratum (a p95 from 200: the 10th largest)
+  int stratum_min = 200;  // samples wanted per surface stratum (a p95 from 200: the 10th largest)
   uint64_t seed = 1;
 };
 
@@ -114,5 +114,9 @@ struct StratumError {
 // Per stratum the error of `transmittance` ([point * light_count + light] at probes.points).
 std::array<StratumError, kStrata> stratum_errors(const StratifiedProbes& probes,
                                                  const std::vector<double>& transmittance);
+// What an error bound E is checked against: the worst stratum's judged error (0 with no
+// samples); and the largest error of any sample.
+double worst_judged(const std::array<StratumError, kStrata>& errors);
+double largest_error(const std::array<StratumError, kStrata>& errors);
 
 }  // namespace dv

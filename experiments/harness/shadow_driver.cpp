@@ -7,9 +7,10 @@
 // weight the error as the image does; every probe's signed error goes to the item's samples,
 // per class by name); image error against the reference render, over the image and per
 // view-depth bin (nearest quarter of the surface pixels first), and PNGs (the
-// render and its difference) for the report's image strip. `frame_ms` (median generation plus
-// median render) is the one time a Pareto front of error against time takes. The timed
-// generation and frame are shadow_measure.h's, which bench_dsm and bench_renderer call too.
+// render and its difference) for the report's image strip; with `strata_points`, the stratified
+// error advise judges (strata_error: per stratum and the worst judged). `frame_ms` (median
+// generation plus median render) is the one time a Pareto front of error against time takes. The
+// timed generation and frame are shadow_measure.h's, which bench_dsm and bench_renderer call too.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
+#include "experiments/harness/probe_strata.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/shadow_measure.h"
 #include "experiments/harness/timing.h"
@@ -42,6 +44,8 @@ struct ShadowSettings {
   double isosurface;  // >= 0: surface probes also on the volumes' isosurface at this density
   bool images;
   int visible_points;  // camera-visible probes; default probe_points
+  int strata_points;   // > 0: the stratified probes (probe_strata.h) from this camera draw
+  int stratum_min;     // their samples wanted per surface stratum
 };
 
 ShadowSettings read_settings(const RunItem& item, const Scene& scene) {
@@ -53,13 +57,16 @@ ShadowSettings read_settings(const RunItem& item, const Scene& scene) {
                    uint64_t(p.integer("seed", 1)),
                    p.number("isosurface", -1.0),
                    p.integer("images", 1) != 0,
-                   0};
+                   0,
+                   p.integer("strata_points", 0),
+                   p.integer("stratum_min", 200)};
   s.visible_points = p.integer("visible_points", s.probe_points);
   p.finish("experiment '" + item.experiment_name + "' settings");
-  if (s.width < 1 || s.height < 1 || s.probe_points < 0 || s.visible_points < 0)
+  if (s.width < 1 || s.height < 1 || s.probe_points < 0 || s.visible_points < 0 ||
+      s.strata_points < 0 || s.stratum_min < 1)
     throw InputError("experiment '" + item.experiment_name + "'",
-                     "width, height must be positive and probe_points, visible_points not "
-                     "negative");
+                     "width, height and stratum_min must be positive and probe_points, "
+                     "visible_points, strata_points not negative");
   return s;
 }
 
@@ -114,8 +121,8 @@ void class_errors(const ProbeResults& r, const ProbeSet& probes,
 class ShadowDriver : public Driver {
  public:
   std::vector<std::string> settings() const override {
-    return {"width", "height",     "probe_points", "medium_fraction",
-            "seed",  "isosurface", "images",       "visible_points"};
+    return {"width",      "height", "probe_points",   "medium_fraction", "seed",
+            "isosurface", "images", "visible_points", "strata_points",   "stratum_min"};
   }
   std::vector<std::string> default_columns() const override {
     return {
@@ -167,6 +174,7 @@ class ShadowDriver : public Driver {
              "count");
 
     probe_errors(item, ctx, s, method, rows);
+    strata_errors(item, ctx, s, camera, method, rows);
     image_errors(item, ctx, s, last.render.image, rows);
     return {{"strategy", method.name()}, {"params", method.params()}};
   }
@@ -202,6 +210,32 @@ class ShadowDriver : public Driver {
       rows.add("probe_flagged", "value", double(flagged), "count");
     // The signed errors per class, in point order, for the findings' paired bootstrap.
     for (const auto& [c, e] : errors) rows.samples()["probe_errors"][to_string(c)] = e;
+  }
+
+  // The error advise and --error-budget judge (probe_strata.h): per stratum its sample count,
+  // p95, the p95's upper bound and max; strata_error's `judged` is the worst stratum's judged
+  // error, what a bound E is checked against.
+  static void strata_errors(const RunItem& item, RunContext& ctx, const ShadowSettings& s,
+                            const Camera& camera, ShadowMethod& method, RowSink& rows) {
+    if (s.strata_points == 0) return;
+    const StratifiedProbes& probes = ctx.scenes->stratified_probes(
+        item.scene_path, s.width, s.height, {s.strata_points, s.stratum_min, s.seed});
+    if (probes.points.empty()) return;
+    const std::array<StratumError, kStrata> errors =
+        stratum_errors(probes, probe_transmittance(ctx.backend, ctx.scenes->data(item.scene_path),
+                                                   method, probes.points, &camera)
+                                   .transmittance);
+    for (Stratum st : kAllStrata) {
+      const StratumError& e = errors[size_t(st)];
+      const std::string metric = std::string("strata_error_") + to_string(st);
+      rows.add(metric, "count", double(e.count), "count");
+      if (e.count == 0) continue;
+      rows.add(metric, "p95", e.p95, "T");
+      rows.add(metric, "p95_upper", e.p95_upper, "T");
+      rows.add(metric, "max", e.max, "T");
+    }
+    rows.add("strata_error", "judged", worst_judged(errors), "T");
+    rows.add("strata_error", "max", largest_error(errors), "T");
   }
 
   static void image_errors(const RunItem& item, RunContext& ctx, const ShadowSettings& s,

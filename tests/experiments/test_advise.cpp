@@ -144,6 +144,60 @@ TEST(AdviseSearch, LimitsEndTheSearchKeepingWhatWasMeasured) {
   EXPECT_EQ(advise_search(toy_space(), budgets, counting, limits).size(), 3u);
 }
 
+// A candidate that the fresh points reject carries their worse errors (per stratum, p95, max)
+// and a mark; a search continued from the corrected results measures no point twice and walks
+// on finer from the rejected point, where it finds the next configuration within the bound.
+TEST(AdviseSearch, RejectedAtFreshPointsFoldsInAndTheSearchResumesFiner) {
+  AdviseMeasurement searched = point(0.01, 2.0);
+  searched.strata[size_t(Stratum::umbra)] = {600, 0.01, 0.2, false, 0.01};
+  searched.strata[size_t(Stratum::lit)] = {600, 0.0, 0.0, false, 0.0};
+  AdviseMeasurement fresh = point(0.3, 2.1);
+  fresh.strata[size_t(Stratum::umbra)] = {600, 0.3, 1.0, false, 0.3};
+  fresh.strata[size_t(Stratum::lit)] = {600, 0.0, 0.0, false, 0.0};
+  fresh.error_max = 1.0;
+  fresh.shadows_measured = false;
+  searched.add_fresh_points(fresh);
+  EXPECT_TRUE(searched.rejected_at_fresh_points);
+  EXPECT_EQ(searched.error_p95, 0.3);
+  EXPECT_EQ(searched.error_max, 1.0);
+  EXPECT_EQ(searched.strata[size_t(Stratum::umbra)].judged(), 0.3);
+  EXPECT_FALSE(searched.shadows_measured);
+  EXPECT_EQ(searched.frame_ms, 2.0) << "the search's timing stays";
+  AdviseMeasurement failed;
+  failed.failure = "a storage limit";
+  AdviseMeasurement ok = point(0.0, 1.0);
+  ok.add_fresh_points(failed);
+  EXPECT_FALSE(ok.ok);
+
+  const std::vector<AdviseFamily> space = {toy_space()[0]};
+  AdviseBudgets budgets;
+  budgets.error = 0.1;  // a + b >= 4: the search picks a = 4, b = 0
+  AdviseSearchLimits limits;
+  std::vector<AdviseResult> results = advise_search(space, budgets, toy_measure, limits);
+  const std::vector<size_t> picks = advise_picks(results, budgets);
+  ASSERT_FALSE(picks.empty());
+  ASSERT_EQ(results[picks[0]].point.at, (std::vector<int>{4, 0}));
+  // The fresh points see it miss (and every other candidate with it, as on a scene whose
+  // search seed was lucky): each is folded in, and the search resumes.
+  for (size_t i : picks) results[i].measurement.add_fresh_points(point(0.15, 0.0));
+  const size_t before = results.size();
+  limits.max_evaluations = int(before) + 8;
+  int measured_again = 0;
+  const AdviseMeasure counting = [&](const ShadowConfig& c) {
+    for (const AdviseResult& r : results) measured_again += r.config.param_line() == c.param_line();
+    return toy_measure(c);
+  };
+  const std::vector<AdviseResult> resumed =
+      advise_search(space, budgets, counting, limits, {}, results);
+  EXPECT_GT(resumed.size(), before) << "the search did not resume";
+  EXPECT_LE(resumed.size(), before + 8);
+  EXPECT_EQ(measured_again, 0) << "a point was measured twice";
+  const std::vector<size_t> now = advise_picks(resumed, budgets);
+  ASSERT_FALSE(now.empty()) << "no new point within the bound";
+  EXPECT_FALSE(resumed[now[0]].measurement.rejected_at_fresh_points);
+  EXPECT_GE(now[0], before) << "the new pick is one the resumed search measured";
+}
+
 TEST(AdviseSearch, SpaceFollowsTheCastersAndItsConfigsAreValid) {
   const std::vector<AdviseFamily> opaque = advise_space({false, false});
   ASSERT_EQ(opaque.size(), 1u);
@@ -297,7 +351,9 @@ TEST_F(AdviseFiles, SmallCpuAdviceMeetsItsBoundAtFreshPoints) {
   for (const Advice::FinalTiming& t : advice.final_timing) {
     EXPECT_EQ(int(t.times_ms.size()), o.final_rounds);
     EXPECT_LT(t.index, advice.results.size());
-    if (t.index == *advice.pick) EXPECT_EQ(advice.chosen_ms(t.index), t.median_ms);
+    if (t.index == *advice.pick) {
+      EXPECT_EQ(advice.chosen_ms(t.index), t.median_ms);
+    }
   }
 }
 
