@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The check of `deepvox advise` and `--shadows auto --error-budget` (issue 41), run by
+"""The check of `deepvox advise` and `--shadows auto --error-budget`, run by
 scripts/advise-check.sh: per scene (built-in ones, the held-out ones the error model never
 saw, and small-shadows, whose shadows cover under 5 % of the view) the exhaustive sweep once (`advise --exhaustive`), then per error bound E: `advise` (timed;
 its pick verified at fresh points) and `advise --auto-budget` (what auto --error-budget picks,

@@ -1,4 +1,4 @@
-// Suites that survive being killed (issue 42): the real `deepvox suite` killed with SIGKILL at
+// Suites that survive being killed: the real `deepvox suite` killed with SIGKILL at
 // seeded random instants and resumed each time ends with the rows of one uninterrupted run (no
 // duplicate, timings aside), and `deepvox report` reads every partial folder; a torn row group
 // is ignored and cut off; resuming with another suite file or commit is refused unless forced
