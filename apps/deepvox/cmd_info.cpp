@@ -1,5 +1,5 @@
-// `deepvox info SCENE [--json]`: what a scene holds (objects, triangles, volumes, lights with
-// their colours and units, bounds) and warnings about what will not look as a user expects.
+// `deepvox info`: what a scene holds (objects, triangles, volumes, lights with their colours and
+// units, bounds) and warnings about what will not look as a user expects.
 #include <algorithm>
 #include <cstdio>
 #include <iostream>

@@ -1,8 +1,5 @@
-// `deepvox suite NAME_OR_FILE [--backend cpu|cuda] [--out DIR] [--repeat K] [--shard I/N]
-//  [--only PATTERN] [--smoke] [--costs DIR|estimate] [--resume [DIR] [--force]] [--gpus N|all]
-//  [--runs N]
-//  [--slurm [--partition P] [--time T] [--submit] [--dry-run]]` and `deepvox suite --list`: runs
-// an experiment suite through the harness (experiments/harness/runner.h), continues a killed run
+// `deepvox suite` (options: its --help, docs/cli.md; which go together: suite_command.h): runs an
+// experiment suite through the harness (experiments/harness/runner.h), continues a killed run
 // (--resume; with --gpus a worker session, with --slurm a SLURM session), runs it as worker
 // processes on this node (workers.h), as N independent process runs for the findings' intervals
 // (--runs, workers.h) or as SLURM jobs (slurm.h), and prints where the report is. Exit codes:
