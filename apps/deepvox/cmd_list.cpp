@@ -1,7 +1,6 @@
-// `deepvox list [--markdown]`: the registered strategies of every family with their parameter
-// tables (key, default, allowed values, description), the generators and the backends; with
-// --markdown the strategy families as the Markdown of docs/strategies.md (a test holds the file
-// to this output).
+// `deepvox list`: the registered strategies of every family with their parameter tables (key,
+// default, allowed values, description), the generators and the backends; with --markdown the
+// strategy families as the Markdown of docs/strategies.md (a test holds the file to this output).
 #include <cstdio>
 #include <memory>
 #include <string>

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes glTF stand-ins built like the Khronos sample models (which cannot be committed here)
-for the effects of issue 39: glass that colours its shadow, alpha-masked textures, a tinted
+for the glass and texture effects: glass that colours its shadow, alpha-masked textures, a tinted
 medium behind glass, textured and normal-mapped models. Geometry and textures are generated
 here (pure standard library, look_standins.py's Gltf writer, PNG textures as data: URIs).
 
@@ -30,7 +30,7 @@ Sample-model stand-ins for the thumbnails (docs/images/look_thumbnails.py --set 
   duck.gltf                   like Duck: a yellow textured duck with a camera in the file looking
                               from behind it (-z), no lights.
 
-Shadow stand-ins of issue 50's thumbnails and measurements (look_thumbnails.py --set shadows),
+Shadow stand-ins of the shadow thumbnails and measurements (look_thumbnails.py --set shadows),
 all without lights, so that `render` stages them (ground, key and fill):
 
   textured-glass-pane.gltf    like StainedGlassLamp's panes: a horizontal glass pane

@@ -1,4 +1,4 @@
-// Tile rasterizer of the shared renderer (deepvox issue 3, Knecht 2011 §4.1): bins every
+// Tile rasterizer of the shared renderer (Knecht 2011 §4.1): bins every
 // triangle of a scene into per-8x8-tile lists of (64-bit coverage mask, triangle id), on CPU
 // threads or CUDA from the same code, with identical results on both.
 //
