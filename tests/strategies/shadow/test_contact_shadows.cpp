@@ -246,6 +246,36 @@ TEST(ContactShadows, DirectionalFaceLeavesOutAPlaneThatShadowsNothing) {
   EXPECT_EQ(kept.lo.y, objects[0].lo.y);
 }
 
+// Outside the fill's fitted face the ground is lit, as in the oracle (nothing above it casts
+// there), and the cube's long fill shadow on the ground, away from the light, still falls
+// inside the face: dsm and shadowmap answer the oracle's 1 at the ground's corners and its 0
+// in that shadow.
+TEST(ContactShadows, FittedFillFaceKeepsTheModelsShadowAndLightsTheGroundAroundIt) {
+  const Scene scene = staged(make_box({-0.5, 0.0, -0.5}, {0.5, 1.0, 0.5}), Material{});
+  const SceneData data(scene, Memory::host);
+  const LightView& fill = data.host_lights()[1];
+  const double y = ground_height(scene);
+  // Along the fill's rays from the cube's centre down to the ground: behind the cube.
+  const dvec3 centre(0.0, 0.5, 0.0);
+  const dvec3 in_shadow = centre + fill.direction * ((y - centre.y) / fill.direction.y);
+  const double corner = 2.5;
+  const std::vector<dvec3> points = {in_shadow,
+                                     {corner, y, corner},
+                                     {-corner, y, corner},
+                                     {corner, y, -corner},
+                                     {-corner, y, -corner}};
+  auto reference = test::make_shadow_method("reference", "");
+  const ProbeResults exact = probe_transmittance(Backend::cpu, data, *reference, points);
+  EXPECT_EQ(answer(exact, 0, 1).x, 0.0);
+  for (size_t i = 1; i < points.size(); ++i) EXPECT_EQ(answer(exact, i, 1).x, 1.0) << i;
+  for (const char* method : {"dsm", "shadowmap"}) {
+    auto m = test::make_shadow_method(method, "");
+    const ProbeResults r = probe_transmittance(Backend::cpu, data, *m, points);
+    for (size_t i = 0; i < points.size(); ++i)
+      EXPECT_NEAR(answer(r, i, 1).x, answer(exact, i, 1).x, 1e-6) << method << " point " << i;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, ContactShadows, ::testing::ValuesIn(test::all_backends()),
                          [](const ::testing::TestParamInfo<Backend>& info) {
                            return std::string(info.param == Backend::cuda ? "cuda" : "cpu");
