@@ -445,15 +445,7 @@ TileListSet rasterize_set(Backend backend, const std::vector<RasterProjection>& 
 TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterOptions& options) {
   TileListSet set =
       rasterize_set(backend, {view.projection}, view.vertices, view.triangles, options);
-  TileLists lists;
-  lists.width = set.width;
-  lists.height = set.height;
-  lists.tiles_x = set.tiles_x;
-  lists.tiles_y = set.tiles_y;
-  lists.offsets = std::move(set.offsets);
-  lists.entries = std::move(set.entries);
-  lists.stats = set.stats[0];
-  return lists;
+  return {std::move(static_cast<TileListBuffers&>(set)), set.stats[0]};
 }
 
 TileLists rasterize_tiles(Backend backend, const SceneView& scene,
