@@ -1,7 +1,7 @@
 // Wall-clock marks of one process's phases (argument parsing, input loading, device ready, work,
 // output), in milliseconds since main() began. Commands put them in their stats JSON so that a
-// slow process start is measured phase by phase, not only around the whole process (issue 13's
-// start-up goal). Marks may come from any thread.
+// slow process start is measured phase by phase, not only around the whole process (a start-up
+// time has a goal). Marks may come from any thread.
 #pragma once
 
 #include <string>

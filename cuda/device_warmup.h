@@ -1,5 +1,5 @@
 // Starts the CUDA driver on a background thread while a command parses its input: cuInit and the
-// primary context take about 230 ms on the H200 machine before any kernel can run, and file
+// primary context take a large part of a short command's time before any kernel runs, and file
 // loading, volume generation and BVH building need no device. Overlapping the two takes the
 // shorter of them off a process's wall time. The first CUDA call on another thread simply
 // waits for the context this thread is creating.

@@ -1,4 +1,4 @@
-// The bandwidth floor of issue 5's measurements: the device copy bandwidth measured in the same
+// The bandwidth floor a kernel's time is judged by: the device copy bandwidth measured in the same
 // run (cudaMemcpy device-to-device of a large buffer, CUDA events, median of several copies) and,
 // per voxelizer pass, the fewest bytes the pass must move, so that a pass can be reported as a
 // multiple of floor_ms = bytes / bandwidth (goal for kernels over 100 us: within 3x).

@@ -175,7 +175,7 @@ void many_lights(benchmark::State& state, Backend backend) {
     fragment_ms += f.result.fragment_ms;
     state.SetIterationTime((g.pass_milliseconds() + f.milliseconds) / 1e3);
     state.counters["maps"] = g.stats["faces"].get<double>();
-    // The maps' bytes (issue 40's goal: 112 maps of 512^2 in <= 300 MB) and the per-texel
+    // The maps' bytes (the goal: 112 maps of 512^2 in <= 300 MB) and the per-texel
     // records held beside them.
     state.counters["storage_mb"] = g.stats["storage"]["bytes_allocated"].get<double>() / 1e6;
     state.counters["records_mb"] =

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The check of `deepvox advise` and `auto --error-budget` (issue 41), in one call: every scene's
+# The check of `deepvox advise` and `auto --error-budget`, in one call: every scene's
 # exhaustive sweep, then per error bound advise (timed, pick verified at fresh points) and auto's
 # choice, with a pass/fail summary (scripts/advise_check.py says what is checked).
 #   scripts/advise-check.sh [--backend cuda] [--out out/advise-check]   # H200

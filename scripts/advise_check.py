@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""The check of `deepvox advise` and `--shadows auto --error-budget` (issue 41), run by
+"""The check of `deepvox advise` and `--shadows auto --error-budget`, run by
 scripts/advise-check.sh: per scene (small-shadows, whose shadows cover under 5 % of the view;
-two glTF scenes; the built-in ones and the held-out ones the error model never saw) the exhaustive sweep once (`advise --exhaustive`), then per error bound E: `advise` (timed;
+two glTF scenes; the built-in ones and the held-out ones the error model never saw) the
+exhaustive sweep once (`advise --exhaustive`), then per error bound E: `advise` (timed;
 its pick verified at fresh points) and `advise --auto-budget` (what auto --error-budget picks,
 measured at the same fresh points). The error is advise's: p95 |T' - T| in every stratum of the
 probe points (lit, umbra, partial, media); the per-stratum p95 of every pick and of auto's

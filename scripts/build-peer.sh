@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the peer voxelizer of issue 40, Forceflow's cuda_voxelizer (v0.6), from its public
+# Builds the peer voxelizer, Forceflow's cuda_voxelizer (v0.6), from its public
 # source, with the trimesh2 fork its CI builds it against, and our warm-kernel timing driver for
 # it (experiments/peer/peer_voxelizer_bench.cu), so that the peer comparison can be rebuilt from
 # public source and run in the same device call as bench_voxelizer. The peer's code is never

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs on a GPU node from the repository root, with a CUDA build's bin/ carried along: the
 # CUDA smoke test, CPU/CUDA parity, the oracle, raster, render, voxel and DSM tests, the hard
-# cases of issue 14 (test_hard: CUDA runs of the hard cases and determinism), renders of the
+# cases (test_hard: CUDA runs of the hard cases and determinism), renders of the
 # committed scenes on both backends, and the benchmarks. Logs and outputs are packed into
 # $OUT/gpu-check.tar.gz (the device tool returns few files); the summary goes to stdout.
 # Usage: scripts/gpu-check.sh BUILD_DIR [LIB_DIR]; SECTIONS="tests renders benches suites" (the

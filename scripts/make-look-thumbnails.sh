@@ -9,12 +9,13 @@
 # of the Khronos sample models TransmissionTest, GlassVaseFlowers, DamagedHelmet and Duck
 # (docs/images/feature_standins.py) into docs/images/<model>-{before,after}.png; --set shadows
 # the shadow stand-ins (textured glass pane, glass cube and BLEND quad on the
-# ground, folded cloth under glass) the same way; --set looks (the default) the lamp,
+# ground, folded cloth under glass, opaque and translucent, glass over grey BLEND quads) the
+# same way; --set looks (the default) the lamp,
 # transmission, attenuation and bunny thumbnails.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 if [[ $# -lt 1 || "$1" == -* ]]; then
-  sed -n '2,13p' "$0" >&2
+  sed -n '2,14p' "$0" >&2
   exit 2
 fi
 before="$1"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the glass stand-in scenes of issue 39 into experiments/scenes/ (run from anywhere):
+"""Writes the glass stand-in scenes into experiments/scenes/ (run from anywhere):
 
   glass-red-slab.json       a red glass slab (KHR_materials_transmission 1, ior 1.5) over a white
                             floor under a spot light: its shadow is partial and red

@@ -4,7 +4,7 @@
 # CPU backend, no cgroups), submits `deepvox suite quick --slurm --gpus 2 --backend cpu
 # --submit` (a 2-task job array plus the merge job, afterany), waits with a bounded timeout,
 # and checks that the merged rows equal an unsharded run's rows (timings aside) and that the
-# report names the 2 workers. Then the requeue check (issue 42): a second submission whose task
+# report names the 2 workers. Then the requeue check: a second submission whose task
 # 1 has its deepvox killed with SIGKILL (found through `scontrol listpids`) once the shard's
 # first experiment is complete; the task must requeue itself and resume the same folder, and the
 # merge must again equal the unsharded run. Stops the daemons at the end (trap). Needs root.

@@ -1,10 +1,9 @@
 // Resolving --error-budget for the auto method (error_budget.h).
 #include "apps/common/error_budget.h"
 
-#include <cstdio>
-
 #include "core/error.h"
 #include "core/log.h"
+#include "core/number_text.h"
 #include "experiments/harness/advise.h"
 #include "experiments/harness/advise_report.h"
 #include "experiments/harness/error_model.h"
@@ -18,12 +17,6 @@ namespace {
 // shorter one can stop before the resolutions a tight budget needs: knecht-fig56 within 0.005
 // needs res 1024), with fewer probe points.
 constexpr int kFallbackProbes = 1000;
-
-std::string number_text(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", v);
-  return text;
-}
 
 }  // namespace
 
@@ -43,14 +36,15 @@ void resolve_error_budget(ShadowOptions& o, const std::string& scene_path, Backe
   const ErrorModel model = read_error_model(default_error_model_path());
   const BudgetPrediction p = predict_budget(model, stats, budget);
   std::vector<std::string>& why = o.budget_explanation;
-  why.push_back("error budget " + number_text(budget) +
+  why.push_back("error budget " + significant_text(budget, 4) +
                 " (p95 |T' - T| in every stratum of the probe points: lit, umbra, partial, "
                 "media)");
   for (size_t l = 0; l < stats.size(); ++l)
-    why.push_back("  light " + std::to_string(l) + " (" + to_string(stats[l].kind) + ", " +
-                  std::to_string(stats[l].casters) + " casters, smallest " +
-                  number_text(stats[l].smallest_caster) + " of its field): " + p.lights[l].why +
-                  (p.confident ? ", predicted p95 " + number_text(p.lights[l].predicted) : ""));
+    why.push_back(
+        "  light " + std::to_string(l) + " (" + to_string(stats[l].kind) + ", " +
+        std::to_string(stats[l].casters) + " casters, smallest " +
+        significant_text(stats[l].smallest_caster, 4) + " of its field): " + p.lights[l].why +
+        (p.confident ? ", predicted p95 " + significant_text(p.lights[l].predicted, 4) : ""));
   o.error_budget.reset();  // resolved: the viewer may switch methods freely afterwards
   AdviseOptions a;         // advise's own limits: as many evaluations as its search
   a.scene = scene_path;
@@ -87,15 +81,15 @@ void resolve_error_budget(ShadowOptions& o, const std::string& scene_path, Backe
   why.push_back("  probe strata: " + advice.strata_counts);
   if (!advice.pick)
     throw InputError("--error-budget", "no configuration of auto measured within " +
-                                           number_text(budget) + " on " + scene_path +
+                                           significant_text(budget, 4) + " on " + scene_path +
                                            " (run `deepvox advise` for the front)");
   const AdviseResult& pick = advice.results[*advice.pick];
   o.params = pick.config.param_items();
   why.push_back("measured " + std::to_string(advice.results.size()) +
                 " configurations: the cheapest within the budget, " + pick.config.param_line() +
-                ", p95 " + number_text(pick.measurement.error_p95) + " (verified " +
-                number_text(advice.verified.error_p95) + " at fresh points), " +
-                number_text(advice.chosen_ms(*advice.pick)) + " ms");
+                ", p95 " + significant_text(pick.measurement.error_p95, 4) + " (verified " +
+                significant_text(advice.verified.error_p95, 4) + " at fresh points), " +
+                significant_text(advice.chosen_ms(*advice.pick), 4) + " ms");
   why.push_back("  verified " + strata_text(advice.verified));
 }
 

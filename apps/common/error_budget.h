@@ -1,4 +1,4 @@
-// `--shadows auto --error-budget E` (issue 41): before the method is made, the auto method's
+// `--shadows auto --error-budget E`: before the method is made, the auto method's
 // parameters are chosen for the scene so that the p95 |T' - T| in every stratum of the probe
 // points (experiments/harness/probe_strata.h: lit, umbra, partial, media) stays within E: the
 // calibrated error model (experiments/harness/error_model.h) proposes the cheapest

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "strategies/shadow/effect_losses.h"
 #include "strategies/shadow/effect_planner.h"
 #include "strategies/shadow/shadow_config.h"
@@ -70,11 +71,7 @@ std::unique_ptr<ShadowMethod> make_shadow_method(const ShadowOptions& o) {
   params.insert(params.end(), o.params.begin(), o.params.end());
   if (!o.storage.empty()) params.push_back("storage=" + o.storage);
   if (o.dsm_res) params.push_back("res=" + std::to_string(*o.dsm_res));
-  if (o.eps) {
-    char eps[64];
-    std::snprintf(eps, sizeof eps, "eps=%.9g", *o.eps);
-    params.push_back(eps);
-  }
+  if (o.eps) params.push_back("eps=" + significant_text(*o.eps, 9));
   if (!o.filter.empty()) params.push_back("filter=" + o.filter);
   if (!o.voxelizer.empty()) params.push_back("voxelizer=" + o.voxelizer);
   return shadow_registry().create(name, StrategyParams::parse(params));

@@ -1,17 +1,14 @@
-// `deepvox advise SCENE [--error E] [--image-error F | --speed-only] [--budget-ms T] [--memory-mb
-// M] [--backend cpu|cuda]
-//  [--out DIR] [--width W --height H] [--probes N] [--max-evaluations K] [--exhaustive]`:
-// the cheapest shadow configuration of the user's scene within an error bound in every stratum
-// of its probe points (lit, umbra, partial, media) and, unless --speed-only, an image edge error
-// no worse than the default configuration's (or --image-error F), measured against the exact
-// oracle (experiments/harness/advise.h): progress per measurement
-// on stderr, the Pareto front and the verified pick on stdout, and under DIR advice.json (every
-// measurement), pick.json (a shadow config render/probe/view take with --config and suite files
-// name), front.svg (error against frame time). Ctrl-C ends the search, keeps what was measured
-// and writes the outputs from it (exit 130).
-// `deepvox advise SCENE --time CONFIG... [--rounds N]` times config files alternately.
-// `deepvox advise --calibrate RUN_DIR [--model-out FILE]` regenerates the error model of
-// `--shadows auto --error-budget` from an accuracy suite run (experiments/harness/error_model.h).
+// `deepvox advise` (options: its --help, docs/cli.md): the cheapest shadow configuration of the
+// user's scene within an error bound in every stratum of its probe points (lit, umbra, partial,
+// media) and, unless --speed-only, an image edge error no worse than the default configuration's
+// (or --image-error F), measured against the exact oracle (experiments/harness/advise.h): progress
+// per measurement on stderr, the Pareto front and the verified pick on stdout, and under DIR
+// advice.json (every measurement), pick.json (a shadow config render/probe/view take with --config
+// and suite files name), front.svg (error against frame time). Ctrl-C ends the search, keeps what
+// was measured and writes the outputs from it (exit 130). With --time it times config files
+// alternately, so that drift between them cancels; with --calibrate it regenerates the error model
+// of `--shadows auto --error-budget` from an accuracy suite run
+// (experiments/harness/error_model.h).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>

@@ -1,6 +1,5 @@
-// `deepvox dsm SCENE [--out maps.exr] [--dsm-res N] [--eps E] [--backend cpu|cuda]
-//  [--heatmap layers.png] [--stats s.json]`: generates every light's deep shadow maps (always
-// with the compact storage: the strategy does not change the functions) and exports them as
+// `deepvox dsm` (options: its --help, docs/cli.md): generates every light's deep shadow maps
+// (always with the compact storage: the strategy does not change the functions) and exports them as
 // deep EXR (render/io/deep_exr.h, full build only), as a layers-per-texel heatmap
 // (render/io/layer_heatmap.h, every build) and as generation figures with run metadata.
 #include <fstream>

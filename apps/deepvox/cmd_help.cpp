@@ -1,7 +1,6 @@
-// `deepvox help [COMMAND] [--markdown]`: one command's --help (as `deepvox COMMAND --help`), or
-// every command's, one after another; with --markdown the page docs/cli.md is (a test keeps the
-// file equal to this output, so the reference cannot drift from the options the commands really
-// take).
+// `deepvox help`: one command's --help (as `deepvox COMMAND --help`), or every command's, one after
+// another; with --markdown the page docs/cli.md is (a test keeps the file equal to this output, so
+// the reference cannot drift from the options the commands really take).
 #include <cstdio>
 #include <memory>
 #include <string>

@@ -1,5 +1,5 @@
-// `deepvox info SCENE [--json]`: what a scene holds (objects, triangles, volumes, lights with
-// their colours and units, bounds) and warnings about what will not look as a user expects.
+// `deepvox info`: what a scene holds (objects, triangles, volumes, lights with their colours and
+// units, bounds) and warnings about what will not look as a user expects.
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
@@ -9,19 +9,13 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/deepvox/commands.h"
+#include "core/number_text.h"
 #include "engine/scene/scene.h"
 #include "render/load/scene_loader.h"
 
 namespace dv::cli {
 
 namespace {
-
-// A number as %.3g prints it.
-std::string number_text(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", v);
-  return text;
-}
 
 nlohmann::json vec(const dvec3& v) {
   return {v.x, v.y, v.z};
@@ -141,9 +135,9 @@ Runner add_info(CLI::App& app) {
                 (long long)j["triangles"].get<int64_t>());
     for (const auto& o : j["objects"]) {
       // Glass shows its transmission beside its opaque part (alpha 0 alone reads as invisible).
-      std::string surface = "alpha " + number_text(o["alpha"].get<double>());
+      std::string surface = "alpha " + significant_text(o["alpha"].get<double>(), 3);
       if (o.contains("transmission"))
-        surface += "  transmission " + number_text(o["transmission"].get<double>());
+        surface += "  transmission " + significant_text(o["transmission"].get<double>(), 3);
       std::printf("  %-20s %8lld triangles  %s  interior %s\n",
                   o["name"].get<std::string>().c_str(), (long long)o["triangles"].get<int64_t>(),
                   surface.c_str(), o["interior"].get<std::string>().c_str());

@@ -1,8 +1,8 @@
-// `deepvox list [--markdown | --json]`: the registered strategies of every family with their
-// parameter tables (key, default, allowed values, description), the generators and the
-// backends; with --markdown the strategy families as the Markdown of docs/strategies.md (a test
-// holds the file to this output); with --json every strategy with its traits (plot family,
-// colour, marker, size knob) for programs such as experiments/harness/plot_suite.py.
+// `deepvox list`: the registered strategies of every family with their parameter tables (key,
+// default, allowed values, description), the generators and the backends; with --markdown the
+// strategy families as the Markdown of docs/strategies.md (a test holds the file to this output);
+// with --json every strategy with its traits (plot family, colour, marker, size knob) for
+// programs such as experiments/harness/plot_suite.py.
 #include <cstdio>
 #include <memory>
 #include <string>

@@ -1,5 +1,5 @@
-// `deepvox merge DIR... [--out OUT] [--allow-missing]`: joins the result folders of one sharded
-// suite run into one folder and report (experiments/harness/merge.h).
+// `deepvox merge`: joins the result folders of one sharded suite run into one folder and report
+// (experiments/harness/merge.h).
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"

@@ -1,7 +1,7 @@
-// `deepvox probe SCENE --points P.csv --out T.csv [--shadows NAME --param k=v ...] [--backend
-// cpu|cuda]` (dsm: --storage --dsm-res --eps --filter; --config FILE, --error-budget E):
-// the transmittance of every light at every point. Points whose answer raised an oracle flag
-// are still written (nothing computed is lost), reported, and make the exit code 3.
+// `deepvox probe` (options: its --help, docs/cli.md; the shadow options are those of render,
+// apps/common/shadow_options.h): the transmittance of every light at every point. Points whose
+// answer raised an oracle flag are still written (nothing computed is lost), reported, and make the
+// exit code 3.
 #include <cstdio>
 
 #include "apps/common/error_budget.h"

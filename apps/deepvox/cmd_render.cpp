@@ -1,11 +1,7 @@
-// `deepvox render SCENE --out img.png [--backend cpu|cuda] [--renderer raster|raytrace]
-//  [--shadows NAME] [--stats s.json] [--frames N --orbit DEG] [--width W --height H]
-//  [--exposure EV] [--tonemap none|reinhard|aces] [--ground|--no-ground]
-//  [--view YAW,PITCH,DOLLY,PX,PY] [--config FILE] [--error-budget E]`: the rasterizing renderer
-// (or the BVH ray-walk reference) with a shadow method, the camera moved as the viewer moves it
-// (--view), PNG (exposed and tone-mapped, ACES by default so a white model under the staged key
-// light keeps its shading) or EXR (linear) out, per-frame pass timings and counters in a stats
-// JSON.
+// `deepvox render` (options: its --help, docs/cli.md): the rasterizing renderer (or the BVH
+// ray-walk reference) with a shadow method, the camera moved as the viewer moves it (--view), PNG
+// (exposed and tone-mapped, ACES by default so a white model under the staged key light keeps its
+// shading) or EXR (linear) out, per-frame pass timings and counters in a stats JSON.
 #include <filesystem>
 #include <fstream>
 #include <optional>

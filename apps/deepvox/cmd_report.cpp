@@ -1,7 +1,7 @@
-// `deepvox report DIR [RUN ...]`: (re)builds a result folder's Markdown report and plots from
-// its rows, samples, metadata and images (experiments/harness/report.h), e.g. on the host after
-// a GPU run; further result folders of the same suite file are recorded in DIR/runs.json as
-// independent runs that the findings' intervals pool.
+// `deepvox report`: (re)builds a result folder's Markdown report and plots from its rows, samples,
+// metadata and images (experiments/harness/report.h), e.g. on the host after a GPU run; further
+// result folders of the same suite file are recorded in DIR/runs.json as independent runs that the
+// findings' intervals pool.
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"

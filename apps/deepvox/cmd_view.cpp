@@ -1,6 +1,4 @@
-// `deepvox view SCENE [--backend cpu|cuda] [shadow options] [--width W --height H]
-//  [--exposure EV] [--tonemap T] [--ground|--no-ground] [--view YAW,PITCH,DOLLY,PX,PY] [--frames N]
-//  [--screenshot out.png] [--screenshot-window win.png] [--script keys.txt] [--save-prefix P]`:
+// `deepvox view` (options: its --help, docs/cli.md; shared with render where they mean the same):
 // the interactive viewer (apps/viewer), built into the full binary where GLFW and OpenGL are.
 #include "apps/common/error_budget.h"
 #include "apps/common/shadow_options.h"

@@ -1,11 +1,9 @@
-// `deepvox voxelize MESH_OR_SCENE --method NAME [--backend cpu|cuda|gl] --res 512x512x32
-//  [--bounds x0,y0,z0,x1,y1,z1] --out grid.binvox|grid.vdb [--stats stats.json] [--compare-exact]`:
-// a binary surface voxel grid of every triangle of the scene, written as binvox or as an OpenVDB
-// float grid "density" (render/io/vdb_io.h; not in the lean build), with counts,
-// pass timings and (optionally) the metrics against `exact` in the stats JSON. The work itself
-// is run_voxelize_job (apps/deepvox/voxelize_job.h). In the full binary `--backend gl`
-// runs the OpenGL implementations (gl/gl_voxelizers.h, registered by main.cpp), headless
-// through EGL.
+// `deepvox voxelize` (options: its --help, docs/cli.md): a binary surface voxel grid of every
+// triangle of the scene, written as binvox or as an OpenVDB float grid "density"
+// (render/io/vdb_io.h; not in the lean build), with counts, pass timings and (optionally) the
+// metrics against `exact` in the stats JSON. The work itself is run_voxelize_job
+// (apps/deepvox/voxelize_job.h). In the full binary `--backend gl` runs the OpenGL implementations
+// (gl/gl_voxelizers.h, registered by main.cpp), headless through EGL.
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"

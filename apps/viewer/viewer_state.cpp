@@ -2,7 +2,6 @@
 #include "apps/viewer/viewer_state.h"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +9,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "cuda/buffer.h"
 #include "engine/raster/raster_projection.h"
 #include "engine/scene/scene_view.h"
@@ -35,27 +35,11 @@ std::string next_name(const std::vector<std::string>& names, const std::string& 
   return names.empty() ? current : names.front();
 }
 
-std::string number_text(double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
-
-// The shortest decimal that reads back as the same float: how a float parameter such as eps
-// (stored as float by the method) is written into a command line and halved or doubled.
-std::string float_text(float value) {
-  char text[64];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  return std::string(text, end);
-}
-
 // A JSON value for the panel: numbers with 4 significant digits, strings unquoted.
 std::string short_text(const nlohmann::json& value) {
   if (value.is_string()) return value.get<std::string>();
   if (!value.is_number_float()) return value.dump();
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value.get<double>());
-  return text;
+  return significant_text(value.get<double>(), 4);
 }
 
 }  // namespace
@@ -124,7 +108,7 @@ KeyAction ViewerState::key(const std::string& name) {
     if (!params.contains("eps") || !params["eps"].is_number()) {
       message_ = method_->name() + " has no eps parameter";
     } else {
-      const double eps = std::stod(float_text(params["eps"].get<float>()));
+      const double eps = std::stod(exact_text(params["eps"].get<float>()));
       next.eps = std::clamp(name == "[" ? eps * 0.5 : eps * 2.0, 0.0, 4.0);
       try_shadows(next);
     }
@@ -352,18 +336,18 @@ std::string ViewerState::render_command(const std::string& out) const {
   for (const std::string& p : shadows_.params) cmd += " --param " + p;
   if (!shadows_.storage.empty()) cmd += " --storage " + shadows_.storage;
   if (shadows_.dsm_res) cmd += " --dsm-res " + std::to_string(*shadows_.dsm_res);
-  if (shadows_.eps) cmd += " --eps " + float_text(float(*shadows_.eps));
+  if (shadows_.eps) cmd += " --eps " + exact_text(float(*shadows_.eps));
   if (!shadows_.filter.empty()) cmd += " --filter " + shadows_.filter;
   if (!shadows_.voxelizer.empty()) cmd += " --voxelizer " + shadows_.voxelizer;
   cmd +=
       " --width " + std::to_string(camera_.width) + " --height " + std::to_string(camera_.height);
-  if (setup_.exposure) cmd += " --exposure " + number_text(*setup_.exposure);
+  if (setup_.exposure) cmd += " --exposure " + exact_text(*setup_.exposure);
   if (setup_.tonemap != ViewerSetup{}.tonemap) cmd += " --tonemap " + setup_.tonemap;
   cmd += cli::staging_flag(setup_.staging);
   const CameraMove& m = move_;
   if (m.yaw_deg != 0.0 || m.pitch_deg != 0.0 || m.dolly != 1.0 || m.pan_x != 0.0 || m.pan_y != 0.0)
-    cmd += " --view " + number_text(m.yaw_deg) + "," + number_text(m.pitch_deg) + "," +
-           number_text(m.dolly) + "," + number_text(m.pan_x) + "," + number_text(m.pan_y);
+    cmd += " --view " + exact_text(m.yaw_deg) + "," + exact_text(m.pitch_deg) + "," +
+           exact_text(m.dolly) + "," + exact_text(m.pan_x) + "," + exact_text(m.pan_y);
   return cmd;
 }
 

@@ -19,6 +19,7 @@
 #include "apps/viewer/viewer_keys.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/number_text.h"
 #include "gl/gl_program.h"
 #include "render/io/display_encoding.h"
 #include "render/io/image.h"
@@ -316,12 +317,6 @@ class Window {
   std::unique_ptr<ImageTexture> heat_, legend_;
 };
 
-std::string scale_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
-
 // The error view's legend, bottom right: its colour bar over 0 .. max with three numbers.
 void draw_error_legend(Window& window, const ViewerState& state, const TransmittanceError& e) {
   const Image& bar = state.error_legend();
@@ -329,7 +324,7 @@ void draw_error_legend(Window& window, const ViewerState& state, const Transmitt
   const int x = state.width() - w - 4, y = state.height() - h - 16;
   window.draw_text("|T - T_oracle|", x, y - 12);
   window.draw_texture(window.upload_legend(bar), x, y, w, h);
-  const std::string mid = scale_number(0.5 * e.max), max = scale_number(e.max);
+  const std::string mid = significant_text(0.5 * e.max, 3), max = significant_text(e.max, 3);
   window.draw_text("0", x, y + h + 2);
   window.draw_text(mid, x + w / 2 - 3 * int(mid.size()), y + h + 2);
   window.draw_text(max, x + w - 6 * int(max.size()), y + h + 2);

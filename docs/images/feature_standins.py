@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes glTF stand-ins built like the Khronos sample models (which cannot be committed here)
-for the effects of issue 39: glass that colours its shadow, alpha-masked textures, a tinted
+for the glass and texture effects: glass that colours its shadow, alpha-masked textures, a tinted
 medium behind glass, textured and normal-mapped models. Geometry and textures are generated
 here (pure standard library, look_standins.py's Gltf writer, PNG textures as data: URIs).
 
@@ -30,7 +30,7 @@ Sample-model stand-ins for the thumbnails (docs/images/look_thumbnails.py --set 
   duck.gltf                   like Duck: a yellow textured duck with a camera in the file looking
                               from behind it (-z), no lights.
 
-Shadow stand-ins of issue 50's thumbnails and measurements (look_thumbnails.py --set shadows),
+Shadow stand-ins of the shadow thumbnails and measurements (look_thumbnails.py --set shadows),
 all without lights, so that `render` stages them (ground, key and fill):
 
   textured-glass-pane.gltf    like StainedGlassLamp's panes: a horizontal glass pane
@@ -39,7 +39,11 @@ all without lights, so that `render` stages them (ground, key and fill):
   glass-cube-contact.gltf     a red glass cube (transmission 1) resting on the staged ground;
   blend-quad-contact.gltf     a BLEND quad of alpha 0.5 lying on the staged ground;
   transmission-cloth.gltf     like TransmissionTest's cloth: a wavy, folded checker cloth under a
-                              blue glass ellipsoid and a red glass sphere.
+                              blue glass ellipsoid and a red glass sphere;
+  translucent-cloth.gltf      the same with a translucent cloth (BLEND, alpha 0.6): grey layers
+                              behind the tinted glass in the same texels;
+  glass-over-translucent.gltf a blue glass pane (transmission 1) at y = 1 over grey BLEND quads
+                              (alpha 0.6) at y = 0.5 and y = 0: the simplest such texel.
 
 Usage: feature_standins.py [OUT_DIR]            the feature scenes (default experiments/assets/gltf)
        feature_standins.py --samples OUT_DIR    the sample-model stand-ins
@@ -350,10 +354,11 @@ def blend_quad_contact(path):
     g.write(path)
 
 
-def transmission_cloth(path, cells=96):
+def transmission_cloth(path, cells=96, cloth_alpha=1.0):
     """A cloth draped in folds (height a sum of waves across x and z; steep enough that folds
     shadow their neighbours under the staged key) in 8 x 8 checker squares, two meshes with
-    smooth vertex normals; a blue glass ellipsoid and a red glass sphere above it."""
+    smooth vertex normals; a blue glass ellipsoid and a red glass sphere above it. Below 1,
+    cloth_alpha makes the cloth translucent (alphaMode BLEND, double-sided)."""
     g = Gltf()
     size = 1.6
     k1, k2 = 2 * math.pi / 0.5, 2 * math.pi / 0.9
@@ -376,8 +381,10 @@ def transmission_cloth(path, cells=96):
                 pos.append((x, height(x, z), z))
                 normals.append(normal(x, z))
             tris += [(n, n + 2, n + 1), (n, n + 3, n + 2)]
+    blend = {"alphaMode": "BLEND", "doubleSided": True} if cloth_alpha < 1.0 else None
     for (pos, normals, tris), colour in zip(parts, ((0.8, 0.8, 0.8), (0.15, 0.15, 0.2))):
-        g.node(name="cloth", mesh=g.mesh(pos, tris, g.material(colour), normals))
+        material = g.material(colour, alpha=cloth_alpha, fields=blend)
+        g.node(name="cloth", mesh=g.mesh(pos, tris, material, normals))
     blue = g.material((0.3, 0.45, 1.0), roughness=0.05,
                       KHR_materials_transmission={"transmissionFactor": 1.0})
     red = g.material((1.0, 0.25, 0.25), roughness=0.05,
@@ -389,6 +396,21 @@ def transmission_cloth(path, cells=96):
     g.write(path)
 
 
+def glass_over_translucent(path):
+    g = Gltf()
+    blue = g.material((0.3, 0.45, 1.0), roughness=0.05,
+                      KHR_materials_transmission={"transmissionFactor": 1.0})
+    grey = g.material((0.8, 0.8, 0.8), alpha=0.6, fields={"alphaMode": "BLEND",
+                                                          "doubleSided": True})
+
+    def level(y, half):
+        return [(-half, y, -half), (half, y, -half), (half, y, half), (-half, y, half)]
+    g.node(name="blue glass", mesh=g.mesh(level(1.0, 0.6), [(0, 2, 1), (0, 3, 2)], blue))
+    for name, y in (("upper grey", 0.5), ("lower grey", 0.0)):
+        g.node(name=name, mesh=g.mesh(level(y, 1.0), [(0, 2, 1), (0, 3, 2)], grey))
+    g.write(path)
+
+
 FEATURES = {"red-glass-slab.gltf": red_glass_slab, "alpha-mask-quad.gltf": alpha_mask_quad,
             "tinted-medium-glass.gltf": tinted_medium_glass,
             "textured-torus.gltf": textured_torus}
@@ -397,7 +419,9 @@ SAMPLES = {"transmission-test.gltf": transmission, "glass-vase-flowers.gltf": gl
 SHADOWS = {"textured-glass-pane.gltf": textured_glass_pane,
            "glass-cube-contact.gltf": glass_cube_contact,
            "blend-quad-contact.gltf": blend_quad_contact,
-           "transmission-cloth.gltf": transmission_cloth}
+           "transmission-cloth.gltf": transmission_cloth,
+           "translucent-cloth.gltf": lambda path: transmission_cloth(path, cloth_alpha=0.6),
+           "glass-over-translucent.gltf": glass_over_translucent}
 
 
 def write_all(scenes, out):

@@ -9,11 +9,12 @@ background. --size 640x480 measures at the default resolution. Two sets:
           defaults; after: this tree's binary at its defaults (the bunny with --ground, a
           flag the old binary lacks);
   --set samples: the sample-model stand-ins of feature_standins.py (TransmissionTest,
-          GlassVaseFlowers, DamagedHelmet, Duck), both binaries at their defaults (issue 39:
+          GlassVaseFlowers, DamagedHelmet, Duck), both binaries at their defaults (
           before = the code before it, after = this tree);
   --set shadows: the shadow stand-ins of feature_standins.py (a glass pane coloured by its
           texture, a red glass cube and a BLEND quad resting on the ground, a folded cloth under
-          glass), both binaries at their defaults (issue 50).
+          glass, opaque and translucent, a glass pane over grey BLEND quads), both binaries at
+          their defaults.
 
 Usage: look_thumbnails.py BEFORE_DEEPVOX AFTER_DEEPVOX [--set looks|samples|shadows] [--size WxH]
                           [--out docs/images]

@@ -2,7 +2,7 @@
 """Measures how far a shadow method's image is from the exact oracle's: renders SCENE with
 `--shadows reference` and then once per given flag set (at `render`'s defaults plus those
 flags), and prints, per flag set, the share of pixels where some channel differs from the
-reference by more than 8/255 (and by more than 2/255). This is the number issue 50 quotes for
+reference by more than 8/255 (and by more than 2/255). This is the number the docs quote for
 TransmissionTest's cloth (docs/images/feature_standins.py --shadows writes a stand-in).
 
 Usage: shadow_pixel_error.py DEEPVOX SCENE [--size WxH] [--keep DIR] [--] "FLAGS" ["FLAGS" ...]

@@ -5,6 +5,7 @@
 
 #include "cuda/pass_timer.h"
 #include "engine/dsm/precompressed_table.h"
+#include "engine/raster/fitted_light_faces.h"
 #include "engine/raster/fragment_walk.h"
 #include "engine/raster/tile_list_sets.h"
 
@@ -29,9 +30,10 @@ DsmGeneration::DsmGeneration(const SceneData& scene, Backend backend,
     : backend_(backend) {
   const int res = clusters ? clusters->resolution : options.resolution;
   const SceneView& s = scene.view();
-  layout_ = clusters ? clusters->layout
-                     : light_map_layout(mapped_lights(scene.host_lights(), options.light), s.bounds,
-                                        s.diagonal, res);
+  layout_ = clusters
+                ? clusters->layout
+                : fitted_light_map_layout(mapped_lights(scene.host_lights(), options.light),
+                                          s.bounds, scene.host_object_bounds(), s.diagonal, res);
   const Memory memory = memory_of(backend);
   if (clusters) {
     object_masks_ = Buffer<uint32_t>(memory, clusters->object_masks, "dsm cluster object masks");

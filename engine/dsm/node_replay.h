@@ -2,8 +2,8 @@
 // sizes what a write pass then fills: compact, blocked, chunked, moments, fourier, occupancy).
 // The first pass keeps each texel's compressed nodes in scratch chunks as the compressor emits
 // them; the write pass replays them into the storage's sink instead of walking the texel's ray
-// through the scene again. The walk is what generation costs (a pass of about 0.58 ms at 1024^2
-// on an H200, twice in a compact generation of 1.4 ms); a replay is a copy. The compressor's
+// through the scene again. The walk is what generation costs (most of a pass, and a two-pass
+// storage would pay it twice); a replay is only a copy. The compressor's
 // output does not depend on what its sink takes (engine/dsm/visibility_compressor.h), so a replayed
 // texel gets the very nodes and record that a second walk at the same eps would give.
 //
@@ -13,10 +13,10 @@
 // (neighbouring blocks in different stripes): one counter made the CPU threads take turns on its
 // cache line. A texel that finds its stripe full is listed as lost and walked again by a kernel
 // of its own after the replay (strategies/storage/replay_write.h): a short pool costs time, never
-// nodes. The first pass is slower than the counting pass it replaces (0.74 against 0.57 ms at
-// 1024^2 on an H200; results/perf/rounds/09-dsm-node-replay): its node stores cost it, kept in a
-// local array or written to the chunks alike (0.61 ms without them); an out-of-line keep made
-// it 2.3 ms. Host and device code; strategies/storage/node_replay_scratch.h owns the buffers.
+// nodes. The first pass is slower than the counting pass it replaces, by its node stores (kept
+// in a local array or written to the chunks alike; results/perf/rounds/09-dsm-node-replay has the
+// times), and the keep stays inline: an out-of-line call made the pass several times slower.
+// Host and device code; strategies/storage/node_replay_scratch.h owns the buffers.
 #pragma once
 
 #include <cstdint>
@@ -147,8 +147,8 @@ struct NodeReplay {
   // Write pass: texel t's function into `sink`, as g.generate(t, eps, sink) gives it, eps being
   // the first pass's. kWalk: walked again (a lost texel, or every texel of an inactive replay);
   // else replayed (a kept texel). Two instantiations, so that the replaying kernel does not carry
-  // the walk's code: with it, its registers and stack made compact's write pass 0.17 ms against
-  // 0.04 (results/perf/rounds/10-replay-without-walk). Reads only what the first pass wrote, so a
+  // the walk's code: with it, its registers and stack made compact's write pass several times
+  // slower (results/perf/rounds/10-replay-without-walk). Reads only what the first pass wrote, so a
   // write pass may run again (chunked's retries).
   template <bool kWalk, class Sink>
   DV_HD DsmTexelResult<Sink> generate(const DsmGenerator& g, const DsmTexel& t, float eps,

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "engine/raster/fitted_light_faces.h"
+
 namespace dv {
 
 namespace {
@@ -11,7 +13,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::vector<ShadowFace> light_map_faces(const LightView& l, const Aabb& bounds, double diagonal,
                                         int res) {
-  const double near_min = 1e-4 * diagonal + 1e-9;
+  const double near_min = light_map_near(diagonal);
   std::vector<ShadowFace> faces;
   auto perspective = [&](const dvec3& dir, const dvec3& up, double fov) {
     const double far = fit_far_plane(l.position, dir, bounds, near_min);
@@ -28,27 +30,17 @@ std::vector<ShadowFace> light_map_faces(const LightView& l, const Aabb& bounds, 
   } else {
     // Orthographic box around the casters: centred on the bounds, as wide as their sphere.
     const double radius = 0.5 * diagonal + 1e-9;
-    const dvec3 eye = bounds.center() - l.direction * (radius + 2.0 * near_min);
-    faces.push_back(
-        {make_orthographic_projection(eye, l.direction, dvec3(0, 1, 0), radius, radius, near_min,
-                                      2.0 * radius + 3.0 * near_min, res, res),
-         eye + l.direction * near_min, l.direction, true, 2.0 * radius / res, 0});
+    faces.push_back(orthographic_light_face(l, bounds.center(), radius, bounds.center(), radius,
+                                            diagonal, res));
   }
   return faces;
 }
 
 LightMapLayout light_map_layout(const std::vector<LightView>& lights, const Aabb& bounds,
                                 double diagonal, int res) {
-  LightMapLayout layout;
-  layout.texels_per_face = int64_t(res) * res;
-  for (const LightView& l : lights) {
-    const std::vector<ShadowFace> f = light_map_faces(l, bounds, diagonal, res);
-    layout.lights.push_back({int32_t(layout.faces.size()), int32_t(f.size())});
-    layout.faces.insert(layout.faces.end(), f.begin(), f.end());
-  }
-  for (size_t i = 0; i < layout.faces.size(); ++i)
-    layout.faces[i].offset = int64_t(i) * layout.texels_per_face;
-  return layout;
+  std::vector<std::vector<ShadowFace>> per_light;
+  for (const LightView& l : lights) per_light.push_back(light_map_faces(l, bounds, diagonal, res));
+  return layout_light_faces(per_light, res);
 }
 
 std::vector<LightView> mapped_lights(const std::vector<LightView>& lights, int light) {

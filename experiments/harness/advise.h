@@ -1,4 +1,4 @@
-// `deepvox advise` as a library (issue 41): on the user's scene, the coarse-to-fine search
+// `deepvox advise` as a library: on the user's scene, the coarse-to-fine search
 // (advise_search.h) over shadow configurations measured against the exact oracle
 // (advise_measure.h), the Pareto front, the cheapest configuration that meets the error bound
 // and the budgets (the near-cheapest candidates timed again in interleaved rounds, so that

@@ -1,4 +1,4 @@
-// How `deepvox advise` measures one shadow configuration on the user's scene (issue 41), with
+// How `deepvox advise` measures one shadow configuration on the user's scene, with
 // the suite harness's own pieces (SceneCache's stratified probes with the exact oracle and
 // reference render, shadow_measure.h's timed repetitions and memory figure, image error): per
 // stratum of the probe points (probe_strata.h: lit, umbra, partial, media; camera-visible first,

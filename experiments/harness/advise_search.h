@@ -1,4 +1,4 @@
-// The search of `deepvox advise` (issue 41), independent of how a configuration is measured:
+// The search of `deepvox advise`, independent of how a configuration is measured:
 // the space of shadow configurations (per family a method with fixed parameters and ordered
 // axes, coarse to fine: resolution, eps, filter, clusters, a basis storage's size), a
 // coarse-to-fine walk over it that stops a branch once it is dominated, the Pareto front of the

@@ -16,7 +16,7 @@
 #include "core/registry.h"
 #include "cuda/execute.h"
 #include "experiments/harness/rows.h"
-#include "experiments/harness/suite_file.h"
+#include "experiments/harness/run_item.h"
 
 namespace dv {
 

@@ -1,4 +1,4 @@
-// The calibrated error model behind `--shadows auto --error-budget E` (issue 41): what the
+// The calibrated error model behind `--shadows auto --error-budget E`: what the
 // accuracy suite measured (the camera-visible p95 of |T' - T|, frame time and bytes of every
 // dsm configuration on its scenes), with each calibration scene's statistics as its lights see
 // them, versioned in experiments/calibration/error-model.json and regenerated from a suite run

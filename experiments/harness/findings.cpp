@@ -11,6 +11,8 @@
 #include <sstream>
 #include <utility>
 
+#include "core/number_text.h"
+
 namespace dv {
 
 namespace {
@@ -32,16 +34,6 @@ bool term_matches(const std::string& term, const Row& r) {
   for (const std::string& item : words(r.params))
     if (item == term) return true;
   return false;
-}
-
-std::string number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
-
-std::string signed_number(double v) {
-  return (v >= 0 ? "+" : "") + number(v);
 }
 
 bool ends_with(const std::string& s, const std::string& tail) {
@@ -81,10 +73,10 @@ std::string pass_breakdown(const std::string& lower, const std::string& than, co
     if (largest.empty() || std::abs(d) > std::abs(largest_diff)) largest = p, largest_diff = d;
   }
   std::string out =
-      "; largest pass difference " + largest + " " + signed_number(largest_diff) + " ms";
+      "; largest pass difference " + largest + " " + signed_text(largest_diff, 3) + " ms";
   const double outside = difference - sum;
   if (std::abs(outside) > std::abs(largest_diff))
-    out += "; " + signed_number(outside) +
+    out += "; " + signed_text(outside, 3) +
            " ms lies outside the timed passes (allocation, host work, synchronisation)";
   return out;
 }
@@ -153,7 +145,7 @@ std::string lossy_rows(const std::vector<int>& items, const std::vector<RunView>
           named += (named.empty() ? "" : ", ") + r->metric + " = " +
                    (r->value == std::floor(r->value) && r->value < 1e15
                         ? std::to_string(int64_t(r->value))
-                        : number(r->value));
+                        : significant_text(r->value, 3));
     }
     if (named.empty()) continue;
     if (first.empty()) first = "item " + std::to_string(index) + ": " + named;
@@ -364,9 +356,11 @@ FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>
 }  // namespace
 
 std::string interval_text(const EffectInterval& iv) {
-  if (iv.ratio) return number(iv.effect) + "x [" + number(iv.low) + ", " + number(iv.high) + "]";
-  return signed_number(iv.effect) + " [" + signed_number(iv.low) + ", " + signed_number(iv.high) +
-         "]";
+  if (iv.ratio)
+    return significant_text(iv.effect, 3) + "x [" + significant_text(iv.low, 3) + ", " +
+           significant_text(iv.high, 3) + "]";
+  return signed_text(iv.effect, 3) + " [" + signed_text(iv.low, 3) + ", " +
+         signed_text(iv.high, 3) + "]";
 }
 
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
@@ -487,8 +481,8 @@ std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
     r.explanation = difference == 0.0
                         ? "both sides equal"
                         : "first side " + std::string(difference < 0.0 ? "lower" : "higher") +
-                              " by " + number(std::abs(difference));
-    if (c.second != 0.0) r.explanation += " (" + number(c.first / c.second) + "x)";
+                              " by " + significant_text(std::abs(difference), 3);
+    if (c.second != 0.0) r.explanation += " (" + significant_text(c.first / c.second, 3) + "x)";
     if (f["lower"][1] == f["than"][1]) {
       // The passes are read from the first run's rows: so is the total they split.
       const double rows_difference =

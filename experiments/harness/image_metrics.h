@@ -10,7 +10,7 @@
 // and the difference of the two images' edge strengths (Sobel gradient magnitude of the 8-bit
 // sRGB luminance, divided by 4 so a unit step reads 1), averaged over the image; 0 for equal
 // images, at most 1.
-// The RMSE also comes binned by view depth (issue 38: is a method's shadow better near the
+// The RMSE also comes binned by view depth (is a method's shadow better near the
 // camera, where the image has its large texels?), the depth of the surface each pixel sees.
 #pragma once
 

@@ -4,7 +4,7 @@
 // (uniform in the world box of an object with an interior, kept when the point is inside some
 // medium by the fragment walk's media_containing). The same seed gives the same points on every
 // machine (own uniform from mt19937_64, no std distributions).
-// The third class, `visible`, weights the error as the image does (issue 38): the surface points
+// The third class, `visible`, weights the error as the image does: the surface points
 // the camera's pixels see (engine/raster/visible_surface.h: the pixel-centre ray's nearest
 // surface with alpha > 0), pixels drawn uniformly without replacement among those that see one.
 // Medium points along the camera rays are left out on purpose: a pixel's medium contribution is

@@ -7,6 +7,7 @@
 
 #include "engine/oracle/transmittance.h"
 #include "engine/raster/raster_projection.h"
+#include "engine/raster/shadow_receiver.h"
 #include "engine/scene/ray_query.h"
 #include "engine/scene/texture_sampling.h"
 #include "experiments/harness/error_summary.h"
@@ -28,8 +29,8 @@ constexpr uint64_t kLightViewSeedStride = 7919;
 
 class Builder {
  public:
-  Builder(const SceneData& host, const StrataSettings& s, const Oracle& oracle)
-      : host_(host), settings_(s), oracle_(oracle) {
+  Builder(const SceneData& host, const dvec3& eye, const StrataSettings& s, const Oracle& oracle)
+      : host_(host), eye_(eye), settings_(s), oracle_(oracle) {
     out_.light_count = int(host.host_lights().size());
     out_.stratum_min = s.stratum_min;
   }
@@ -56,6 +57,8 @@ class Builder {
         LightSegment segment;
         if (!make_light_segment(host_.view(), host_.host_lights()[l], points[p], segment))
           continue;  // outside a spot light's cone: T = 0 by the cone, no shadow
+        if (source != ProbeSource::medium && faces_away(host_.host_lights()[l], segment, points[p]))
+          continue;  // the light cannot reach the surface's seen side: its T is never used
         const double exact = a.transmittance[p * lights + l];
         const Stratum s = source == ProbeSource::medium ? Stratum::media : surface_stratum(exact);
         if (wanted[size_t(s)]) kept.push_back({uint32_t(out_.points.size()), uint16_t(l), s});
@@ -79,7 +82,18 @@ class Builder {
  private:
   bool short_stratum(Stratum s) const { return out_.count(s) < settings_.stratum_min; }
 
+  // Whether the surface at `p`, on the side the camera sees, faces away from the light (the
+  // renderer's n . l <= 0: no direct light whatever the transmittance), judged by the geometric
+  // normal of the surface the shadow lookup finds there.
+  bool faces_away(const LightView& light, const LightSegment& segment, const dvec3& p) const {
+    dvec3 n = probe_receiver(host_.view(), light, p).normal;
+    if (glm::dot(n, n) == 0.0) return false;
+    if (glm::dot(n, eye_ - p) < 0.0) n = -n;
+    return glm::dot(n, -segment.dir) <= 0.0;
+  }
+
   const SceneData& host_;
+  dvec3 eye_;
   StrataSettings settings_;
   const Oracle& oracle_;
   StratifiedProbes out_;
@@ -166,7 +180,7 @@ std::string StratifiedProbes::counts_text() const {
 StratifiedProbes make_stratified_probes(const Scene& scene, const SceneData& host,
                                         const VisibleSurface& sight, const Camera& camera,
                                         bool media, const StrataSettings& s, const Oracle& oracle) {
-  Builder builder(host, s, oracle);
+  Builder builder(host, camera.position, s, oracle);
   // 1 and 2: the camera's pixels in one uniform draw, the first ones whole.
   const std::vector<dvec3> seen =
       make_visible_probe_points(sight, sight.width * sight.height, s.seed).points;

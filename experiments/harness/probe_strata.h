@@ -3,7 +3,10 @@
 // view they cover. A sample is one (point, light) pair; its stratum: lit (T = 1), umbra
 // (T < kUmbraTransmittance), partial (in between: translucent casters, media, edges) for a
 // surface point, media for a point inside a medium; a sample outside a spot light's cone (T = 0
-// by the cone, not a shadow) is in none. The points come, in this order:
+// by the cone, not a shadow) is in none, nor is a surface sample whose seen side faces away from
+// the light (the renderer's n . l <= 0: its transmittance is never used; where shadow methods
+// answer such back faces differently from the oracle, counting them put every method at p95 1). The
+// points come, in this order:
 //  1. the camera-visible surface points (probe_points.h's `visible` draw, all its samples);
 //  2. while a surface stratum (lit, umbra, partial) holds fewer than `stratum_min` samples, more
 //     of the pixels the camera sees, in the same uniform draw, keeping only samples of the short

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "core/number_text.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/findings.h"
@@ -29,18 +30,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string format_value(double v) {
-  char buf[40];
-  if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15)
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-  else
-    std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-
 std::string cell(const nlohmann::json& v) {
   if (v.is_string()) return v.get<std::string>();
-  if (v.is_number()) return format_value(v.get<double>());
+  if (v.is_number()) return table_text(v.get<double>(), 4);
   if (v.is_null()) return "–";
   if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number())
     return cell(v[0]) + "–" + cell(v[1]);  // a range the paper prints ("2–3" fps)
@@ -142,7 +134,7 @@ std::string our_cell(const Json& map, size_t row, size_t column,
   Column metric;
   if (!cell_selection(map, row, column, selector, metric)) return "";
   const SelectionMean m = selection_mean(selector, metric, items);
-  return m.items ? format_value(m.mean) : "";
+  return m.items ? table_text(m.mean, 4) : "";
 }
 
 // The shape table of a mapped paper table with a "shape" entry (suite-format.md): the paper's
@@ -184,10 +176,10 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
     if (c.has_interval)
       ours = interval_text(c.interval);
     else if (c.first_items && c.second_items && (difference || c.second != 0.0))
-      ours =
-          (difference ? format_value(c.first - c.second) : format_value(c.first / c.second) + "x") +
-          ", " + c.verdict;
-    body.push_back({what, std::isnan(paper) ? "–" : format_value(paper) + (difference ? "" : "x"),
+      ours = (difference ? table_text(c.first - c.second, 4)
+                         : table_text(c.first / c.second, 4) + "x") +
+             ", " + c.verdict;
+    body.push_back({what, std::isnan(paper) ? "–" : table_text(paper, 4) + (difference ? "" : "x"),
                     ours, c.basis.empty() ? "-" : c.basis});
   };
   const auto pairs = [&](const char* key, bool of_rows) {
@@ -231,7 +223,7 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
      << (from_fps ? ", its rates as times (1000 / fps)" : "")
      << (shape.contains("baseline")
              ? "; overhead above the no-shadow frame: the paper's " +
-                   format_value(shape["baseline"]["paper"].get<double>()) + " ms (" +
+                   table_text(shape["baseline"]["paper"].get<double>(), 4) + " ms (" +
                    shape["baseline"].value("source", std::string("paper")) + ") against ours, `" +
                    shape["baseline"]["selector"].get<std::string>() + "`"
              : std::string())
@@ -332,9 +324,9 @@ void write_findings(std::ostream& md, const ExperimentSpec& e, const std::vector
         "step of its sweep):\n\n";
   std::vector<std::vector<std::string>> body;
   for (const FindingResult& f : results)
-    body.push_back({f.claim, f.lower_text, f.lower_items ? format_value(f.lower) : "-",
+    body.push_back({f.claim, f.lower_text, f.lower_items ? table_text(f.lower, 4) : "-",
                     f.than_text.empty() ? "-" : f.than_text,
-                    f.than_items ? format_value(f.than) : "-", f.effect.empty() ? "-" : f.effect,
+                    f.than_items ? table_text(f.than, 4) : "-", f.effect.empty() ? "-" : f.effect,
                     f.basis.empty() ? "-" : f.basis, f.verdict, f.explanation});
   write_table(md,
               {"claim", "ours (lower?)", "value", "than", "value", "effect [95 % interval]",
@@ -373,7 +365,7 @@ void write_pareto(std::ostream& md, const ExperimentSpec& e,
         std::vector<std::vector<std::string>> body;
         for (size_t i : front)
           body.push_back(
-              {points[i].label, format_value(points[i].cost), format_value(points[i].error)});
+              {points[i].label, table_text(points[i].cost, 4), table_text(points[i].error, 4)});
         write_table(md, {"strategy and params", cost, error}, body);
         md << pareto_regimes(points, front, cost, error) << "\n\n";
       }
@@ -443,7 +435,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     const Row* skipped = find_row(rows, {"skipped", "value"});
     for (const Column& c : columns) {
       const Row* r = find_row(rows, c);
-      line.push_back(failed ? "failed" : skipped ? "skipped" : r ? format_value(r->value) : "-");
+      line.push_back(failed ? "failed" : skipped ? "skipped" : r ? table_text(r->value, 4) : "-");
     }
     body.push_back(std::move(line));
   }

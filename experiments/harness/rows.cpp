@@ -2,12 +2,12 @@
 #include "experiments/harness/rows.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "experiments/harness/durable_file.h"
 
 namespace dv {
@@ -22,16 +22,6 @@ std::string quoted(const std::string& field) {
   std::string out = "\"";
   for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
-}
-
-// Shortest text that reads back as the same double.
-std::string number_text(double v) {
-  char buf[40];
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
 }
 
 // Splits one record; `in` supplies continuation lines of quoted fields with line breaks.
@@ -78,7 +68,7 @@ std::string rows_csv_text(const std::vector<Row>& rows) {
   for (const Row& r : rows)
     out << quoted(r.suite) << "," << r.item << "," << quoted(r.experiment) << "," << quoted(r.kind)
         << "," << quoted(r.scene) << "," << quoted(r.strategy) << "," << quoted(r.params) << ","
-        << quoted(r.metric) << "," << quoted(r.stat) << "," << number_text(r.value) << ","
+        << quoted(r.metric) << "," << quoted(r.stat) << "," << exact_text(r.value) << ","
         << quoted(r.unit) << "," << quoted(r.note) << "\n";
   return out.str();
 }

@@ -188,6 +188,78 @@ RunJournal RunJournal::reopen(const fs::path& dir, RunState& state) {
   return j;
 }
 
+std::string RunJournal::resumed_suite_file(const fs::path& dir) {
+  if (dir.empty())
+    throw InputError("--resume", "give the suite (name or file), or the folder to resume");
+  const std::string file = read_run_state(dir).meta.value("suite_file", "");
+  if (!fs::is_regular_file(file))
+    throw InputError(dir.string(), "its suite file " + file + " is gone; give the suite file");
+  return file;
+}
+
+namespace {
+
+std::string option_text(const Json& value) {
+  return value.is_string() ? value.get<std::string>() : value.dump();
+}
+
+// InputError when `r` may not resume the folder `dir` whose meta.json is `meta`; `forced` gets
+// what differs but --force allows.
+void check_resumable(const JournalRequest& r, const fs::path& dir, const Json& meta,
+                     std::vector<std::string>& forced) {
+  if (meta.value("suite", "") != r.suite)
+    throw InputError(dir.string(), "a run of suite '" + meta.value("suite", "") + "', not of '" +
+                                       r.suite + "' (" + r.suite_file + ")");
+  std::string problems;
+  if (meta.value("suite_hash", "") != r.suite_hash) {
+    forced.push_back("suite file");
+    problems += "the suite file differs (the folder ran " + meta.value("suite_file", "") +
+                " with hash " + meta.value("suite_hash", "") + ", " + r.suite_file + " has hash " +
+                r.suite_hash + ")";
+  }
+  const std::string folder_sha = meta["run"].value("git_sha", "");
+  if (folder_sha != r.git_sha) {
+    forced.push_back("commit");
+    problems += std::string(problems.empty() ? "" : "; ") + "the commit differs (the folder ran " +
+                folder_sha + ", this deepvox is " + r.git_sha + ")";
+  }
+  if (!forced.empty() && !r.force)
+    throw InputError(dir.string(), "cannot resume: " + problems +
+                                       "; resume with the suite file and binary it ran, or add "
+                                       "--force to mix them in one folder (its report says so)");
+  for (const JournalRequest::GivenOption& option : r.given) {
+    const Json folder = option.folder_value(meta);
+    if (option.value != folder)
+      throw InputError(option.name + " " + option_text(option.value),
+                       dir.string() + " ran with " + option.name + " " + option_text(folder) +
+                           "; leave the option out to resume it");
+  }
+}
+
+}  // namespace
+
+OpenedRun RunJournal::open_or_resume(const JournalRequest& r) {
+  OpenedRun opened;
+  if (!r.resume) {
+    opened.journal = create(r.out, r.suite, r.git_sha, r.tag, r.meta, r.suite_text, r.command);
+    return opened;
+  }
+  fs::path dir = r.resume_dir;
+  if (dir.empty()) {
+    dir = newest_unfinished_run(r.out, r.suite, r.shard_index, r.shard_count);
+    if (dir.empty())
+      throw InputError((r.out / r.suite).string(),
+                       "no unfinished run of suite '" + r.suite + "'" +
+                           (r.shard_count == 1 ? std::string()
+                                               : " shard " + std::to_string(r.shard_index) + "/" +
+                                                     std::to_string(r.shard_count)) +
+                           " to resume (start one without --resume)");
+  }
+  check_resumable(r, dir, read_run_state(dir).meta, opened.forced);
+  opened.journal = reopen(dir, opened.before);
+  return opened;
+}
+
 void RunJournal::record(int item, int attempt, const std::vector<Row>& rows,
                         const std::string& outcome, const Json& params) {
   const std::string text = rows_csv_text(rows);

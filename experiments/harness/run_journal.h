@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,37 @@ inline std::filesystem::path newest_unfinished_run(const std::filesystem::path& 
   return newest_run(out, suite, shard_index, shard_count, true);
 }
 
+// What a suite run asks of its result folder (RunJournal::open_or_resume): a new folder, or the
+// folder of a killed or stopped run to continue, checked first to be a run of the same suite,
+// suite file, commit and options.
+struct JournalRequest {
+  std::filesystem::path out;  // OUT: folders are OUT/<suite>/<date>_<sha>[-TAG]
+  std::string suite;          // the suite's name
+  std::string suite_file;     // the suite file this process runs
+  std::string suite_hash;     // its hash
+  std::string git_sha;        // this deepvox's commit
+  int shard_index = 1, shard_count = 1;
+  // A new run: the folder name's tag, its meta.json, the suite file's text and the command line.
+  std::string tag;
+  Json meta;
+  std::string suite_text, command;
+  // --resume: continue resume_dir, or without it the newest unfinished run of this suite and
+  // shard under `out`; force: even when the suite file or the commit differ.
+  bool resume = false;
+  std::filesystem::path resume_dir;
+  bool force = false;
+  // Options given again on --resume: each must say what the folder ran with, which
+  // `folder_value` reads from the folder's meta.json.
+  struct GivenOption {
+    std::string name;  // "--backend"
+    Json value;        // as given now
+    std::function<Json(const Json& meta)> folder_value;
+  };
+  std::vector<GivenOption> given;
+};
+
+struct OpenedRun;
+
 // The writing side, held for the whole run (it keeps the folder locked: a flock on
 // progress.jsonl and the lock file writer.lock, writer_lock.h).
 class RunJournal {
@@ -66,6 +98,15 @@ class RunJournal {
   // or writer.lock where the file system has no flock), reads its state and cuts rows.csv and
   // progress.jsonl back to the complete part.
   static RunJournal reopen(const std::filesystem::path& dir, RunState& state);
+  // The one door to a suite run's folder: without `resume` a new folder (create); with it the
+  // folder to continue (the given one, else the newest unfinished run of the suite and shard),
+  // checked before it is touched (a refused resume leaves it as it was): a run of the same
+  // suite, and of the same suite file and commit unless `force`, every given option equal to
+  // the folder's; then reopened. InputError naming the folder and what differs otherwise.
+  static OpenedRun open_or_resume(const JournalRequest& request);
+  // The suite file the run in `dir` ran, for a --resume DIR that names no suite; InputError when
+  // `dir` is empty or the file is gone.
+  static std::string resumed_suite_file(const std::filesystem::path& dir);
 
   const std::filesystem::path& dir() const { return dir_; }
   // Appends one item's rows, then its completion marker, each synced; ResultWriteError when
@@ -84,6 +125,12 @@ class RunJournal {
   AppendFile rows_, progress_;
   WriterLock lock_;
   int64_t rows_end_ = 0;
+};
+
+struct OpenedRun {
+  RunJournal journal;
+  RunState before;                  // the folder's complete part (empty for a new run)
+  std::vector<std::string> forced;  // what a --force resume let differ: "suite file", "commit"
 };
 
 }  // namespace dv

@@ -2,7 +2,7 @@
 // time, with the dirty flag, and at run time where git answers), build type, compiler, CPU
 // model and threads, host name, CUDA_VISIBLE_DEVICES, CUDA runtime and driver API versions, GPU
 // name and peak clocks, backend and the command line; and the machine's state a reviewer needs
-// to trust a timing (issue 38): the NVIDIA driver version, current and maximum SM and memory
+// to trust a timing: the NVIDIA driver version, current and maximum SM and memory
 // clocks, persistence and compute mode, whether other compute processes shared the GPU at the
 // start, the OS and kernel. Each of those is "unknown" where it cannot be known (no nvidia-smi,
 // a CPU-only machine). The CLI and the experiment harness share it.

@@ -46,6 +46,20 @@ struct Plan {
   int attempt = 1;
 };
 
+// What both kinds of run tell the journal about themselves.
+JournalRequest journal_request(const SuiteOptions& o, const Suite& suite, const std::string& path,
+                               const Shard& shard) {
+  JournalRequest r;
+  r.out = o.out;
+  r.suite = suite.name;
+  r.suite_file = path;
+  r.suite_hash = suite.hash;
+  r.git_sha = build_git_sha();
+  r.shard_index = shard.index;
+  r.shard_count = shard.count;
+  return r;
+}
+
 Plan new_run(const SuiteOptions& o) {
   Plan p;
   const std::string path = resolve_suite_path(o.suite);
@@ -81,102 +95,66 @@ Plan new_run(const SuiteOptions& o) {
             {"state", "running"},
             {"attempts", Json::array({attempt_entry(p.suite.hash)})},
             {"run", run_metadata(p.backend)}};
-  const std::string sha = build_git_sha();
-  const std::string tag =
-      shard.whole() ? ""
-                    : "shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
-  p.journal = RunJournal::create(o.out, p.suite.name, sha, tag, p.meta, read_file_text(path),
-                                 command_line());
+  JournalRequest r = journal_request(o, p.suite, path, shard);
+  r.tag = shard.whole()
+              ? ""
+              : "shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
+  r.meta = p.meta;
+  r.suite_text = read_file_text(path);
+  r.command = command_line();
+  p.journal = std::move(RunJournal::open_or_resume(r).journal);
   return p;
 }
 
-// The suite file to resume with: the one given, else the one the folder ran.
-std::string resume_suite_path(const SuiteOptions& o) {
-  if (!o.suite.empty()) return resolve_suite_path(o.suite);
-  if (o.resume_dir.empty())
-    throw InputError("--resume", "give the suite (name or file), or the folder to resume");
-  const Json meta = read_run_state(o.resume_dir).meta;
-  const std::string file = meta.value("suite_file", "");
-  if (!fs::is_regular_file(file))
-    throw InputError(o.resume_dir, "its suite file " + file + " is gone; give the suite file");
-  return file;
-}
-
-// An option given again on --resume must say what the folder ran with.
-void require_same_option(bool given, const Json& now, const Json& folder, const std::string& option,
-                         const fs::path& dir) {
-  if (given && now != folder)
-    throw InputError(option + " " + (now.is_string() ? now.get<std::string>() : now.dump()),
-                     dir.string() + " ran with " + option + " " +
-                         (folder.is_string() ? folder.get<std::string>() : folder.dump()) +
-                         "; leave the option out to resume it");
-}
-
 Plan resumed_run(const SuiteOptions& o) {
-  const std::string path = resume_suite_path(o);
+  const std::string path =
+      o.suite.empty() ? RunJournal::resumed_suite_file(o.resume_dir) : resolve_suite_path(o.suite);
   const Suite loaded = load_suite(path);
   const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
-  fs::path dir = o.resume_dir;
-  if (dir.empty()) {
-    dir = newest_unfinished_run(o.out, loaded.name, shard.index, shard.count);
-    if (dir.empty())
-      throw InputError((fs::path(o.out) / loaded.name).string(),
-                       "no unfinished run of suite '" + loaded.name + "'" +
-                           (shard.whole() ? std::string() : " shard " + o.shard) +
-                           " to resume (start one without --resume)");
-  }
-  // Checked before the folder is touched: a refused resume leaves it as it was.
-  const Json meta = read_run_state(dir).meta;
-  if (meta.value("suite", "") != loaded.name)
-    throw InputError(dir.string(), "a run of suite '" + meta.value("suite", "") + "', not of '" +
-                                       loaded.name + "' (" + path + ")");
-  std::vector<std::string> differ;
-  std::string problems;
-  if (meta.value("suite_hash", "") != loaded.hash) {
-    differ.push_back("suite file");
-    problems += "the suite file differs (the folder ran " + meta.value("suite_file", "") +
-                " with hash " + meta.value("suite_hash", "") + ", " + path + " has hash " +
-                loaded.hash + ")";
-  }
-  const std::string folder_sha = meta["run"].value("git_sha", "");
-  if (folder_sha != build_git_sha()) {
-    differ.push_back("commit");
-    problems += std::string(problems.empty() ? "" : "; ") + "the commit differs (the folder ran " +
-                folder_sha + ", this deepvox is " + build_git_sha() + ")";
-  }
-  if (!differ.empty() && !o.force)
-    throw InputError(dir.string(), "cannot resume: " + problems +
-                                       "; resume with the suite file and binary it ran, or add "
-                                       "--force to mix them in one folder (its report says so)");
-  const std::string backend = meta["run"].value("backend", "");
-  require_same_option(!o.backend.empty(), o.backend, backend, "--backend", dir);
-  require_same_option(o.repeat > 0, o.repeat, meta["repeat"], "--repeat", dir);
-  require_same_option(!o.only.empty(), o.only, meta["only"], "--only", dir);
-  require_same_option(o.smoke, o.smoke, meta.value("smoke", false), "--smoke", dir);
-  require_same_option(!o.shard.empty(), o.shard,
-                      std::to_string(meta["shard"].value("index", 1)) + "/" +
-                          std::to_string(meta["shard"].value("count", 1)),
-                      "--shard", dir);
+  JournalRequest r = journal_request(o, loaded, path, shard);
+  r.resume = true;
+  r.resume_dir = o.resume_dir;
+  r.force = o.force;
+  using Given = JournalRequest::GivenOption;
+  if (!o.backend.empty())
+    r.given.push_back(Given{"--backend", o.backend, [](const Json& meta) -> Json {
+                              return meta["run"].value("backend", "");
+                            }});
+  if (o.repeat > 0)
+    r.given.push_back(Given{"--repeat", o.repeat, [](const Json& meta) { return meta["repeat"]; }});
+  if (!o.only.empty())
+    r.given.push_back(Given{"--only", o.only, [](const Json& meta) { return meta["only"]; }});
+  if (o.smoke)
+    r.given.push_back(Given{"--smoke", o.smoke,
+                            [](const Json& meta) -> Json { return meta.value("smoke", false); }});
+  if (!o.shard.empty())
+    r.given.push_back(Given{"--shard", o.shard, [](const Json& meta) -> Json {
+                              return std::to_string(meta["shard"].value("index", 1)) + "/" +
+                                     std::to_string(meta["shard"].value("count", 1));
+                            }});
+  OpenedRun opened = RunJournal::open_or_resume(r);
   Plan p;
-  p.journal = RunJournal::reopen(dir, p.before);
+  p.journal = std::move(opened.journal);
+  p.before = std::move(opened.before);
+  const Json& meta = p.before.meta;
   p.suite = meta.value("smoke", false) ? smoke_suite(loaded) : loaded;
-  p.backend = parse_backend(backend);
+  p.backend = parse_backend(meta["run"].value("backend", ""));
   require_backend(p.backend);
   p.repeat = meta["repeat"].get<int>();
   std::map<int, RunItem> by_index;
   for (RunItem& item : expand_suite(p.suite)) by_index[item.index] = std::move(item);
   for (int index : p.before.missing) {
     if (!by_index.count(index))
-      throw InputError(dir.string(), "item " + std::to_string(index) +
-                                         " of the folder's plan is not in " + path +
-                                         "; it cannot be resumed with this suite file");
+      throw InputError(p.journal.dir().string(), "item " + std::to_string(index) +
+                                                     " of the folder's plan is not in " + path +
+                                                     "; it cannot be resumed with this suite file");
     p.items.push_back(by_index[index]);
   }
   p.meta = p.before.meta;
   if (p.before.finished) return p;  // nothing to run, nothing to change
   Json attempt = attempt_entry(loaded.hash);
-  if (!differ.empty()) {
-    attempt["forced"] = differ;
+  if (!opened.forced.empty()) {
+    attempt["forced"] = opened.forced;
     p.meta["mixed"] = true;
   }
   p.meta["attempts"].push_back(attempt);

@@ -416,23 +416,6 @@ void check_unique_names(const Suite& s) {
 
 }  // namespace
 
-std::string RunItem::params_text() const {
-  std::string out;
-  for (const std::string& item : param_items()) out += (out.empty() ? "" : " ") + item;
-  return out;
-}
-
-std::string RunItem::describe() const {
-  return experiment_name + ": " + strategy + (params.empty() ? "" : " " + params_text()) + " on " +
-         scene;
-}
-
-std::vector<std::string> RunItem::param_items() const {
-  std::vector<std::string> out;
-  for (const auto& [k, v] : params) out.push_back(k + "=" + v);
-  return out;
-}
-
 std::string fnv1a_hex(const std::string& bytes) {
   uint64_t h = 1469598103934665603ull;
   for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;

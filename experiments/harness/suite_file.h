@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiments/harness/run_item.h"
+
 namespace dv {
 
 // A strategy of the experiment's family by registered name, with parameters of its own (merged
@@ -63,25 +65,6 @@ struct Suite {
   std::string hash;  // FNV-1a 64 of the file's bytes, 16 hex digits
   int repeat = 3;
   std::vector<ExperimentSpec> experiments;
-};
-
-// One run of one experiment: a scene, a strategy and one point of the sweep.
-struct RunItem {
-  int index = 0;  // position in the expanded list of the whole suite
-  int experiment = 0;
-  std::string experiment_name;
-  std::string kind;
-  std::string scene;       // as written
-  std::string scene_path;  // resolved
-  std::string strategy;
-  std::map<std::string, std::string> params;  // fixed and swept together
-  std::map<std::string, std::string> settings;
-
-  // "key=value key=value" in key order (the `params` column of rows.csv).
-  std::string params_text() const;
-  // "experiment: strategy key=value ... on scene", for progress lines and reports.
-  std::string describe() const;
-  std::vector<std::string> param_items() const;  // "key=value" each
 };
 
 Suite load_suite(const std::string& path);

@@ -1,4 +1,4 @@
-// peer_voxelizer_bench: warm-kernel timing of the peer voxelizer of issue 40, Forceflow's
+// peer_voxelizer_bench: warm-kernel timing of the peer voxelizer, Forceflow's
 // cuda_voxelizer (v0.6), on bench_voxelizer's meshes and grids. Our code, but it compiles only
 // against the peer's source that scripts/build-peer.sh extracts into .peer/src/ (it builds this
 // file into .peer/bin/peer_voxelizer_bench): this one translation unit includes the peer's

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes bench_voxelizer's meshes as OBJ files, for the peer comparison of issue 40.
+"""Writes bench_voxelizer's meshes as OBJ files, for the peer voxelizer comparison.
 
 bench_voxelizer (experiments/bench_voxelizer.cpp) builds its meshes at run time with deepvox's
 generators (render/load/mesh_generators.cpp); the peer (cuda_voxelizer) reads mesh files. This

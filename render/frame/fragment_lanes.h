@@ -1,16 +1,16 @@
 // How many threads the camera pass gives each pixel, and the order of the tiles. The pass's time
 // is that of its slowest warps, those of the pixels with the most volume steps: there a warp's
 // step is thousands of cycles of dependent double-precision work, and the few such warps leave
-// most of the GPU idle while they run (a per-warp timeline of knecht-fig56's 0.93 ms pass on the
-// H200: its slowest warps ran for 0.85-0.89 ms, and after the first 0.3 ms fewer than 450 of its
-// 10,800 warps were left running; results/perf/rounds/07-fragment-lanes). So the tiles
+// most of the GPU idle while they run (a per-warp timeline of knecht-fig56's pass showed its
+// slowest warps running for nearly the whole pass, with few of its warps left after the first
+// third; results/perf/rounds/07-fragment-lanes). So the tiles
 // whose lists hold a crossing of a volume's boundary (all of them when the eye is inside a
 // volume) give each pixel kVolumeLanes lanes that split its volume steps between them
 // (render/frame/shade_payload.h), and they go first, heaviest first: more of their warps are ready
-// than the GPU runs at once, and taken in tile order the heaviest of them started up to 0.24 ms
-// into the 0.73 ms pass (the same timeline with lanes). Heaviest first took the pass to 0.65 ms
-// (0.83 with a shadow map, was 1.06) for about 0.07 ms of ordering, 0.02 ms more than the tile
-// order took (results/perf/rounds/08-heaviest-tiles-first). The other tiles keep one thread per
+// than the GPU runs at once, and taken in tile order the heaviest of them started late, a third
+// of the way into the pass (the same timeline with lanes). Heaviest first shortens the pass by
+// more than the ordering costs, with or without a shadow map
+// (results/perf/rounds/08-heaviest-tiles-first has the times). The other tiles keep one thread per
 // pixel.
 #pragma once
 
@@ -67,7 +67,7 @@ DV_HD inline uint32_t volume_tile_cost(const SceneView& s, const RasterProjectio
 
 // Lanes per pixel in volume tiles: 2 measured best of 2, 4 and 8 on knecht-fig56 (one light;
 // more lanes repeat more of each pixel's walk and surface shading than they save), 4 on
-// knecht-planner (seven lights), where 2 still takes the fragment pass from 1.26 to 0.87 ms.
+// knecht-planner (seven lights), where 2 still shortens the fragment pass by almost a third.
 inline constexpr int kVolumeLanes = 2;
 
 // The tiles in the pass's order, as the pass's threads read it.

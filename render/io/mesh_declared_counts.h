@@ -1,7 +1,7 @@
 // Checks the counts an OFF or PLY file declares against what the file holds, before CGAL's
 // readers see it: they size their arrays from the declared counts (a face of 2,000,000,000
 // corners, a PLY list of 4,000,000,000 indices) and would allocate and fill gigabytes, or run
-// for minutes, on a file of a few bytes. Found by the bad-input corpus (issue 14).
+// for minutes, on a file of a few bytes. Found by the bad-input corpus.
 #pragma once
 
 #include <string>

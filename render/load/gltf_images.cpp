@@ -4,6 +4,7 @@
 #include <cctype>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <system_error>
 #include <vector>
 
@@ -56,6 +57,30 @@ std::string uri_scheme(const std::string& uri) {
   return uri.substr(0, colon);
 }
 
+// Where the decoded relative path `path` points inside `model_folder`, or why it is refused:
+// empty, absolute, or leaving the folder by its '..' steps (see gltf_images.h).
+ResolvedUri check_inside_folder(const std::string& path,
+                                const std::filesystem::path& model_folder) {
+  ResolvedUri out;
+  if (path.empty()) {
+    out.problem = "empty URI";
+    return out;
+  }
+  if (path.front() == '/' || path.front() == '\\') {
+    out.problem = "refused: an absolute path (a model's files must lie in its folder " +
+                  model_folder.string() + " or below it)";
+    return out;
+  }
+  const std::filesystem::path relative = std::filesystem::path(path).lexically_normal();
+  if (!relative.empty() && *relative.begin() == "..") {
+    out.problem = "refused: its '..' steps leave the model's folder " + model_folder.string() +
+                  " (a model's files must lie in it or below it)";
+    return out;
+  }
+  out.file = model_folder / relative;
+  return out;
+}
+
 // Where a URI points inside `model_folder`, or why it is refused (see gltf_images.h).
 ResolvedUri resolve_reference(const std::string& uri, const std::filesystem::path& model_folder) {
   ResolvedUri out;
@@ -86,29 +111,80 @@ ResolvedUri resolve_reference(const std::string& uri, const std::filesystem::pat
     path += char(high * 16 + low);
     i += 2;
   }
-  if (path.empty()) {
-    out.problem = "empty URI";
-    return out;
-  }
-  if (path.front() == '/' || path.front() == '\\') {
-    out.problem = "refused: an absolute path (images must lie in the model's folder " +
-                  model_folder.string() + " or below it)";
-    return out;
-  }
-  const std::filesystem::path relative = std::filesystem::path(path).lexically_normal();
-  if (!relative.empty() && *relative.begin() == "..") {
-    out.problem = "refused: its '..' steps leave the model's folder " + model_folder.string() +
-                  " (images must lie in it or below it)";
-    return out;
-  }
-  out.file = model_folder / relative;
-  return out;
+  return check_inside_folder(path, model_folder);
 }
 
 }  // namespace
 
 void install_image_decoder(tinygltf::TinyGLTF& loader, ImageFailures& failures) {
   loader.SetImageLoader(record_undecodable, &failures);
+}
+
+namespace {
+
+// tinygltf asks for base_dir joined with the URI it decoded ("base_dir/uri"), then for
+// "./uri" (the working directory): the part after "base_dir/", or nullopt for any other path.
+std::optional<std::string> uri_part(const BufferFiles& files, const std::string& asked) {
+  const std::string prefix = files.base_dir + "/";
+  if (asked.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  return asked.substr(prefix.size());
+}
+
+// Why the buffer file tinygltf asks for may not be read ("" when it may).
+std::string buffer_problem(const BufferFiles& files, const std::string& asked) {
+  const std::optional<std::string> uri = uri_part(files, asked);
+  if (!uri) return "outside the model's folder";
+  const std::string scheme = uri_scheme(*uri);
+  if (!scheme.empty())
+    return "buffer URI '" + *uri + "': refused: a URI with the scheme '" + scheme +
+           ":' (deepvox reads relative references inside the model's folder and data: URIs)";
+  const ResolvedUri where = check_inside_folder(*uri, files.base_dir);
+  if (!where.problem.empty()) return "buffer URI '" + *uri + "': " + where.problem;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(where.file, ec))
+    return where.file.string() + ": buffer file not found (or not a regular file)";
+  return "";
+}
+
+// A refusal is recorded once (tinygltf asks again for "./uri" when base_dir is ".").
+bool buffer_file_exists(const std::string& asked, void* user) {
+  BufferFiles& files = *static_cast<BufferFiles*>(user);
+  if (!uri_part(files, asked)) return false;
+  const std::string problem = buffer_problem(files, asked);
+  if (problem.empty()) return true;
+  if (files.problems.empty() || files.problems.back() != problem) files.problems.push_back(problem);
+  return false;
+}
+
+std::string unexpanded(const std::string& path, void*) {
+  return path;
+}
+
+bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                      void* user) {
+  const std::string problem = buffer_problem(*static_cast<BufferFiles*>(user), path);
+  if (!problem.empty()) {
+    if (err) *err = problem;
+    return false;
+  }
+  return tinygltf::ReadWholeFile(out, err, path, nullptr);
+}
+
+bool write_nothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err = "deepvox writes no glTF files";
+  return false;
+}
+
+}  // namespace
+
+void install_buffer_policy(tinygltf::TinyGLTF& loader, BufferFiles& files) {
+  tinygltf::FsCallbacks callbacks{};
+  callbacks.FileExists = buffer_file_exists;
+  callbacks.ExpandFilePath = unexpanded;
+  callbacks.ReadWholeFile = read_buffer_file;
+  callbacks.WriteWholeFile = write_nothing;
+  callbacks.user_data = &files;
+  loader.SetFsCallbacks(callbacks);
 }
 
 ResolvedUri resolve_image_uri(const std::string& uri, const std::filesystem::path& model_folder) {

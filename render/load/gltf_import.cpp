@@ -104,6 +104,8 @@ Model parse_model(const std::string& path, gltf::ImageFailures& undecodable) {
   if (base_dir.empty()) base_dir = ".";
   tinygltf::TinyGLTF loader;
   gltf::install_image_decoder(loader, undecodable);
+  gltf::BufferFiles buffer_files{base_dir, {}};
+  gltf::install_buffer_policy(loader, buffer_files);
   Model model;
   std::string err, warn;
   bool ok = false;
@@ -121,6 +123,9 @@ Model parse_model(const std::string& path, gltf::ImageFailures& undecodable) {
     std::istringstream lines(err);
     for (std::string line; std::getline(lines, line);)
       if (!line.empty()) problem += (problem.empty() ? "" : "; ") + line;
+    std::string refused;  // the buffer policy's reasons first: they name the files
+    for (const std::string& p : buffer_files.problems) refused += p + "; ";
+    problem = refused + problem;
     throw InputError(path, std::string("cannot load ") + (binary ? ".glb" : "glTF") + ": " +
                                (problem.empty() ? "unknown error" : problem));
   }

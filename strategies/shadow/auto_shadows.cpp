@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cuda/pass_timer.h"
+#include "engine/raster/fitted_light_faces.h"
 #include "strategies/shadow/depth_maps.h"
 #include "strategies/shadow/effect_planner.h"
 #include "strategies/shadow/shadow_method.h"
@@ -150,8 +151,9 @@ class AutoShadows final : public ShadowMethod {
     slot.depth = DepthMaps{};
     const SceneView& s = scene.view();
     if (p.method == PlannedMethod::shadowmap) {
-      const LightMapLayout layout = light_map_layout(mapped_lights(scene.host_lights(), light),
-                                                     s.bounds, s.diagonal, depth_.res);
+      const LightMapLayout layout =
+          fitted_light_map_layout(mapped_lights(scene.host_lights(), light), s.bounds,
+                                  scene.host_object_bounds(), s.diagonal, depth_.res);
       slot.depth = render_depth_maps(backend, scene, layout, depth_.res, DepthCasters::surfaces,
                                      &p.reach.faces);
     } else {

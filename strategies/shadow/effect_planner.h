@@ -1,4 +1,4 @@
-// The effect planner (issue 12): before a frame, what each light needs, decided on the host
+// The effect planner: before a frame, what each light needs, decided on the host
 // from the scene's object bounds and materials, so the `auto` shadow method
 // (auto_shadows.cpp) runs only that. Per light:
 //   - the casters it reaches: objects that cast (alpha > 0 or glass, a constant medium or a

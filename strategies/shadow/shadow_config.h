@@ -1,4 +1,4 @@
-// A shadow configuration as a file (issue 41): a shadow method's name and parameters in JSON,
+// A shadow configuration as a file: a shadow method's name and parameters in JSON,
 // what `deepvox advise` writes for its pick and what `render`, `probe` and `view` read with
 // --config FILE and a suite file names as a strategy ({"config": FILE}). The "shadows" object
 // is a suite file's strategy entry ({"name", "params"}), so it may also be pasted into one.

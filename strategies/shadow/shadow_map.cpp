@@ -13,6 +13,7 @@
 
 #include "cuda/buffer.h"
 #include "cuda/pass_timer.h"
+#include "engine/raster/fitted_light_faces.h"
 #include "engine/raster/tile_list_sets.h"
 #include "engine/raster/tile_raster.h"
 #include "engine/scene/ray_query.h"
@@ -154,8 +155,8 @@ class ShadowMapMethod final : public ShadowMethod {
   void build(const SceneData& scene, Backend backend, const Camera* focus_on) {
     const SceneView& s = scene.view();
     PassTimer timer(backend);
-    LightMapLayout layout =
-        light_map_layout(scene.host_lights(), s.bounds, s.diagonal, params_.res);
+    LightMapLayout layout = fitted_light_map_layout(
+        scene.host_lights(), s.bounds, scene.host_object_bounds(), s.diagonal, params_.res);
     if (focus_on)
       for (const ShadowLight& l : layout.lights)
         if (l.face_count == 1)

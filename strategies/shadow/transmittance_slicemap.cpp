@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cuda/pass_timer.h"
+#include "engine/raster/fitted_light_faces.h"
 #include "strategies/shadow/depth_maps.h"
 #include "strategies/shadow/shadow_method.h"
 #include "strategies/shadow/translucent_casters.h"
@@ -78,8 +79,8 @@ class TransmittanceSlicemap final : public ShadowMethod {
   void build(const SceneData& scene, Backend backend) {
     const SceneView& s = scene.view();
     PassTimer total(backend);
-    const LightMapLayout layout =
-        light_map_layout(scene.host_lights(), s.bounds, s.diagonal, params_.res);
+    const LightMapLayout layout = fitted_light_map_layout(
+        scene.host_lights(), s.bounds, scene.host_object_bounds(), s.diagonal, params_.res);
     {
       PassTimer timer(backend);
       opaque_ = render_depth_maps(backend, scene, layout, params_.res, DepthCasters::opaque);

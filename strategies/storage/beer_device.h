@@ -1,5 +1,5 @@
 // Kernel side of the `beer` storage: the "Beer shadow map" of Unreal Engine 5's heterogeneous
-// volumes as deepvox's issue 15 describes it: per texel two nodes, entry (depth where light
+// volumes: per texel two nodes, entry (depth where light
 // starts to fall, transmittance just behind it) and exit (depth where it stops falling, final
 // transmittance), 2 x 8 = 16 bytes per texel, constant-time lookups. Between them V' follows
 // Beer-Lambert's law for the constant extinction that joins the two nodes,

@@ -1,4 +1,4 @@
-// Voxel grids over a light's frustum (issue 5): one grid per light-map face of
+// Voxel grids over a light's frustum: one grid per light-map face of
 // engine/raster/light_faces.h, orthographic for directional lights and perspective for spot
 // lights and omni faces, columns = the face's texels, slices = planes at equal distances along
 // the face's axis between the casters' nearest and farthest depth (voxel_grid.h, kinds

@@ -1,4 +1,4 @@
-// `deepvox advise`'s library (issue 41): the search's dominance pruning and its ends, the
+// `deepvox advise`'s library: the search's dominance pruning and its ends, the
 // Pareto front, the pick under an error bound and budgets, the exhaustive sweep, shadow config
 // files (round trip, refusals), the error model (loading, versioning, prediction) and a small
 // CPU advise end to end whose pick's verified error meets the bound.

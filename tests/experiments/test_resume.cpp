@@ -1,11 +1,13 @@
-// Suites that survive being killed (issue 42): the real `deepvox suite` killed with SIGKILL at
+// Suites that survive being killed: the real `deepvox suite` killed with SIGKILL at
 // seeded random instants and resumed each time ends with the rows of one uninterrupted run (no
 // duplicate, timings aside), and `deepvox report` reads every partial folder; a torn row group
 // is ignored and cut off; resuming with another suite file or commit is refused unless forced
 // (then the report says the run is mixed); merge takes resumed shards and names unfinished
 // ones; an out-of-memory experiment fails its row with the bytes asked for while the suite goes
 // on; a full disk (a small tmpfs) stops the run with a clear error, its own exit code (4) and a
-// folder that resumes. What the tests share is in resume_support.h; resumed --gpus and SLURM
+// folder that resumes; RunJournal::open_or_resume, the one door all of it goes through, on its
+// own (a new folder, the newest unfinished run found, each refusal before the folder is
+// touched). What the tests share is in resume_support.h; resumed --gpus and SLURM
 // sessions and the folder's lock file are tested in test_long_runs.cpp.
 #include <gtest/gtest.h>
 
@@ -364,6 +366,80 @@ TEST_F(Resume, FullDiskStopsTheRunAndTheFolderResumesAfterSpaceIsFreed) {
   expect_no_duplicates(folders[0]);
   for (const auto& e : fs::recursive_directory_iterator(folders[0]))
     EXPECT_NE(e.path().extension(), ".tmp") << "temporary file left: " << e.path();
+}
+
+class OpenOrResume : public HarnessTest {
+ protected:
+  JournalRequest request() const {
+    JournalRequest r;
+    r.out = dir_ / "out";
+    r.suite = "tiny";
+    r.suite_file = (dir_ / "tiny.json").string();
+    r.suite_hash = "00000000000000aa";
+    r.git_sha = "0123456789ab";
+    return r;
+  }
+};
+
+TEST_F(OpenOrResume, CreatesThenFindsChecksAndReopensTheUnfinishedRun) {
+  JournalRequest r = request();
+  EXPECT_THROW(RunJournal::open_or_resume([&] {
+                 JournalRequest none = r;
+                 none.resume = true;
+                 return none;
+               }()),
+               InputError);  // nothing to resume yet
+  r.meta = {{"suite", "tiny"},
+            {"suite_file", r.suite_file},
+            {"suite_hash", r.suite_hash},
+            {"repeat", 1},
+            {"only", ""},
+            {"smoke", false},
+            {"shard", {{"index", 1}, {"count", 1}}},
+            {"planned_items", {0, 1}},
+            {"state", "running"},
+            {"run", {{"git_sha", r.git_sha}, {"backend", "cpu"}}}};
+  r.suite_text = "{}";
+  r.command = "deepvox suite tiny";
+  OpenedRun created = RunJournal::open_or_resume(r);
+  const fs::path folder = created.journal.dir();
+  EXPECT_EQ(folder.parent_path(), dir_ / "out" / "tiny");
+  EXPECT_TRUE(created.forced.empty());
+  created.journal.close();
+  const std::string meta_before = read(folder / "meta.json");
+
+  JournalRequest resume = request();
+  resume.resume = true;  // no folder given: the newest unfinished run of suite tiny
+  const auto refused = [&](JournalRequest bad) {
+    try {
+      RunJournal::open_or_resume(bad);
+    } catch (const InputError& e) {
+      EXPECT_EQ(read(folder / "meta.json"), meta_before) << "a refused resume changed the folder";
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  JournalRequest other_commit = resume;
+  other_commit.git_sha = "fedcba987654";
+  EXPECT_NE(refused(other_commit).find("cannot resume: the commit differs"), std::string::npos);
+  JournalRequest other_repeat = resume;
+  other_repeat.given.push_back(
+      {"--repeat", 3, [](const Json& meta) -> Json { return meta["repeat"]; }});
+  EXPECT_NE(refused(other_repeat).find("--repeat 3: " + folder.string() + " ran with --repeat 1"),
+            std::string::npos);
+  JournalRequest other_shard = resume;
+  other_shard.shard_count = 2;
+  EXPECT_NE(refused(other_shard).find("no unfinished run of suite 'tiny' shard 1/2"),
+            std::string::npos);
+
+  JournalRequest forced = other_commit;
+  forced.force = true;
+  forced.given.push_back({"--repeat", 1, [](const Json& meta) -> Json { return meta["repeat"]; }});
+  OpenedRun reopened = RunJournal::open_or_resume(forced);
+  EXPECT_EQ(reopened.journal.dir(), folder);
+  EXPECT_EQ(reopened.forced, std::vector<std::string>{"commit"});
+  EXPECT_EQ(reopened.before.missing, (std::vector<int>{0, 1}));
+  reopened.journal.close();
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The machine state run metadata records for a reviewer (issue 38): nvidia-smi's GPU line and
+// The machine state run metadata records for a reviewer: nvidia-smi's GPU line and
 // compute processes parsed from a fake nvidia-smi, the driver from /proc/driver/nvidia/version,
 // the OS from os-release, and "unknown" for everything a CPU-only machine cannot say.
 #include <gtest/gtest.h>

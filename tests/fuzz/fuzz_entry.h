@@ -1,4 +1,4 @@
-// The fuzzed entry points (issue 14): each takes arbitrary bytes, hands them to one loader as a
+// The fuzzed entry points: each takes arbitrary bytes, hands them to one loader as a
 // file, and returns normally when the loader accepts them or rejects them with dv::InputError
 // (a clear bad-input error, exit code 2 in the CLI); any other exception, a crash or a
 // sanitizer report is a finding. libFuzzer runs them through fuzz_target.cpp (preset `fuzz`,

@@ -1,4 +1,4 @@
-// Determinism (issue 14): the same scene rendered 10 times gives bit-identical images (dsm
+// Determinism: the same scene rendered 10 times gives bit-identical images (dsm
 // shadows on compact storage and on chunked storage whose chunk claims race, alloc=thesis),
 // identical per-texel node counts and node lists, and identical voxel grids (sat, slicemap).
 // Run on the CPU's threads and, where a GPU is present, on CUDA (skipped with the reason

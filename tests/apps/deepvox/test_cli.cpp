@@ -276,7 +276,7 @@ TEST_F(Cli, AutoShadowsAreTheDefaultAndExplainTheirPlan) {
       << mapped.output;
 }
 
-// --explain on the glTF stand-ins (issue 39): alpha-textured casters are one row, cut per
+// --explain on the glTF stand-ins: alpha-textured casters are one row, cut per
 // texel; coloured glass keeps its colour in the method that runs.
 TEST_F(Cli, ExplainNamesAlphaTexturesAndColouredGlass) {
   write("points.csv", "x,y,z\n0,0,0\n");
@@ -321,7 +321,7 @@ const std::string kAdviseScene = R"({
   ]
 })";
 
-// advise (issue 41) writes a shadow config of its pick that render and probe take with
+// advise writes a shadow config of its pick that render and probe take with
 // --config (and --param overrides it); a bad config or one beside --shadows is refused.
 TEST_F(Cli, AdvisePickIsAConfigRenderAndProbeTake) {
   const std::string scene = write("scene.json", kAdviseScene);

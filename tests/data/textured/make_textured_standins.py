@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the textured glTF stand-ins that the texture tests read (issue 39), built the way
+"""Writes the textured glTF stand-ins that the texture tests read, built the way
 sample models are (Khronos AlphaBlendModeTest-like cut-out quads, a textured and normal-mapped
 model), since the real sample models cannot be committed here:
 

@@ -2,14 +2,18 @@
 // undecodable base-colour image loads the model with one warning naming the image (the material
 // draws its factor, as if untextured); URIs are relative references, percent-decoded, that must
 // stay inside the model's folder. And KHR_texture_transform's rotation against a texel worked
-// out by hand.
+// out by hand. External buffers (.bin) follow the same URI policy; one that is refused or
+// missing fails the load with an error naming the file.
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "core/log.h"
 #include "engine/scene/texture_sampling.h"
 #include "render/frame/reference_render.h"
@@ -299,6 +303,95 @@ TEST(GltfImages, TextureTransformRotationAloneAgainstAKnownTexel) {
       quad(textured_material(transform), {{"uri", "grid.png"}}).write_gltf(dir.file("q.gltf")));
   EXPECT_EQ(colour_at(scene, 0.5, 0.5), linear_texel(scene, 2, 0));
   EXPECT_EQ(colour_at(scene, 0.1, 0.9), linear_texel(scene, 2, 2));  // (0.537, 0.729); not (2, 3)
+}
+
+// The load's error for a file whose buffer is refused or missing ("" if it loads).
+std::string load_error(const std::string& path) {
+  testing::internal::CaptureStderr();
+  std::string message;
+  try {
+    load_gltf_scene(path);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  testing::internal::GetCapturedStderr();
+  return message;
+}
+
+// A .bin in a folder below the model's is read.
+TEST(GltfBuffers, ExternalBufferBelowTheModelFolderLoads) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.file("model/bins"));
+  const Loaded loaded =
+      load_logged(quad(untextured_material(), nullptr)
+                      .write_gltf_external_bin(dir.file("model/quad.gltf"), "bins/quad.bin"));
+  ASSERT_EQ(loaded.scene.meshes.size(), 1u);
+  EXPECT_EQ(loaded.scene.meshes[0].positions.size(), 4u);
+  EXPECT_EQ(loaded.scene.meshes[0].positions[2], dvec3(1.0, 1.0, 0.0));
+}
+
+// '..' steps out of the model's folder: refused although the file exists, the error names the
+// model, the URI and the rule.
+TEST(GltfBuffers, DotDotOutsideTheModelFolderIsRefused) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.file("model"));
+  const std::string model =
+      quad(untextured_material(), nullptr)
+          .write_gltf_external_bin(dir.file("model/quad.gltf"), "../outside.bin");
+  ASSERT_TRUE(std::filesystem::exists(dir.file("outside.bin")));
+  const std::string error = load_error(model);
+  EXPECT_NE(error.find(model), std::string::npos) << error;
+  EXPECT_NE(error.find("buffer URI '../outside.bin'"), std::string::npos) << error;
+  EXPECT_NE(error.find("leave the model's folder"), std::string::npos) << error;
+}
+
+// An absolute path: refused as absolute, not "not found".
+TEST(GltfBuffers, AbsolutePathIsRefusedAsAbsolute) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.file("model"));
+  const std::string absolute = std::filesystem::absolute(dir.file("elsewhere.bin")).string();
+  const std::string model = quad(untextured_material(), nullptr)
+                                .write_gltf_external_bin(dir.file("model/quad.gltf"), absolute);
+  ASSERT_TRUE(std::filesystem::exists(absolute));
+  const std::string error = load_error(model);
+  EXPECT_NE(error.find(absolute), std::string::npos) << error;
+  EXPECT_NE(error.find("absolute path"), std::string::npos) << error;
+  EXPECT_EQ(error.find("buffer file not found"), std::string::npos) << error;
+}
+
+// A missing .bin names the file it looked for, and one in the working directory but not in the
+// model's folder is not read (tinygltf's own fallback would read it).
+TEST(GltfBuffers, MissingBufferNamesTheFileAndTheWorkingDirectoryIsNotSearched) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.file("model"));
+  const std::string model = quad(untextured_material(), nullptr)
+                                .write_gltf_external_bin(dir.file("model/quad.gltf"), "quad.bin");
+  std::filesystem::rename(dir.file("model/quad.bin"), dir.file("quad.bin"));
+  const std::filesystem::path was = std::filesystem::current_path();
+  std::filesystem::current_path(dir.file(""));
+  const std::string error = load_error(std::filesystem::absolute(model).string());
+  std::filesystem::current_path(was);
+  EXPECT_NE(error.find((std::filesystem::absolute(model).parent_path() / "quad.bin").string() +
+                       ": buffer file not found"),
+            std::string::npos)
+      << error;
+}
+
+TEST(GltfBuffers, UriWithASchemeIsRefused) {
+  ScratchDir dir;
+  const std::string model = quad(untextured_material(), nullptr)
+                                .write_gltf_external_bin(dir.file("quad.gltf"), "quad.bin");
+  std::string text;
+  {
+    std::ifstream in(model);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const size_t at = text.find("\"quad.bin\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 10, "\"file:///etc/hostname\"");
+  std::ofstream(model) << text;
+  const std::string error = load_error(model);
+  EXPECT_NE(error.find("scheme 'file:'"), std::string::npos) << error;
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// glTF textures (issue 39): base-colour images decoded from data: URIs, external files and .glb
+// glTF textures: base-colour images decoded from data: URIs, external files and .glb
 // buffer views with their samplers; TEXCOORD and NORMAL read per triangle corner; MASK and
 // BLEND kept for per-point coverage; normal maps loaded with a warning (images that cannot be
 // used: tests/render/load/test_gltf_images.cpp). And the committed textured stand-in

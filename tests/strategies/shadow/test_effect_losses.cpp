@@ -1,7 +1,7 @@
 // What `--explain` says each shadow method drops of a scene's effects (effect_losses.h): the
 // effects are found from the materials, textures and interiors, each named once with its count,
 // and the text for a method is its entry of the table, as the merged glass, texture and media
-// code does it (issue 39): e.g. shadowmap thresholds at 0.5 and carries glass in its glass layer.
+// code does it: e.g. shadowmap thresholds at 0.5 and carries glass in its glass layer.
 #include <gtest/gtest.h>
 
 #include <string>

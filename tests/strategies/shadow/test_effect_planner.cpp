@@ -239,7 +239,7 @@ TEST(EffectPlanner, PlannedAnswersEqualEverythingOnWhereWorkWasSkipped) {
   EXPECT_LE(max_pixel_diff, 1e-6);
 }
 
-// Texture alpha (issue 39): a MASK-textured opaque quad is opaque where covered, so a depth map
+// Texture alpha: a MASK-textured opaque quad is opaque where covered, so a depth map
 // (which cuts it per texel) serves its light; a BLEND-textured one is translucent: a deep map.
 TEST(EffectPlanner, MaskTexturesAreOpaqueAndBlendTexturesTranslucent) {
   const Scene standin =

@@ -1,4 +1,4 @@
-// Shadow bias and self-shadowing (issue 9), on analytic stand-ins for the Khronos scenes:
+// Shadow bias and self-shadowing, on analytic stand-ins for the Khronos scenes:
 // a backdrop lit at a grazing angle behind tinted slabs and an opaque block (acne of the map
 // methods at their defaults against the exact reference image), the receiver bias against its
 // formula and what it lets leak behind a thin card at contact, a constant-extinction cube under

@@ -75,7 +75,7 @@ TEST(ShadowMap, DirectionalIsOrthographic) {
 }
 
 // A depth map holds one caster per texel, so a fragment casts when its opacity reaches
-// kDepthMapOpaqueAlpha (issue 39): a faint quad (alpha 0.3) casts nothing, a denser one (0.7) a
+// kDepthMapOpaqueAlpha: a faint quad (alpha 0.3) casts nothing, a denser one (0.7) a
 // full shadow, and a glass box (alpha 0) holding a medium of opacity 1 - exp(-2) across it casts
 // from its boundary.
 TEST(ShadowMap, CastsByOpacityThresholdAndFromMediaBoundaries) {

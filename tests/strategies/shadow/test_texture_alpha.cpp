@@ -1,4 +1,4 @@
-// Texture alpha in every shadow method (issue 39) on the committed cut-out stand-in
+// Texture alpha in every shadow method on the committed cut-out stand-in
 // (tests/data/textured/alpha_mask_quad.gltf, written by make_textured_standins.py): a MASK quad
 // whose texture cuts its left half away, and a BLEND quad of factor 0.4 with the same texture,
 // over a floor under a sun. Cut-out texels cast nothing and opaque texels a full shadow in the

@@ -128,7 +128,7 @@ TEST(TransmittanceSlicemap, OpaqueCastersGoThroughTheDepthMap) {
   }
 }
 
-// Media boundaries cast (issue 39): a glass box (alpha 0) holding a constant medium is a
+// Media boundaries cast: a glass box (alpha 0) holding a constant medium is a
 // translucent caster whose two crossings give the medium's transmittance across it.
 TEST(TransmittanceSlicemap, MediaCastFromTheirBoundaries) {
   SceneBuilder b;
