@@ -10,7 +10,7 @@
 #include <set>
 
 #include "core/error.h"
-#include "experiments/harness/advise_search.h"
+#include "experiments/advise/advise_search.h"
 #include "experiments/harness/suite_file.h"
 #include "strategies/shadow/shadow_method.h"
 #include "strategies/shadow/strategy_catalog.h"

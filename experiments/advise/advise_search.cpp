@@ -1,5 +1,5 @@
 // The search space, the coarse-to-fine walk, the front and the pick (advise_search.h).
-#include "experiments/harness/advise_search.h"
+#include "experiments/advise/advise_search.h"
 
 #include <algorithm>
 #include <cmath>
