@@ -190,14 +190,16 @@ bool is_timing_column(const Column& c, const std::vector<int>& items,
   return false;
 }
 
-// Per item, per run: the repetitions (a timing) or the row's value. Empty runs are left out;
-// an item without any is reported through `missing`.
+// Per item, per run: the repetitions (a timing) or the row's value, empty for a run without
+// them (so runs keep their places); an item without any is reported through `missing`.
+// `measured_runs`: the most runs any item has data in.
 std::vector<RunSamples> run_samples(const std::vector<int>& items, const Column& column,
                                     bool timing, const std::vector<RunView>& runs, int& missing,
-                                    size_t& max_runs, size_t& repetitions) {
+                                    size_t& measured_runs, size_t& repetitions) {
   std::vector<RunSamples> out;
   for (int index : items) {
     RunSamples item;
+    size_t measured = 0;
     for (const RunView& run : runs) {
       std::vector<double> samples;
       if (timing) {
@@ -207,15 +209,15 @@ std::vector<RunSamples> run_samples(const std::vector<int>& items, const Column&
       } else if (const auto it = run.items.find(index); it != run.items.end()) {
         if (const Row* r = find_row(it->second, column)) samples.push_back(r->value);
       }
-      if (samples.empty()) continue;
       repetitions = std::max(repetitions, samples.size());
+      measured += !samples.empty();
       item.push_back(std::move(samples));
     }
-    if (item.empty()) {
+    if (!measured) {
       ++missing;
       continue;
     }
-    max_runs = std::max(max_runs, item.size());
+    measured_runs = std::max(measured_runs, measured);
     out.push_back(std::move(item));
   }
   return out;
@@ -423,23 +425,31 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
   const bool timing =
       is_timing_column(first_column, first, runs) || is_timing_column(second_column, second, runs);
   int missing = 0;
-  size_t max_runs = 0, repetitions = 0;
+  size_t measured_runs = 0, repetitions = 0;
   const std::vector<RunSamples> sa =
-      run_samples(first, first_column, timing, runs, missing, max_runs, repetitions);
+      run_samples(first, first_column, timing, runs, missing, measured_runs, repetitions);
   const std::vector<RunSamples> sb =
-      run_samples(second, second_column, timing, runs, missing, max_runs, repetitions);
+      run_samples(second, second_column, timing, runs, missing, measured_runs, repetitions);
   if (missing)
     return not_comparable(c, std::to_string(missing) +
                                  " items without per-repetition samples: interval unavailable "
                                  "(a result folder from before samples/)");
-  c.interval = cluster_bootstrap(sa, sb, seed, difference);
-  c.has_interval = true;
   c.first = side_mean(sa);
   c.second = side_mean(sb);
-  c.basis = std::to_string(max_runs) + " run" + (max_runs == 1 ? "" : "s") + " x " +
+  const RunInterval ri = run_interval(sa, sb, difference);
+  const std::string runs_text = std::to_string(ri.runs) + " run" + (ri.runs == 1 ? "" : "s");
+  c.basis = runs_text + " x " +
             (timing ? std::to_string(repetitions) + " repetitions" : "1 value") + ", " + items_text;
-  if (max_runs < 3 && timing) c.basis += " (fewer than 3 runs: drift between runs not in it)";
+  if (ri.runs < measured_runs)
+    c.basis += " (" + std::to_string(measured_runs - ri.runs) +
+               " more left out: an item of a side was not measured in them)";
   if (!lossy.empty()) c.basis += "; lossy as the claim expects (" + lossy + ")";
+  if (ri.runs < 2)
+    return not_comparable(c, runs_text +
+                                 ": a t-interval over runs needs at least 2; run the "
+                                 "suite with --runs 5");
+  c.interval = ri.interval;
+  c.has_interval = true;
   c.verdict = verdict_of(c.interval);
   return c;
 }

@@ -304,9 +304,10 @@ void write_findings(std::ostream& md, const ExperimentSpec& e, const std::vector
   const std::vector<FindingResult> results = evaluate_findings(e.findings, runs);
   if (results.empty()) return;
   md << "\nFindings (effect: first side / second side, or their difference for probe errors, "
-        "with its 95 % bootstrap interval; confirmed: the interval entirely on the claimed "
-        "side, refuted: entirely on the other, tie: it holds no effect; a trend tests every "
-        "step of its sweep):\n\n";
+        "with its 95 % interval: Student's t over the per-run effects, a bootstrap over the "
+        "points for probe errors; confirmed: the interval entirely on the claimed side, "
+        "refuted: entirely on the other, tie: it holds no effect; a trend tests every step of "
+        "its sweep):\n\n";
   std::vector<std::vector<std::string>> body;
   for (const FindingResult& f : results)
     body.push_back({f.claim, f.lower_text, f.lower_items ? table_text(f.lower, 4) : "-",
@@ -691,8 +692,9 @@ void build_report(const std::string& folder) {
      << " repetitions, median (min, max in rows.csv; every repetition in samples/)\n";
   md << "- findings' intervals rest on " << states.size() << " independent process run"
      << (states.size() == 1 ? " (this folder)" : "s (this folder and those runs.json names)")
-     << (states.size() < 3 ? "; fewer than 3: drift between runs is not in the timing intervals"
-                           : "")
+     << (states.size() < 2 ? "; a t-interval over runs needs at least 2, so timings and values "
+                             "per run get no verdict (deepvox suite NAME --runs 5)"
+                           : "; 95 % t-intervals over the per-run effects")
      << "\n";
   md << status_lines(state, dir);
   if (meta.contains("scale_out")) md << scale_out_line(meta);
