@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,12 +35,18 @@ constexpr double kSmallestRatio = 0.01;
 struct EffectInterval {
   double effect = 0.0, low = 0.0, high = 0.0;
   bool ratio = true;  // ratio of means (no effect: 1), else difference (no effect: 0)
+  // Ratios: the relative half-width of "no effect", kSmallestRatio or wider where A/A controls
+  // measured a wider spread between identical configurations (aa_controls.h).
+  double band = kSmallestRatio;
   double none() const { return ratio ? 1.0 : 0.0; }
-  // Entirely below / above the band of "no effect" (ratios: 1 / (1 + kSmallestRatio) to
-  // 1 + kSmallestRatio; differences: 0).
-  bool below() const { return high < (ratio ? 1.0 / (1.0 + kSmallestRatio) : 0.0); }
-  bool above() const { return low > (ratio ? 1.0 + kSmallestRatio : 0.0); }
+  // Entirely below / above the band of "no effect" (ratios: 1 / (1 + band) to 1 + band;
+  // differences: 0).
+  bool below() const { return high < (ratio ? 1.0 / (1.0 + band) : 0.0); }
+  bool above() const { return low > (ratio ? 1.0 + band : 0.0); }
 };
+
+// Per metric: the tie band (EffectInterval::band) that A/A controls measured.
+using TieBands = std::map<std::string, double>;
 
 constexpr int kResamples = 2000;
 

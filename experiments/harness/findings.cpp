@@ -283,7 +283,8 @@ std::string reading(const nlohmann::json& f, bool confirmed) {
   return "; " + std::string(confirmed ? "reading: " : "") + text;
 }
 
-FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>& runs) {
+FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>& runs,
+                             const TieBands& tie_bands) {
   FindingResult r;
   r.claim = f["claim"].get<std::string>();
   r.why = f.value("why", "");
@@ -314,9 +315,9 @@ FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>
   for (size_t k = 0; k + 1 < levels.size(); ++k) {
     const std::string here = selector + " " + over + "=" + levels[k];
     const std::string next = selector + " " + over + "=" + levels[k + 1];
-    TrendStep step{
-        levels[k], levels[k + 1],
-        compare_selections(next, column, here, column, runs, seed + k, false, expects_loss(f))};
+    TrendStep step{levels[k], levels[k + 1],
+                   compare_selections(next, column, here, column, runs, seed + k, false,
+                                      expects_loss(f), tie_bands)};
     const Comparison& c = step.comparison;
     r.effect += (r.effect.empty() ? "" : "; ") + levels[k] + " → " + levels[k + 1] + ": " +
                 (c.has_interval ? interval_text(c.interval) : c.verdict);
@@ -368,7 +369,7 @@ std::string interval_text(const EffectInterval& iv) {
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
                               const std::vector<RunView>& runs, uint64_t seed, bool difference,
-                              bool lossy_expected) {
+                              bool lossy_expected, const TieBands& tie_bands) {
   Comparison c;
   const RunView& run = runs[0];
   const SelectionMean a = selection_mean(first_selector, first_column, run.items);
@@ -449,18 +450,26 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
                                  ": a t-interval over runs needs at least 2; run the "
                                  "suite with --runs 5");
   c.interval = ri.interval;
+  if (c.interval.ratio)
+    for (const Column* column : {&first_column, &second_column})
+      if (const auto it = tie_bands.find(column->metric);
+          it != tie_bands.end() && it->second > c.interval.band)
+        c.interval.band = it->second;
+  if (c.interval.band > kSmallestRatio)
+    c.basis += "; tie band ±" + significant_text(100.0 * c.interval.band, 2) + " % (A/A)";
   c.has_interval = true;
   c.verdict = verdict_of(c.interval);
   return c;
 }
 
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
-                                             const std::vector<RunView>& runs) {
+                                             const std::vector<RunView>& runs,
+                                             const TieBands& tie_bands) {
   std::vector<FindingResult> out;
   if (!findings.is_array() || runs.empty()) return out;
   for (const auto& f : findings) {
     if (f.contains("trend")) {
-      out.push_back(evaluate_trend(f, runs));
+      out.push_back(evaluate_trend(f, runs, tie_bands));
       continue;
     }
     FindingResult r;
@@ -474,7 +483,7 @@ std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
     const Column than_column = parse_column(f["than"][1].get<std::string>());
     const Comparison c =
         compare_selections(lower_selector, lower_column, than_selector, than_column, runs,
-                           seed_of(r.claim + r.lower_text), false, expects_loss(f));
+                           seed_of(r.claim + r.lower_text), false, expects_loss(f), tie_bands);
     r.lower = c.first;
     r.than = c.second;
     r.lower_items = c.first_items;

@@ -92,14 +92,19 @@ SelectionMean selection_mean(const std::string& selector, const Column& column,
 // `difference`: the effect is the difference of the means, not their ratio. `lossy_expected`:
 // the claim is about the loss itself (a finding's "lossy": "expected", e.g. a layer limit
 // exercised on purpose), so overflowed or dropped rows are named in the basis, not a defect.
+// `tie_bands`: as evaluate_findings.
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
                               const std::vector<RunView>& runs, uint64_t seed,
-                              bool difference = false, bool lossy_expected = false);
+                              bool difference = false, bool lossy_expected = false,
+                              const TieBands& tie_bands = {});
 
-// `findings` as validated by the suite loader.
+// `findings` as validated by the suite loader; `tie_bands`: per metric the band of no effect
+// that A/A controls measured (aa_controls.h), for ratios over runs (the wider of the two
+// columns' bands, never below kSmallestRatio).
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
-                                             const std::vector<RunView>& runs);
+                                             const std::vector<RunView>& runs,
+                                             const TieBands& tie_bands = {});
 
 // "0.61x [0.58, 0.64]" or "+0.012 [+0.010, +0.015]".
 std::string interval_text(const EffectInterval& interval);

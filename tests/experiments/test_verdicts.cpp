@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "experiments/harness/aa_controls.h"
 #include "experiments/harness/effect_interval.h"
 #include "experiments/harness/findings.h"
 #include "experiments/harness/report.h"
@@ -379,6 +380,97 @@ TEST(Verdicts, StudentTIntervalOverRuns) {
   EXPECT_DOUBLE_EQ(m.effect, -0.1);
   EXPECT_DOUBLE_EQ(m.low, -0.1);
   EXPECT_DOUBLE_EQ(m.high, -0.1);
+}
+
+// A/A pairs whose copy / original ratio is 1, 1.02, 0.97 and 1.05, +-0.2 % from run to run,
+// while the runs drift together: narrow intervals, 3 of 4 outside the 1 % band; the tie band is
+// their 95th percentile of |log ratio| (here the largest, about 5 %), which no pair then
+// exceeds.
+TEST(AaControls, TieBandFromTheSpreadAndTheFalsePositiveRate) {
+  Runs runs(5);
+  const std::vector<double> copy_ratio{1.0, 1.02, 0.97, 1.05};
+  const std::vector<double> drift{1.0, 1.1, 0.95, 1.03, 0.9};
+  for (int pair = 0; pair < 4; ++pair) {
+    const std::string params = "res=" + std::to_string(16 << pair);
+    std::vector<std::vector<double>> original, copy;
+    for (size_t r = 0; r < drift.size(); ++r) {
+      const double wobble = r % 2 ? 0.998 : 1.002;
+      original.push_back(reps(2.0 * (pair + 1) * drift[r]));
+      copy.push_back(reps(2.0 * (pair + 1) * drift[r] * copy_ratio[size_t(pair)] * wobble));
+    }
+    runs.timed(pair, params, "generate_ms", original);
+    runs.timed(10 + pair, params + " aa=copy", "generate_ms", copy);
+  }
+  const std::vector<RunView> views = runs.views();
+  const AaControls aa = measure_aa_controls(views);
+  ASSERT_EQ(aa.pairs.size(), 4u);
+  EXPECT_EQ(aa.pairs[1].original, 1);
+  EXPECT_EQ(aa.pairs[1].copy, 11);
+  EXPECT_EQ(aa.runs, 5u);
+  EXPECT_EQ(aa.tested, 4);
+  EXPECT_EQ(aa.outside, 3);
+  EXPECT_EQ(aa.outside_tie_band, 0);
+  ASSERT_EQ(aa.tie_bands.count("generate_ms"), 1u);
+  EXPECT_NEAR(aa.tie_bands.at("generate_ms"), 0.05, 1e-3);
+  EXPECT_EQ(aa_rate_text(aa),
+            "3 of 4 A/A intervals (75 %) exclude no effect (goal <= 5 %); with the tie bands "
+            "from the A/A spread 0 of 4 (0 %); 4 pairs, 5 runs");
+  EXPECT_EQ(tie_bands_text(aa), "generate_ms ±5 % (4 pairs)");
+  // A 3 % effect: confirmed against the fixed 1 % band, a tie inside the A/A band of 5 %.
+  Runs claim(3);
+  claim.timed(0, "storage=chunked", "generate_ms", {reps(2.91), reps(3.1), reps(2.81)});
+  claim.timed(1, "storage=texture3d", "generate_ms", {reps(3.0), reps(3.2), reps(2.9)});
+  const std::vector<RunView> claim_views = claim.views();
+  const auto findings = nlohmann::json::parse(kChunkedFaster);
+  EXPECT_EQ(evaluate_findings(findings, claim_views)[0].verdict, "confirmed");
+  const FindingResult banded = evaluate_findings(findings, claim_views, aa.tie_bands)[0];
+  EXPECT_EQ(banded.verdict, "tie");
+  EXPECT_NE(banded.basis.find("; tie band ±5 % (A/A)"), std::string::npos) << banded.basis;
+  // No copies, or copies measured in one run only: said so.
+  EXPECT_EQ(aa_rate_text(measure_aa_controls(claim_views)),
+            "none (no experiment sets \"aa_duplicates\")");
+  const std::vector<RunView> first_only(views.begin(), views.begin() + 1);
+  EXPECT_EQ(aa_rate_text(measure_aa_controls(first_only)),
+            "4 A/A pairs, no interval: they need timings in at least 2 runs");
+}
+
+class AaReport : public test::HarnessTest {};
+
+// A suite run twice on the CPU with A/A copies: rows.csv marks the copies, the report's header
+// prints the A/A false-positive rate and the experiment its tie bands.
+TEST_F(AaReport, HeaderPrintsTheFalsePositiveRateAndTheExperimentItsTieBands) {
+  const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
+  const std::string suite = write("aa.json", R"({"suite": "tiny-aa", "repeat": 2,
+    "experiments": [{"name": "dsm", "kind": "shadow", "scene": ")" +
+                                                 scene + R"(", "aa_duplicates": true,
+      "strategy": ["none", {"name": "dsm", "params": {"res": 32}}],
+      "settings": {"width": 32, "height": 24, "probe_points": 0, "images": 0},
+      "findings": [{"claim": "no shadows generate faster",
+                    "lower": ["strategy=none", "generate_ms:median"],
+                    "than": ["strategy=dsm", "generate_ms:median"]}]}]})");
+  const SuiteOptions o = cpu_options(suite);
+  const SuiteOutcome r = run_suite(o), r2 = run_suite(o);
+  ASSERT_EQ(r.exit_code, 0);
+  ASSERT_EQ(r2.exit_code, 0);
+  int copies = 0;
+  for (const Row& row : read_rows_csv(r.folder + "/rows.csv"))
+    copies += row.metric == "generate_ms" && row.stat == "median" &&
+              row.params.find("aa=copy") != std::string::npos;
+  EXPECT_EQ(copies, 2);
+  record_runs(r.folder, {r2.folder});
+  build_report(r.folder);
+  std::ifstream in(fs::path(r.folder) / "report.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string md = text.str();
+  const size_t rate = md.find("- A/A false-positive rate: ");
+  ASSERT_NE(rate, std::string::npos) << md;
+  EXPECT_LT(rate, md.find("## "));  // at the top, before the first experiment
+  EXPECT_NE(md.find(" A/A intervals (", rate), std::string::npos) << md;
+  EXPECT_NE(md.find("; 2 pairs, 2 runs", rate), std::string::npos) << md;
+  EXPECT_NE(md.find("A/A controls (`aa_duplicates`): "), std::string::npos) << md;
+  EXPECT_NE(md.find("tie bands from the A/A spread: "), std::string::npos) << md;
+  EXPECT_NE(md.find("generate_ms ±"), std::string::npos) << md;
 }
 
 class OldFolders : public test::HarnessTest {};
