@@ -4,8 +4,14 @@
 // type list, and the tag, the union and the dispatch are generated from it (pbrt-v4's
 // TaggedPointer does the same for pointers). The union keeps the value as small as its largest
 // member, so a kernel's copy of it stays small. Host and device code.
+//
+// The tag is checked where it is read, with assert: a tag outside the list (memory written by
+// something else, a copy made from raw bytes) or get<T>() of a type the union does not hold
+// stops a debug build (host or device) there, instead of running another type's code; release
+// builds (NDEBUG) compile the checks away, so kernels pay nothing.
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <type_traits>
 
@@ -83,15 +89,19 @@ class TaggedUnion {
   DV_HD bool holds() const {
     return tag_ == index_of<T>();
   }
+  // The member of type T, which must be the active one.
   template <class T>
   DV_HD const T& get() const {
+    assert(holds<T>() && "TaggedUnion::get<T>() of a type the union does not hold");
     return tagged_union_detail::member<index_of<T>()>(members_);
   }
 
   // f(member) for the active member, through one switch on the tag (a uniform branch when all
-  // threads of a warp hold the same type). Cases past the list fall through to the first type.
+  // threads of a warp hold the same type). A tag past the list fails the assert; without it
+  // (NDEBUG) such a tag falls through to the first type.
   template <class F>
   DV_HD auto dispatch(F f) const {
+    assert(tag_ < kTypes && "TaggedUnion::dispatch on a tag outside the type list");
 #define DV_TAGGED_UNION_CASE(i)                                                   \
   case i:                                                                         \
     if constexpr (i < kTypes) return f(tagged_union_detail::member<i>(members_)); \

@@ -13,6 +13,7 @@ import sys
 ORDER = [["core"], ["cuda"], ["engine/scene"], ["engine/oracle"], ["engine/raster"],
          ["engine/dsm"], ["strategies/storage", "strategies/voxelizer"], ["strategies/shadow"],
          ["render/io", "render/frame", "gl"], ["render/load"], ["experiments/harness"],
+         ["experiments/advise"],
          ["experiments"], ["apps/common"], ["apps/viewer"], ["apps/deepvox"], ["tests"]]
 LEVEL = {folder: level for level, folders in enumerate(ORDER) for folder in folders}
 SOURCE = re.compile(r"\.(h|cpp|cu|cuh)$")

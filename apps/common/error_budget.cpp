@@ -4,9 +4,9 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/number_text.h"
-#include "experiments/harness/advise.h"
-#include "experiments/harness/advise_report.h"
-#include "experiments/harness/error_model.h"
+#include "experiments/advise/advise.h"
+#include "experiments/advise/advise_report.h"
+#include "experiments/advise/error_model.h"
 #include "experiments/harness/scene_cache.h"
 
 namespace dv::cli {

@@ -1,7 +1,7 @@
 // `--shadows auto --error-budget E`: before the method is made, the auto method's
 // parameters are chosen for the scene so that the p95 |T' - T| in every stratum of the probe
 // points (experiments/harness/probe_strata.h: lit, umbra, partial, media) stays within E: the
-// calibrated error model (experiments/harness/error_model.h) proposes the cheapest
+// calibrated error model (experiments/advise/error_model.h) proposes the cheapest
 // configuration from the scene's light statistics (caster kinds, how many, the smallest caster
 // as the light sees it), and its proposal is measured on the scene's strata at fresh points
 // (the model was calibrated on the camera's points alone); when the model cannot predict a

@@ -1,14 +1,14 @@
 // `deepvox advise` (options: its --help, docs/cli.md): the cheapest shadow configuration of the
 // user's scene within an error bound in every stratum of its probe points (lit, umbra, partial,
 // media) and, unless --speed-only, an image edge error no worse than the default configuration's
-// (or --image-error F), measured against the exact oracle (experiments/harness/advise.h): progress
+// (or --image-error F), measured against the exact oracle (experiments/advise/advise.h): progress
 // per measurement on stderr, the Pareto front and the verified pick on stdout, and under DIR
 // advice.json (every measurement), pick.json (a shadow config render/probe/view take with --config
 // and suite files name), front.svg (error against frame time). Ctrl-C ends the search, keeps what
 // was measured and writes the outputs from it (exit 130). With --time it times config files
 // alternately, so that drift between them cancels; with --calibrate it regenerates the error model
 // of `--shadows auto --error-budget` from an accuracy suite run
-// (experiments/harness/error_model.h).
+// (experiments/advise/error_model.h).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -19,9 +19,9 @@
 #include "apps/deepvox/commands.h"
 #include "core/error.h"
 #include "core/log.h"
-#include "experiments/harness/advise.h"
-#include "experiments/harness/advise_report.h"
-#include "experiments/harness/error_model.h"
+#include "experiments/advise/advise.h"
+#include "experiments/advise/advise_report.h"
+#include "experiments/advise/error_model.h"
 #include "experiments/harness/interrupt.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/timing.h"

@@ -106,24 +106,34 @@ struct DsmGenerator {
     return p;
   }
 
+  // Walks `ray` of face `face` into `payload` over the crossings of `fragments` with the face's
+  // objects, from where the face's near plane cuts the ray, inside the media (of those objects)
+  // there; the status's overflow includes that of the walk to the near plane.
+  template <class Fragments, class Target>
+  DV_HD WalkStatus walk_from_near_plane(int face, const PixelRay& ray, const Fragments& fragments,
+                                        VisibilityPayload<Target>& payload) const {
+    const ObjectMask mask = mask_of(face);
+    const NearPlaneStart front =
+        masked_start_at_near_plane(scene, faces[face].projection, ray, ray_media[face], mask);
+    const MaskedFragments<Fragments> masked{&scene, fragments, mask};
+    WalkStatus status =
+        walk_fragments(scene, masked, front.status.inside, front.t, front.t, 1e300, payload);
+    status.overflow |= front.status.overflow;
+    return status;
+  }
+
   // Walks texel t's ray into `target` (push / push_step), sampling constant media for error
   // bound eps; returns the walk's status and the visibility where it ended. With `colour` the
   // walk also sums the optical depths of the colour side channel (engine/dsm/dsm_colour.h).
   template <class Target>
   DV_HD WalkStatus walk(const DsmTexel& t, double eps, Target& target, double& final_visibility,
                         ColourDepth* colour = nullptr) const {
-    const ShadowFace& f = faces[t.face];
-    const PixelRay ray = pixel_ray(f.projection, t.x, t.y);
-    const ObjectMask mask = mask_of(t.face);
-    const NearPlaneStart front =
-        masked_start_at_near_plane(scene, f.projection, ray, ray_media[t.face], mask);
+    const PixelRay ray = pixel_ray(faces[t.face].projection, t.x, t.y);
     VisibilityPayload<Target> payload = make_payload(target, ray, eps);
     payload.track_colour = colour != nullptr;
-    const MaskedFragments<RasterFragments> fragments{
-        &scene, RasterFragments{&scene, lists[t.face], t.x, t.y, ray.origin, ray.direction}, mask};
-    WalkStatus status =
-        walk_fragments(scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
-    status.overflow |= front.status.overflow;
+    const WalkStatus status = walk_from_near_plane(
+        t.face, ray, RasterFragments{&scene, lists[t.face], t.x, t.y, ray.origin, ray.direction},
+        payload);
     final_visibility = payload.visibility;
     if (colour) *colour = {payload.optical_depth, payload.optical_depth_rgb};
     return status;
@@ -156,24 +166,20 @@ struct DsmGenerator {
     bool overflow = false;
     float sub_error = 0.0f;
     double final_visibility = 0.0;
-    const ObjectMask mask = mask_of(t.face);
     for (int k = 0; k < nodes.rays; ++k) {
       const double px = t.x + (double(k % side) + subray_jitter(t.index, k, 0)) / side;
       const double py = t.y + (double(k / side % side) + subray_jitter(t.index, k, 1)) / side;
       const PixelRay ray = image_point_ray(f.projection, px, py);
-      const NearPlaneStart front =
-          masked_start_at_near_plane(scene, f.projection, ray, ray_media[t.face], mask);
       VisibilityCompressor<ArrayNodeSink> sub(0.5f * eps,
                                               ArrayNodeSink{nodes.z[k], nodes.v[k], kSubrayNodes});
       VisibilityPayload<VisibilityCompressor<ArrayNodeSink>> payload =
           make_payload(sub, ray, sample_eps);
-      const MaskedFragments<BvhFragments> fragments{
-          &scene, BvhFragments{&scene, make_sheared_ray(ray.origin, ray.direction), 1e300}, mask};
-      const WalkStatus status =
-          walk_fragments(scene, fragments, front.status.inside, front.t, front.t, 1e300, payload);
+      const WalkStatus status = walk_from_near_plane(
+          t.face, ray, BvhFragments{&scene, make_sheared_ray(ray.origin, ray.direction), 1e300},
+          payload);
       sub.finish();
       nodes.count[k] = sub.sink().count;
-      overflow |= status.overflow || front.status.overflow || sub.stats().overflow;
+      overflow |= status.overflow || sub.stats().overflow;
       sub_error = max_value(sub_error, sub.stats().max_error);
       final_visibility += payload.visibility / nodes.rays;
     }

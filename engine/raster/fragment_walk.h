@@ -1,10 +1,16 @@
-// The fragment walk shared by every renderer pass: the crossings of one ray are visited in
-// (depth, triangle) order, the media the ray is inside are tracked (closed meshes with an
-// interior: +1 entering, -1 leaving), and a payload receives each homogeneous segment between
-// consecutive crossings and each surface crossing. The camera pass plugs in shading and
-// compositing (render/frame/shade_payload.h); the deep-shadow-map pass will plug in a visibility
-// payload. Where the crossings come from is a second plug: the BVH (ray walk) here, per-pixel
-// tile lists of the rasterizer later. Host and device code.
+// The fragment walk shared by every pass that follows a ray through the scene: the crossings
+// of one ray are visited in (depth, triangle) order, the media the ray is inside are tracked
+// (closed meshes with an interior: +1 entering, -1 leaving), and a payload receives each
+// homogeneous segment between consecutive crossings and each surface crossing. One walk, so
+// that the camera, the deep shadow maps and the probes order crossings and track media alike.
+// Two plugs:
+//   fragments  where the crossings come from: the BVH (BvhFragments, here), a pixel's tile
+//              lists of the rasterizer (RasterFragments, raster_fragments.h), or either limited
+//              to a face's objects (MaskedFragments, engine/dsm/object_mask.h);
+//   payload    what the walk feeds: shading and compositing for the camera
+//              (render/frame/shade_payload.h), visibility for deep shadow maps
+//              (engine/dsm/visibility_payload.h), nothing but inside-ness (NoPayload, here).
+// Host and device code.
 #pragma once
 
 #include <cstdint>
@@ -43,7 +49,9 @@ struct InsideSet {
   }
 };
 
-// Crossings of a ray found through the scene's BVH, up to t_max.
+// Crossings of a ray found through the scene's BVH, up to t_max. A fragment source answers
+// next(t_after, after_triangle, out): the first crossing after (t_after, after_triangle) in
+// (depth, triangle) order, false when there is none.
 struct BvhFragments {
   const SceneView* scene;
   ShearedRay ray;

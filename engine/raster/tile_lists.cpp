@@ -1,4 +1,4 @@
-// Host-side helpers of TileLists and TileListSet (views, host copies, the split into sets of
+// Host-side helpers of the tile lists (views, host copies, the split into sets of
 // tile_list_sets.h) and the stats as JSON for the render stats file. Kept out of tile_raster.cpp
 // so nvcc compiles only the kernels.
 #include <cstddef>
@@ -11,11 +11,7 @@
 
 namespace dv {
 
-TileListsView TileLists::view() const {
-  return {width, height, tiles_x, tiles_y, offsets.const_view(), entries.const_view()};
-}
-
-TileListsView TileListSet::view(int projection) const {
+TileListsView TileListBuffers::view(int projection) const {
   const int64_t tiles = tile_count();
   const View<const uint32_t> all = offsets.const_view();
   return {width,
@@ -46,20 +42,20 @@ std::vector<TileListSet> rasterize_tile_sets(Backend backend, View<const dvec3> 
   return sets;
 }
 
-TileLists TileLists::to_host() const {
-  TileLists copy;
-  copy.width = width;
-  copy.height = height;
-  copy.tiles_x = tiles_x;
-  copy.tiles_y = tiles_y;
+TileListBuffers TileListBuffers::to_host() const {
   const std::vector<uint32_t> host_offsets = offsets.to_vector();
   const std::vector<TileEntry> host_entries = entries.to_vector();
-  copy.offsets =
-      Buffer<uint32_t>(Memory::host, std::span<const uint32_t>(host_offsets), "tile offsets");
-  copy.entries =
-      Buffer<TileEntry>(Memory::host, std::span<const TileEntry>(host_entries), "tile entries");
-  copy.stats = stats;
-  return copy;
+  return {
+      width,
+      height,
+      tiles_x,
+      tiles_y,
+      Buffer<uint32_t>(Memory::host, std::span<const uint32_t>(host_offsets), "tile offsets"),
+      Buffer<TileEntry>(Memory::host, std::span<const TileEntry>(host_entries), "tile entries")};
+}
+
+TileLists TileLists::to_host() const {
+  return {TileListBuffers::to_host(), stats};
 }
 
 void to_json(nlohmann::json& out, const RasterStats& s) {

@@ -209,21 +209,23 @@ void check_projections(const std::vector<RasterProjection>& projections, int64_t
 }
 
 struct SetupResult {
-  Buffer<RasterTriangle> first, extra;
+  Buffer<RasterTriangle> first;         // per pair: its first piece (or an empty record)
+  Buffer<uint8_t> pieces;               // per pair: its pieces
   std::vector<SetupCounters> counters;  // per projection
   int64_t extra_pieces = 0, box_tiles = 0;
 };
 
+// The setup pass: each pair's first piece, its piece count, and the counters.
 SetupResult setup_records(Backend backend, const SetView& view) {
   const Memory memory = memory_of(backend);
   const int64_t n = view.pairs();
   SetupResult out;
   out.first = Buffer<RasterTriangle>(memory, n, "raster records");
-  Buffer<uint8_t> piece_counts(memory, n, "raster piece counts");
+  out.pieces = Buffer<uint8_t>(memory, n, "raster piece counts");
   Buffer<SetupCounters> counters(memory, view.projections, "raster counters");
   counters.fill_zero();
   const View<RasterTriangle> first = out.first.view();
-  const View<uint8_t> pieces_of = piece_counts.view();
+  const View<uint8_t> pieces_of = out.pieces.view();
   SetupCounters* c = counters.data();
   parallel_for(
       backend, "raster_setup", n, DV_KERNEL_LAMBDA(int64_t i) {
@@ -244,15 +246,22 @@ SetupResult setup_records(Backend backend, const SetView& view) {
     out.extra_pieces += int64_t(k.extra_pieces);
     out.box_tiles += int64_t(k.box_tiles);
   }
-  const int64_t extra_count = out.extra_pieces;
-  out.extra = Buffer<RasterTriangle>(memory, extra_count, "raster extra pieces");
-  if (extra_count == 0) return out;
+  return out;
+}
+
+// The extras pass: the pieces after the first of every clipped pair, set up again and appended
+// (in arbitrary order; the sort pass hides it).
+Buffer<RasterTriangle> setup_extra_pieces(Backend backend, const SetView& view,
+                                          View<const uint8_t> pieces_of, int64_t extra_count) {
+  const Memory memory = memory_of(backend);
+  Buffer<RasterTriangle> extra_pieces(memory, extra_count, "raster extra pieces");
+  if (extra_count == 0) return extra_pieces;
   Buffer<unsigned long long> cursor(memory, 1, "raster extra cursor");
   cursor.fill_zero();
-  const View<RasterTriangle> extra = out.extra.view();
+  const View<RasterTriangle> extra = extra_pieces.view();
   unsigned long long* next = cursor.data();
   parallel_for(
-      backend, "raster_setup_extra", n, DV_KERNEL_LAMBDA(int64_t i) {
+      backend, "raster_setup_extra", pieces_of.size, DV_KERNEL_LAMBDA(int64_t i) {
         const int pieces = pieces_of[i];
         if (pieces <= 1) return;
         const unsigned long long base = atomic_add(next, (unsigned long long)(pieces - 1));
@@ -263,67 +272,67 @@ SetupResult setup_records(Backend backend, const SetView& view) {
           ++k;
         });
       });
-  return out;
+  return extra_pieces;
 }
 
-// The passes over a set of projections (see the top of the file).
-TileListSet rasterize_set(Backend backend, const std::vector<RasterProjection>& projections,
-                          View<const dvec3> vertices, View<const u32vec3> triangles,
-                          const RasterOptions& options) {
-  require_backend(backend);
-  check_projections(projections, triangles.size);
-  if (options.max_entries < 0)
-    throw InputError(
-        kWhere, "max_entries must not be negative, got " + std::to_string(options.max_entries));
-  const Memory memory = memory_of(backend);
-  const int width = projections[0].width, height = projections[0].height;
-  const int64_t count = int64_t(projections.size());
-  Buffer<RasterProjection> projection_buffer;
-  if (count > 1)
-    projection_buffer = Buffer<RasterProjection>(
-        memory, std::span<const RasterProjection>(projections), "raster projections");
-  const SetView view{projections[0], projection_buffer.const_view(), count, vertices, triangles};
-  TileListSet lists;
-  lists.width = width;
-  lists.height = height;
-  lists.tiles_x = tiles_along(width);
-  lists.tiles_y = tiles_along(height);
-  const int64_t face_tiles = lists.tile_count();
-  const int64_t tiles = face_tiles * count;  // of every projection
-  const int tiles_x = lists.tiles_x;
+// What the passes after setup share: the set, its records, where each record's work items start
+// (records.size() + 1 values, the last one the item count) and the tiles of every projection.
+struct Binning {
+  SetView view;
+  Records records;
+  View<const int64_t> starts;
+  int64_t items;
+  int width, height, tiles_x;
+  int64_t face_tiles;  // per projection
+  int64_t tiles;       // of every projection
 
-  const SetupResult setup = setup_records(backend, view);
-  const Records records{setup.first.const_view(), setup.extra.const_view()};
-  const int64_t items = setup.box_tiles;
-  Buffer<int64_t> record_starts(memory, records.size() + 1, "raster record starts");
+  // Tile (tx, ty) of the projection record t belongs to, counted over every projection.
+  DV_HD int64_t tile_of(const RasterTriangle& t, int tx, int ty) const {
+    return view.projection_of(t.source) * face_tiles + int64_t(ty) * tiles_x + tx;
+  }
+  DV_HD uint64_t coverage(const RasterTriangle& t, int tx, int ty) const {
+    return tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
+  }
+};
+
+// The items pass: each record's first work item, from the records' box sizes scanned on the
+// device.
+Buffer<int64_t> record_item_starts(Backend backend, const Records& records) {
+  Buffer<int64_t> record_starts(memory_of(backend), records.size() + 1, "raster record starts");
   const View<int64_t> starts_out = record_starts.view();
   parallel_for(
       backend, "raster_box_sizes", records.size() + 1, DV_KERNEL_LAMBDA(int64_t r) {
         starts_out[r] = r < records.size() ? box_tile_count(records[r]) : 0;
       });
   exclusive_scan_queued(backend, starts_out);
-  const View<const int64_t> starts = record_starts.const_view();
+  return record_starts;
+}
 
-  Buffer<uint32_t> tile_counts(memory, tiles, "raster tile counts");
+// The count pass: the entries each tile needs (non-zero coverage masks), per tile.
+Buffer<uint32_t> count_tile_entries(Backend backend, const Binning& bin) {
+  Buffer<uint32_t> tile_counts(memory_of(backend), bin.tiles, "raster tile counts");
   tile_counts.fill_zero();
   uint32_t* counts = tile_counts.data();
   parallel_for(
-      backend, "raster_count", items, DV_KERNEL_LAMBDA(int64_t i) {
-        visit_box_tile(records, starts, i, [&](const RasterTriangle& t, int tx, int ty) {
-          const int64_t tile =
-              view.projection_of(t.source) * face_tiles + int64_t(ty) * tiles_x + tx;
-          if (tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height)) != 0)
-            atomic_add(counts + tile, 1u);
+      backend, "raster_count", bin.items, DV_KERNEL_LAMBDA(int64_t i) {
+        visit_box_tile(bin.records, bin.starts, i, [&](const RasterTriangle& t, int tx, int ty) {
+          if (bin.coverage(t, tx, ty) != 0) atomic_add(counts + bin.tile_of(t, tx, ty), 1u);
         });
       });
+  return tile_counts;
+}
 
-  // The offsets on the device: the counts scanned, then tiles whose list does not fit under
-  // the limit (and all tiles after the first such one) keep empty ranges. One small read-back
-  // brings the totals the host needs to size the entries.
-  const uint64_t limit = uint64_t(std::min<int64_t>(options.max_entries, int64_t(UINT32_MAX)));
+// The offsets pass: the counts scanned on the device, then tiles whose list does not fit under
+// `limit` (and all tiles after the first such one) keep empty ranges. One small read-back brings
+// the totals the host needs to size the entries. Fills the lists' offsets, allocates their
+// entries and fills each projection's entry stats; returns the longest list.
+int64_t size_tile_lists(Backend backend, const Binning& bin, View<const uint32_t> counted,
+                        uint64_t limit, TileListSet& lists) {
+  const Memory memory = memory_of(backend);
+  const int64_t tiles = bin.tiles, face_tiles = bin.face_tiles;
+  const int64_t count = bin.view.projections;
   Buffer<int64_t> tile_starts(memory, tiles + 1, "raster tile starts");
   const View<int64_t> tile_start = tile_starts.view();
-  const View<const uint32_t> counted = tile_counts.const_view();
   parallel_for(
       backend, "raster_tile_sizes", tiles + 1,
       DV_KERNEL_LAMBDA(int64_t t) { tile_start[t] = t < tiles ? int64_t(counted[t]) : 0; });
@@ -377,29 +386,41 @@ TileListSet rasterize_set(Backend backend, const std::vector<RasterProjection>& 
     most_per_tile = std::max(most_per_tile, s.max_entries_per_tile);
   }
   lists.entries = Buffer<TileEntry>(memory, int64_t(stored), "raster tile entries");
+  return most_per_tile;
+}
 
-  Buffer<uint32_t> tile_fill(memory, tiles, "raster tile cursors");
+// The write pass: the masks again, each stored at its tile's next free slot (atomic cursor) of
+// a scratch copy of the entries, in arbitrary order within a tile.
+Buffer<TileEntry> write_tile_entries(Backend backend, const Binning& bin,
+                                     View<const uint32_t> range, int64_t stored) {
+  const Memory memory = memory_of(backend);
+  Buffer<uint32_t> tile_fill(memory, bin.tiles, "raster tile cursors");
   tile_fill.fill_zero();
   uint32_t* fill = tile_fill.data();
-  const View<const uint32_t> range = lists.offsets.const_view();
-  Buffer<TileEntry> unsorted_entries(memory, int64_t(stored), "raster unsorted tile entries");
+  Buffer<TileEntry> unsorted_entries(memory, stored, "raster unsorted tile entries");
   const View<TileEntry> unsorted = unsorted_entries.view();
   parallel_for(
-      backend, "raster_write", items, DV_KERNEL_LAMBDA(int64_t i) {
-        visit_box_tile(records, starts, i, [&](const RasterTriangle& t, int tx, int ty) {
-          const uint64_t mask = tile_coverage(t, tx, ty, tile_valid_mask(tx, ty, width, height));
+      backend, "raster_write", bin.items, DV_KERNEL_LAMBDA(int64_t i) {
+        visit_box_tile(bin.records, bin.starts, i, [&](const RasterTriangle& t, int tx, int ty) {
+          const uint64_t mask = bin.coverage(t, tx, ty);
           if (mask == 0) return;
-          const int64_t tile =
-              view.projection_of(t.source) * face_tiles + int64_t(ty) * tiles_x + tx;
+          const int64_t tile = bin.tile_of(t, tx, ty);
           const uint32_t slot = atomic_add(fill + tile, 1u);
           if (slot < range[tile + 1] - range[tile])
-            unsorted[range[tile] + slot] = {mask, view.triangle_of(t.source), 0u};
+            unsorted[range[tile] + slot] = {mask, bin.view.triangle_of(t.source), 0u};
         });
       });
-  const View<TileEntry> entries = lists.entries.view();
+  return unsorted_entries;
+}
+
+// The sort pass: each tile's entries ordered by (triangle, mask), short lists by rank, longer
+// ones (there are some when most_per_tile is above the rank limit) by one thread a list.
+void sort_tile_entries(Backend backend, View<const uint32_t> range, int64_t tiles,
+                       View<const TileEntry> unsorted, View<TileEntry> entries,
+                       int64_t most_per_tile) {
   const int64_t rank_sorted = rank_sorted_entries(backend);
   parallel_for(
-      backend, "raster_rank_sort", int64_t(stored), DV_KERNEL_LAMBDA(int64_t e) {
+      backend, "raster_rank_sort", entries.size, DV_KERNEL_LAMBDA(int64_t e) {
         const int64_t tile = owner_of_item(range, tiles, e);
         const int64_t first = range[tile], end = range[tile + 1];
         if (end - first > rank_sorted) return;
@@ -419,12 +440,15 @@ TileListSet rasterize_set(Backend backend, const std::vector<RasterProjection>& 
           for (int64_t j = first; j < first + count; ++j) entries[j] = unsorted[j];
           sort_entries(entries.data + first, count);
         });
-  if (backend == Backend::cuda) device_synchronize(kWhere);
+}
 
-  for (int64_t p = 0; p < count; ++p) {
-    const SetupCounters& c = setup.counters[size_t(p)];
-    RasterStats& s = lists.stats[size_t(p)];
-    s.triangles_in = triangles.size;
+// The setup pass's counters of each projection in its stats.
+void add_setup_stats(const std::vector<SetupCounters>& counters, int64_t triangles,
+                     std::vector<RasterStats>& stats) {
+  for (size_t p = 0; p < stats.size(); ++p) {
+    const SetupCounters& c = counters[p];
+    RasterStats& s = stats[p];
+    s.triangles_in = triangles;
     s.culled_behind = int64_t(c.culled_behind);
     s.culled_offscreen = int64_t(c.culled_offscreen);
     s.culled_degenerate = int64_t(c.culled_degenerate);
@@ -437,6 +461,52 @@ TileListSet rasterize_set(Backend backend, const std::vector<RasterProjection>& 
     s.clipped_guard = int64_t(c.clipped_guard);
     s.pieces = s.triangles_rasterized + int64_t(c.extra_pieces);
   }
+}
+
+// The passes over a set of projections, in order (see the top of the file).
+TileListSet rasterize_set(Backend backend, const std::vector<RasterProjection>& projections,
+                          View<const dvec3> vertices, View<const u32vec3> triangles,
+                          const RasterOptions& options) {
+  require_backend(backend);
+  check_projections(projections, triangles.size);
+  if (options.max_entries < 0)
+    throw InputError(
+        kWhere, "max_entries must not be negative, got " + std::to_string(options.max_entries));
+  const int64_t count = int64_t(projections.size());
+  Buffer<RasterProjection> projection_buffer;
+  if (count > 1)
+    projection_buffer = Buffer<RasterProjection>(
+        memory_of(backend), std::span<const RasterProjection>(projections), "raster projections");
+  const SetView view{projections[0], projection_buffer.const_view(), count, vertices, triangles};
+  TileListSet lists;
+  lists.width = projections[0].width;
+  lists.height = projections[0].height;
+  lists.tiles_x = tiles_along(lists.width);
+  lists.tiles_y = tiles_along(lists.height);
+
+  const SetupResult setup = setup_records(backend, view);
+  const Buffer<RasterTriangle> extra =
+      setup_extra_pieces(backend, view, setup.pieces.const_view(), setup.extra_pieces);
+  const Records records{setup.first.const_view(), extra.const_view()};
+  const Buffer<int64_t> starts = record_item_starts(backend, records);
+  const Binning bin{.view = view,
+                    .records = records,
+                    .starts = starts.const_view(),
+                    .items = setup.box_tiles,
+                    .width = lists.width,
+                    .height = lists.height,
+                    .tiles_x = lists.tiles_x,
+                    .face_tiles = lists.tile_count(),
+                    .tiles = lists.tile_count() * count};
+  const Buffer<uint32_t> counts = count_tile_entries(backend, bin);
+  const uint64_t limit = uint64_t(std::min<int64_t>(options.max_entries, int64_t(UINT32_MAX)));
+  const int64_t most_per_tile = size_tile_lists(backend, bin, counts.const_view(), limit, lists);
+  const Buffer<TileEntry> unsorted =
+      write_tile_entries(backend, bin, lists.offsets.const_view(), lists.entries.size());
+  sort_tile_entries(backend, lists.offsets.const_view(), bin.tiles, unsorted.const_view(),
+                    lists.entries.view(), most_per_tile);
+  if (backend == Backend::cuda) device_synchronize(kWhere);
+  add_setup_stats(setup.counters, triangles.size, lists.stats);
   return lists;
 }
 
@@ -445,15 +515,7 @@ TileListSet rasterize_set(Backend backend, const std::vector<RasterProjection>& 
 TileLists rasterize_tiles(Backend backend, const RasterView& view, const RasterOptions& options) {
   TileListSet set =
       rasterize_set(backend, {view.projection}, view.vertices, view.triangles, options);
-  TileLists lists;
-  lists.width = set.width;
-  lists.height = set.height;
-  lists.tiles_x = set.tiles_x;
-  lists.tiles_y = set.tiles_y;
-  lists.offsets = std::move(set.offsets);
-  lists.entries = std::move(set.entries);
-  lists.stats = set.stats[0];
-  return lists;
+  return {std::move(static_cast<TileListBuffers&>(set)), set.stats[0]};
 }
 
 TileLists rasterize_tiles(Backend backend, const SceneView& scene,

@@ -151,29 +151,32 @@ struct RasterStats {
 
 void to_json(nlohmann::json& out, const RasterStats& stats);
 
-struct TileLists {
+// The buffers of tile lists binned over one image size: tile t's entries (of every projection,
+// projection p's tiles after p - 1's) are entries[offsets[t], offsets[t + 1]).
+struct TileListBuffers {
   int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
-  Buffer<uint32_t> offsets;  // tiles + 1
+  Buffer<uint32_t> offsets;  // projections * tile_count() + 1, into entries
   Buffer<TileEntry> entries;
+
+  int64_t tile_count() const { return int64_t(tiles_x) * tiles_y; }  // per projection
+  TileListsView view(int projection = 0) const;                      // one projection's lists
+  TileListBuffers to_host() const;                                   // a copy in host memory
+};
+
+// The tile lists of one projection (rasterize_tiles).
+struct TileLists : TileListBuffers {
   RasterStats stats;
 
-  int64_t tile_count() const { return int64_t(tiles_x) * tiles_y; }
-  TileListsView view() const;
-  TileLists to_host() const;  // a copy in host memory
+  TileLists to_host() const;
 };
 
 // The tile lists of several projections of one image size over the same triangles, binned
-// together (rasterize_tile_set): projection p's lists are tiles [p * tiles, (p + 1) * tiles) of
-// one offsets array into one entries array, and equal rasterize_tiles' lists of p alone.
-struct TileListSet {
-  int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
-  Buffer<uint32_t> offsets;  // projections * tiles + 1, into entries
-  Buffer<TileEntry> entries;
+// together (rasterize_tile_set): projection p's lists, view(p), equal rasterize_tiles' lists of
+// p alone.
+struct TileListSet : TileListBuffers {
   std::vector<RasterStats> stats;  // per projection
 
-  int64_t tile_count() const { return int64_t(tiles_x) * tiles_y; }  // per projection
   int projections() const { return int(stats.size()); }
-  TileListsView view(int projection) const;
 };
 
 struct RasterOptions {

@@ -144,12 +144,14 @@ void validate_scene(Scene& scene) {
     if (obj.mesh < 0 || obj.mesh >= int(scene.meshes.size()))
       throw InputError(where, "mesh index out of range");
     const Material& m = obj.material;
-    if (m.base_texture >= int(scene.textures.size()))
-      throw InputError(where, "base-colour texture index out of range");
-    if (m.base_texture >= 0 && scene.meshes[obj.mesh].corner_uvs.empty())
-      throw InputError(where,
-                       "the material has a base-colour texture but the mesh has no "
-                       "texture coordinates");
+    for (const auto& [texture, what] :
+         {std::pair{m.base_texture, "base-colour"}, std::pair{m.emissive_texture, "emissive"}}) {
+      if (texture >= int(scene.textures.size()))
+        throw InputError(where, std::string(what) + " texture index out of range");
+      if (texture >= 0 && scene.meshes[obj.mesh].corner_uvs.empty())
+        throw InputError(where, std::string("the material has a ") + what +
+                                    " texture but the mesh has no texture coordinates");
+    }
     if (!(m.coverage_factor >= 0.0 && m.coverage_factor <= 1.0))
       throw InputError(where, "material coverage factor must lie in [0, 1]");
     if (!finite(m.emission) || m.emission.x < 0.0 || m.emission.y < 0.0 || m.emission.z < 0.0)

@@ -69,8 +69,12 @@ struct Material {
   glm::dmat3 uv_transform{1.0};
   // Light the surface emits towards the camera (glTF emissiveFactor times emissiveStrength),
   // added in the camera pass where the surface covers (alpha + transmission); it lights nothing
-  // else and casts no shadow.
+  // else and casts no shadow. An emissive texture (index into Scene::textures, -1: none)
+  // multiplies it by the texel's linear RGB, read through the mesh's texture coordinates and
+  // its own emissive_uv_transform.
   dvec3 emission{0.0};
+  int emissive_texture = -1;
+  glm::dmat3 emissive_uv_transform{1.0};
 };
 
 // One control point of a piecewise-linear transfer function: density -> colour and extinction

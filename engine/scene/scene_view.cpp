@@ -89,6 +89,8 @@ ObjectView make_object_view(const Scene& scene, const Object& obj,
   o.coverage_factor = m.coverage_factor;
   o.uv_transform = m.uv_transform;
   o.emission = m.emission;
+  o.emissive_texture = m.emissive_texture;
+  o.emissive_uv_transform = m.emissive_uv_transform;
   o.texture_colour =
       m.base_texture >= 0 && texture_has_colour(scene.textures[size_t(m.base_texture)]);
   o.world_to_grid = dmat4(1.0);
@@ -174,7 +176,7 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
   // no extra bytes.
   bool any_uvs = false, any_normals = false;
   for (const Object& obj : scene.objects) {
-    any_uvs |= obj.material.base_texture >= 0;
+    any_uvs |= obj.material.base_texture >= 0 || obj.material.emissive_texture >= 0;
     any_normals |= !scene.meshes[obj.mesh].corner_normals.empty();
   }
   std::vector<dvec2> corner_uvs;
@@ -184,7 +186,7 @@ SceneData::SceneData(const Scene& scene, Memory memory, const SceneDataOptions& 
     const TriangleMesh& mesh = scene.meshes[obj.mesh];
     // A mirroring transform flips winding; keep outward normals outward.
     const bool flip = glm::determinant(obj.transform) < 0.0;
-    const bool textured = obj.material.base_texture >= 0;
+    const bool textured = obj.material.base_texture >= 0 || obj.material.emissive_texture >= 0;
     const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(obj.transform)));
     for (size_t t = 0; t < mesh.triangles.size(); ++t)
       for (int k : {0, flip ? 2 : 1, flip ? 1 : 2}) {

@@ -35,6 +35,9 @@ struct ObjectView {
   double coverage_factor;
   glm::dmat3 uv_transform;
   dvec3 emission;  // Material::emission (camera pass only)
+  // Material::emissive_texture (index into SceneView::textures or -1) and its UV transform.
+  int32_t emissive_texture;
+  glm::dmat3 emissive_uv_transform;
   // The base-colour texture has colour (texture_has_colour, engine/scene/scene.h): glass it
   // covers tints light even under a grey factor.
   bool texture_colour;

@@ -88,17 +88,30 @@ struct SurfaceLook {
   dvec3 color;
 };
 
+// The mesh's texture coordinates interpolated at point p of BVH triangle `tri`.
+DV_HD inline dvec2 surface_uv(const SceneView& s, uint32_t tri, const dvec3& p) {
+  const dvec3 w = triangle_weights(s, tri, p);
+  return s.corner_uvs[3 * int64_t(tri)] * w.x + s.corner_uvs[3 * int64_t(tri) + 1] * w.y +
+         s.corner_uvs[3 * int64_t(tri) + 2] * w.z;
+}
+
 // The look of `object` at point p of BVH triangle `tri`.
 DV_HD inline SurfaceLook surface_look(const SceneView& s, const ObjectView& o, uint32_t tri,
                                       const dvec3& p) {
   if (o.texture < 0) return {o.alpha, o.transmission, o.color};
-  const dvec3 w = triangle_weights(s, tri, p);
-  const dvec2 uv = s.corner_uvs[3 * int64_t(tri)] * w.x + s.corner_uvs[3 * int64_t(tri) + 1] * w.y +
-                   s.corner_uvs[3 * int64_t(tri) + 2] * w.z;
-  const dvec2 mapped = dvec2(o.uv_transform * dvec3(uv, 1.0));
+  const dvec2 mapped = dvec2(o.uv_transform * dvec3(surface_uv(s, tri, p), 1.0));
   const dvec4 texel = sample_texture(s, s.textures[o.texture], mapped);
   const double coverage = texture_coverage(o, texel.w);
   return {coverage * o.alpha, coverage * o.transmission, o.color * dvec3(texel)};
+}
+
+// The light `object` emits at point p of BVH triangle `tri` (Material::emission, times the
+// emissive texture's linear RGB there).
+DV_HD inline dvec3 surface_emission(const SceneView& s, const ObjectView& o, uint32_t tri,
+                                    const dvec3& p) {
+  if (o.emissive_texture < 0) return o.emission;
+  const dvec2 mapped = dvec2(o.emissive_uv_transform * dvec3(surface_uv(s, tri, p), 1.0));
+  return o.emission * dvec3(sample_texture(s, s.textures[o.emissive_texture], mapped));
 }
 
 // Opacity per crossing of BVH triangle `tri` at point p.

@@ -20,12 +20,16 @@ a caption each in plots/plots.json (the report prints them in that order). Per e
 
 Whiskers run from the min to the max of the repetitions where rows.csv has them (frame_ms, the
 median generation plus the median render, from the sum of their minima to the sum of their
-maxima). Exit 3 when matplotlib is missing."""
+maxima). The strategies' families, colours and markers come from `deepvox list --json`
+(load_catalog: `plot_suite.py DIR [--catalog FILE | --deepvox PATH]`). Exit 3 when matplotlib
+is missing, 4 when there is no catalog."""
 import csv
 import json
 import math
 import os
 import re
+import shutil
+import subprocess
 import sys
 
 try:
@@ -36,24 +40,13 @@ try:
 except ImportError:
     sys.exit(3)
 
-# Method families (first match wins): name, colour, test on (strategy, params). The table is
-# printed in docs/suites.md; a member (marker) is the storage for dsm, else the strategy.
-NODE_LIST_STORAGES = ("compact", "texture3d", "chunked", "blocked")
-FIXED_SIZE_STORAGES = ("beer", "avsm", "moments", "fourier", "occupancy")
-FAMILIES = [
-    ("exact oracle", "black", lambda s, p: s in ("reference", "exact")),
-    ("no shadows", "#999999", lambda s, p: s == "none"),
-    ("shadow maps", "#1f77b4", lambda s, p: s == "shadowmap"),
-    ("DSM, node lists (compact, texture3d, chunked, blocked)", "#ff7f0e",
-     lambda s, p: s == "dsm" and p.get("storage", "compact") in NODE_LIST_STORAGES),
-    ("DSM, fixed-size records (beer, avsm, moments, fourier, occupancy)", "#d62728",
-     lambda s, p: s == "dsm" and p.get("storage") in FIXED_SIZE_STORAGES),
-    ("slice maps", "#2ca02c", lambda s, p: "slicemap" in s),
-    ("other", "#8c564b", lambda s, p: True),
-]
-MARKERS = {"compact": "o", "texture3d": "s", "chunked": "^", "blocked": "D", "beer": "o",
-           "avsm": "s", "moments": "^", "fourier": "D", "occupancy": "v", "shadowmap": "o",
-           "none": "X", "transmittance-slicemap": "o", "reference": "*", "exact": "*"}
+# Every registered strategy with its plot family, the family's colour and its marker, as
+# `deepvox list --json` prints them (load_catalog); a strategy the binary does not know (an older
+# run) is plotted as OTHER. A member (marker) is the strategy, or the strategy its member_param
+# names (dsm: its storage).
+CATALOG = {}
+OTHER = ("other", "#8c564b")
+ORACLE = "exact oracle"  # the family of the `reference` method and the `exact` voxelizer
 SPARE_MARKERS = ["P", "h", "<", ">", "p", "8"]
 SERIES_MARKERS = ["o", "s", "^", "D", "v", "P", "X", "h"]
 # Time columns that are sums of timed columns (shadow_driver.cpp): their whiskers add up.
@@ -130,12 +123,58 @@ def short_label(rows, base):
     return " ".join([s] + words)
 
 
+def load_catalog(argv):
+    """CATALOG, (registry, name) -> the strategy's entry, from the output of `deepvox list
+    --json`: the file given by --catalog FILE (what `deepvox report` passes), else that of the
+    binary given by --deepvox PATH, $DEEPVOX, `deepvox` on PATH or build/bin/deepvox beside the
+    script's source tree. False when there is none."""
+    if "--catalog" in argv:
+        with open(argv[argv.index("--catalog") + 1]) as f:
+            text = f.read()
+    else:
+        here = os.path.dirname(os.path.abspath(__file__))
+        candidates = [argv[argv.index("--deepvox") + 1]] if "--deepvox" in argv else [
+            os.environ.get("DEEPVOX"), shutil.which("deepvox"),
+            os.path.join(here, "..", "..", "build", "bin", "deepvox")]
+        deepvox = next((c for c in candidates if c and os.access(c, os.X_OK)), None)
+        if deepvox is None:
+            return False
+        text = subprocess.run([deepvox, "list", "--json"], capture_output=True, text=True,
+                              check=True).stdout
+    for e in json.loads(text)["strategies"]:
+        CATALOG[(e["registry"], e["name"])] = e
+    return True
+
+
+def entry_of(name, registries=("shadow method", "voxelizer")):
+    return next((CATALOG[(r, name)] for r in registries if (r, name) in CATALOG), None)
+
+
 def family(rows):
+    """(family, colour, member) of an item: its strategy's, or that of the strategy its
+    member_param names (the param's registered default when the item leaves it out)."""
     s, p = rows[0]["strategy"], params_of(rows)
-    member = p.get("storage", "compact") if s == "dsm" else s
-    for name, colour, test in FAMILIES:
-        if test(s, p):
-            return name, colour, member
+    e = entry_of(s)
+    if e is None:
+        return OTHER + (s,)
+    if e["member_param"]:
+        key = e["member_param"]
+        default = next((q["default"] for q in e["params"]
+                        if q["key"] == key and q["type"] == "name"), "")
+        member = p.get(key, default)
+        e = entry_of(member, (key,))
+        if e is None:
+            return OTHER + (member,)
+    return e["family"], e["colour"], e["name"]
+
+
+def family_order():
+    """The plot families in the catalog's order, each with its colour."""
+    order = {}
+    for e in CATALOG.values():
+        order.setdefault(e["family"], e["colour"])
+    order.setdefault(*OTHER)
+    return list(order.items())
 
 
 def scene_name(scene):
@@ -158,8 +197,9 @@ class Markers:
         self.spare = {}
 
     def __call__(self, member):
-        if member in MARKERS:
-            return MARKERS[member]
+        marked = [e["marker"] for (_, name), e in CATALOG.items() if name == member]
+        if marked and marked[0]:
+            return marked[0]
         if member not in self.spare:
             self.spare[member] = SPARE_MARKERS[len(self.spare) % len(SPARE_MARKERS)]
         return self.spare[member]
@@ -509,7 +549,7 @@ def family_legend(where, used, markers, extra=()):
     """Right of the panels (where: the figure or the one axes): the extra handles, then an entry
     per family member used, in the families' order (colour = family, marker = member)."""
     handles = list(extra)
-    for fam, colour, _ in FAMILIES:
+    for fam, colour in family_order():
         for m in sorted(m for f, m in used if f == fam):
             handles.append(Line2D([], [], color=colour, marker=markers(m), linestyle="",
                                   markersize=5, label="%s: %s" % (fam.split(" (")[0], m)))
@@ -628,7 +668,7 @@ def oracle_times(all_runs):
     """Per scene the exact oracle's frame time (a `reference` or `exact` item anywhere)."""
     times = {}
     for rows in all_runs:
-        if rows[0]["strategy"] in ("reference", "exact"):
+        if family(rows)[0] == ORACLE:
             v, lo, hi = value_range(rows, "frame_ms")
             if v is not None:
                 times.setdefault(rows[0]["scene"], (v, lo, hi))
@@ -657,7 +697,7 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
     fig, axes = grid(len(scenes), width=4.0, height=3.0)
     used = set()
     for ax, scene in zip(axes, scenes):
-        pts = [p for p in points_of(runs, scene, err, "frame_ms") if p["family"] != "exact oracle"]
+        pts = [p for p in points_of(runs, scene, err, "frame_ms") if p["family"] != ORACLE]
         draw_items(ax, pts, markers)
         used |= {(p["family"], p["member"]) for p in pts}
         front = pareto_front([(p["x"], p["y"]) for p in pts])
@@ -718,4 +758,8 @@ def main(folder):
 
 
 if __name__ == "__main__":
+    if not load_catalog(sys.argv):
+        print("plot_suite.py: no deepvox binary for `deepvox list --json` (give --catalog FILE or"
+              " --deepvox PATH)", file=sys.stderr)
+        sys.exit(4)
     main(sys.argv[1])

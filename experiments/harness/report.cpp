@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "core/number_text.h"
@@ -21,6 +23,7 @@
 #include "experiments/harness/rows.h"
 #include "experiments/harness/run_journal.h"
 #include "experiments/harness/suite_file.h"
+#include "strategies/shadow/strategy_catalog.h"
 
 namespace dv {
 
@@ -64,9 +67,21 @@ std::string draw_plots(const fs::path& dir) {
   // in PATH (pyenv, venv) may lack it.
   std::vector<std::string> pythons{"python3"};
   if (fs::exists("/usr/bin/python3")) pythons.insert(pythons.begin(), "/usr/bin/python3");
+  // The strategies' families and colours, as `deepvox list --json` prints them.
+  const fs::path catalog =
+      fs::temp_directory_path() / ("deepvox-catalog-" + std::to_string(getpid()) + ".json");
+  std::ofstream(catalog) << strategy_catalog_json().dump(1) << "\n";
+  struct RemoveAtEnd {
+    fs::path path;
+    ~RemoveAtEnd() {
+      std::error_code ec;
+      fs::remove(path, ec);
+    }
+  } remove_catalog{catalog};
   std::string why = "python3 is not installed";
   for (const std::string& python : pythons) {
-    const std::string cmd = python + " '" + script.string() + "' '" + dir.string() + "' 2>&1";
+    const std::string cmd = python + " '" + script.string() + "' '" + dir.string() +
+                            "' --catalog '" + catalog.string() + "' 2>&1";
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) continue;
     std::string out;

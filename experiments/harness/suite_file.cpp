@@ -10,8 +10,10 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "core/text.h"
 #include "experiments/harness/driver.h"
 #include "strategies/shadow/shadow_config.h"
+#include "strategies/shadow/strategy_catalog.h"
 
 namespace dv {
 
@@ -50,8 +52,79 @@ std::map<std::string, std::string> value_map(JsonReader& r, const std::string& k
   return out;
 }
 
+// Whether `table` declares `key` (a nested prefix's "prefix.KEY" included).
+bool declares(const ParamTable& table, const std::string& key) {
+  for (const ParamSpec& spec : table)
+    if (spec.key == key || (spec.type == ParamSpec::Type::nested && is_nested_key(key, spec.key)))
+      return true;
+  return false;
+}
+
+// {"every": FAMILY, "name": ..., "params": {...}, "sizes": bool}: one spec per registered
+// strategy of FAMILY (strategy_catalog.h), read from the registry when the suite loads. Without
+// "name" the members are the strategies, each given the "params" its own table declares (a key
+// that no member declares is an error); with "name" each member goes to that strategy's
+// parameter named like the family (dsm's `storage`) over the item's "params". With "sizes"
+// true a member that has a size knob runs once per value of it.
+std::vector<StrategySpec> every_strategy(JsonReader& item) {
+  const std::string family = item.string("every");
+  const std::vector<std::string> families = catalog_registries();
+  if (std::find(families.begin(), families.end(), family) == families.end()) {
+    std::string known;
+    for (const std::string& f : families) known += (known.empty() ? "" : ", ") + f;
+    item.fail("every", "unknown strategy family '" + family + "' (known: " + known + ")");
+  }
+  const std::string name = item.string("name", "");
+  const std::map<std::string, std::string> params = value_map(item, "params");
+  const bool sizes = item.boolean("sizes", false);
+  if (!name.empty()) {
+    bool takes_member = false;
+    for (const CatalogEntry& e : strategy_catalog())
+      for (const ParamSpec& spec : e.name == name ? e.params : ParamTable{})
+        takes_member |= spec.key == family && spec.type == ParamSpec::Type::name;
+    if (!takes_member)
+      item.fail("name", "'" + name + "' has no parameter '" + family + "' naming a " + family);
+  }
+  const std::vector<CatalogEntry> members = catalog_of(family, item.where("every"));
+  for (const auto& [key, value] : params) {
+    bool declared = !name.empty();
+    for (const CatalogEntry& m : members) declared |= declares(m.params, key);
+    if (!declared) item.fail("params/" + key, "no " + family + " declares '" + key + "'");
+  }
+  std::vector<StrategySpec> out;
+  for (const CatalogEntry& m : members) {
+    StrategySpec spec{name.empty() ? m.name : name, {}, {}};
+    for (const auto& [key, value] : params)
+      if (!name.empty() || declares(m.params, key)) spec.params[key] = value;
+    if (!name.empty()) spec.params[family] = m.name;
+    const std::string size_key = (name.empty() ? "" : family + ".") + m.traits.size_key;
+    if (!sizes || m.traits.size_key.empty()) {
+      out.push_back(spec);
+      continue;
+    }
+    for (const std::string& size : m.traits.sizes) {
+      spec.params[size_key] = size;
+      out.push_back(spec);
+    }
+  }
+  return out;
+}
+
+// Whether `earlier` already runs the member `spec` of an every item on the same scenes: the same
+// strategy and, where the item names one (`family_key`), the same member.
+bool runs_member(const StrategySpec& earlier, const StrategySpec& spec,
+                 const std::string& family_key) {
+  if (earlier.name != spec.name || earlier.scenes != spec.scenes) return false;
+  if (family_key.empty()) return true;
+  const auto it = earlier.params.find(family_key);
+  return it != earlier.params.end() &&
+         lowercase(it->second) == lowercase(spec.params.at(family_key));
+}
+
 // "name", or an array of "name" and {"name": ..., "params": {...}, "scenes": [...]} items; an
-// item may name a shadow config file instead ({"config": "pick.json", "scenes": [...]}).
+// item may name a shadow config file instead ({"config": "pick.json", "scenes": [...]}) or
+// every strategy of a family ({"every": "storage", ...}, every_strategy) but those an earlier
+// item already runs: a member that needs parameters of its own is named before the item.
 std::vector<StrategySpec> strategy_list(JsonReader& r) {
   const Json& v = r.raw("strategy");
   std::vector<StrategySpec> out;
@@ -62,8 +135,25 @@ std::vector<StrategySpec> strategy_list(JsonReader& r) {
       continue;
     }
     if (!v[i].is_object())
-      r.fail("strategy", "expected names or {\"name\", \"params\", \"scenes\"} objects");
+      r.fail("strategy",
+             "expected names or {\"name\", \"params\", \"scenes\"} or {\"every\", ...} "
+             "objects");
     JsonReader item(v[i], r.file(), r.path() + "/strategy/" + std::to_string(i));
+    if (item.has("every")) {
+      const std::string family_key = item.has("name") ? item.string("every") : "";
+      std::vector<StrategySpec> specs = every_strategy(item);
+      if (item.has("scenes")) {
+        const std::vector<std::string> scenes = one_or_many(item, "scenes");
+        for (StrategySpec& spec : specs) spec.scenes = scenes;
+      }
+      item.finish();
+      const size_t before = out.size();
+      for (StrategySpec& spec : specs)
+        if (std::none_of(out.begin(), out.begin() + long(before),
+                         [&](const StrategySpec& s) { return runs_member(s, spec, family_key); }))
+          out.push_back(std::move(spec));
+      continue;
+    }
     StrategySpec spec;
     if (item.has("config")) {  // a shadow config file (what `deepvox advise` writes)
       if (item.has("name") || item.has("params"))

@@ -44,7 +44,8 @@ struct ShadePayload {
   // A translucent surface: its Phong colour over what lies behind, weighted by its opacity;
   // its transmissive part adds highlights and reflects, by the Fresnel reflectance F at the
   // viewing angle, an ambient environment of level o.ambient (so clear glass shows a bright rim
-  // on any background), its emission adds where it covers, and it lets through what the
+  // on any background), its emission (times its emissive texture's texel) adds where it
+  // covers, and it lets through what the
   // crossing rule says. The shaded
   // point is the crossing moved onto its triangle (a rasterized crossing can lie just outside
   // it, on the plane's extension behind a neighbour, and would shadow itself), and its shadow
@@ -75,7 +76,8 @@ struct ShadePayload {
       const double reflected = fresnel_schlick(o.ior, cos_to_normal) * o.ambient;
       color += transmittance * look.transmission * (highlight + dvec3(reflected));
     }
-    color += transmittance * (look.alpha + look.transmission) * o.emission;
+    color += transmittance * (look.alpha + look.transmission) *
+             surface_emission(s, o, h.triangle, point);
     transmittance *=
         surface_transmittance(o, cos_to_normal, look.alpha + look.transmission, look.color);
   }

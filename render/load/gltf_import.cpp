@@ -474,13 +474,14 @@ void Importer::read_corner_attributes(const tinygltf::Primitive& prim, const std
       for (int k = 0; k < 3; ++k) out.corner_normals.push_back(n[t[k]]);
   }
   const MappedMaterial& mapped = material(prim.material);
-  if (mapped.gltf_texture < 0) return;
+  if (mapped.gltf_texture < 0 && mapped.gltf_emissive_texture < 0) return;
   const std::string set = "TEXCOORD_" + std::to_string(mapped.texcoord);
   const std::optional<AccessorView> uvs = attribute(set, AccessorKind::texcoord);
   if (!uvs)
     throw InputError(
         at("material " + std::to_string(prim.material)),
-        "its base-colour texture reads " + set + ", which the primitive" + of + " does not have");
+        std::string(mapped.gltf_texture >= 0 ? "its base-colour texture" : "its emissive texture") +
+            " reads " + set + ", which the primitive" + of + " does not have");
   const std::vector<dvec2> uv = read_texcoords(*uvs);
   for (const u32vec3& t : out.triangles)
     for (int k = 0; k < 3; ++k) out.corner_uvs.push_back(uv[t[k]]);
@@ -583,10 +584,22 @@ const MappedMaterial& Importer::material(int index) {
       mapped = map_gltf_material(untextured, where);
     }
   }
-  if (mapped.emissive_texture)
-    log_warning(where +
-                ": emissiveTexture is not read (deepvox draws no emissive textures), so this "
-                "material's emission is not drawn");
+  if (mapped.gltf_emissive_texture >= 0) {
+    mapped.material.emissive_texture = texture(mapped.gltf_emissive_texture, where);
+    if (mapped.material.emissive_texture < 0) {  // unusable image (named): no emission
+      mapped.material.emission = dvec3(0.0);
+      mapped.gltf_emissive_texture = -1;
+    } else if (mapped.gltf_texture < 0) {
+      mapped.texcoord = mapped.emissive_texcoord;  // the primitive's one TEXCOORD set
+    } else if (mapped.emissive_texcoord != mapped.texcoord) {
+      log_warning(where + ": emissiveTexture reads TEXCOORD_" +
+                  std::to_string(mapped.emissive_texcoord) + ", the base-colour texture TEXCOORD_" +
+                  std::to_string(mapped.texcoord) +
+                  "; deepvox reads one set per primitive, so the emission is drawn through "
+                  "TEXCOORD_" +
+                  std::to_string(mapped.texcoord));
+    }
+  }
   if (m.normalTexture.index >= 0 && !warned_normal_maps_) {
     warned_normal_maps_ = true;
     log_warning(where +

@@ -98,9 +98,12 @@
 //     InputError. normalTexture is ignored with one warning per file (vertex normals shade).
 //   - Emission: emissiveFactor times KHR_materials_emissive_strength's emissiveStrength becomes
 //     Material::emission (on the display scale, see "Exposure"), light the camera sees added
-//     where the surface covers; it lights nothing else. emissiveTexture is not read: such a
-//     material's emission is dropped (the factor alone would light the whole surface, not the
-//     texture's pattern) with one warning naming the material.
+//     where the surface covers; it lights nothing else. An emissiveTexture (its sampler and
+//     KHR_texture_transform) multiplies it by the texel's linear RGB; a primitive has one
+//     TEXCOORD set, the base-colour texture's where there is one (an emissiveTexture naming
+//     another set is read through it, with one warning naming the material); an unusable
+//     emissive image drops the emission (the factor alone would light the whole surface, not
+//     the texture's pattern), its image named in the warning.
 //   - Coverage a = 1 for OPAQUE, the baseColorFactor alpha for BLEND, and 1 or 0 for MASK
 //     (alpha >= alphaCutoff or not); t = KHR_materials_transmission transmissionFactor (0
 //     without the extension). Material::alpha = a (1 - t) (the opaque part), ::transmission =

@@ -67,6 +67,12 @@ Interior volume_interior(const tinygltf::Value& volume, const std::string& where
   return interior;
 }
 
+// A texture reference's UV transform and TEXCOORD set.
+struct TextureTransform {
+  glm::dmat3 uv;
+  int texcoord = 0;
+};
+
 // A 2-number array field of an extension object, or `fallback` when absent.
 dvec2 pair_field(const tinygltf::Value& object, const char* key, dvec2 fallback,
                  const std::string& where) {
@@ -81,13 +87,13 @@ dvec2 pair_field(const tinygltf::Value& object, const char* key, dvec2 fallback,
   return fallback;
 }
 
-// KHR_texture_transform on the base-colour texture: uv' = T(offset) R(rotation) S(scale) uv
+// KHR_texture_transform on a texture reference: uv' = T(offset) R(rotation) S(scale) uv
 // with R = [[cos, sin], [-sin, cos]] (rows): u' = u cos + v sin, v' = -u sin + v cos. The
 // ratified extension writes R column-major as mat3(cos, -sin, 0, sin, cos, 0, 0, 0, 1); its
 // example (offset [0, 1], rotation pi/2, scale 0.5 picks the image's lower-left quadrant, v
 // pointing down) holds only with this sign. And its texCoord override.
-void read_texture_transform(const tinygltf::Value& ext, const std::string& where,
-                            MappedMaterial& out) {
+TextureTransform read_texture_transform(const tinygltf::Value& ext, const std::string& where,
+                                        int texcoord) {
   const dvec2 offset = pair_field(ext, "offset", dvec2(0.0), where);
   const dvec2 scale = pair_field(ext, "scale", dvec2(1.0), where);
   const double rotation = number_field(ext, "rotation", 0.0, where);
@@ -95,17 +101,22 @@ void read_texture_transform(const tinygltf::Value& ext, const std::string& where
   const glm::dmat3 translate(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
   const glm::dmat3 rotate(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);  // columns, as glm takes them
   const glm::dmat3 scaling(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
-  out.material.uv_transform = translate * rotate * scaling;
-  const double texcoord = number_field(ext, "texCoord", double(out.texcoord), where);
-  require(texcoord >= 0.0 && texcoord == std::floor(texcoord) && texcoord < 64.0, where,
+  const double set = number_field(ext, "texCoord", double(texcoord), where);
+  require(set >= 0.0 && set == std::floor(set) && set < 64.0, where,
           "texCoord must be a small integer >= 0");
-  out.texcoord = int(texcoord);
+  return {translate * rotate * scaling, int(set)};
+}
+
+// A texture reference's KHR_texture_transform (identity without one) and TEXCOORD set.
+TextureTransform texture_transform(const tinygltf::TextureInfo& texture, const std::string& where) {
+  if (const tinygltf::Value* ext = find_extension(texture.extensions, "KHR_texture_transform"))
+    return read_texture_transform(*ext, where + ": KHR_texture_transform", texture.texCoord);
+  return {glm::dmat3(1.0), texture.texCoord};
 }
 
 // emissiveFactor times KHR_materials_emissive_strength's emissiveStrength, on the scale glTF
 // viewers display it (1: a pixel of 1 before the tone curve); the importer puts it on the
-// scene's light scale. An emissiveTexture is not read: then the emission is dropped (the factor
-// alone would light the whole surface, not the texture's pattern) and the importer warns.
+// scene's light scale; an emissiveTexture (mapped by the importer) multiplies it per texel.
 void read_emission(const tinygltf::Material& m, const std::string& where, MappedMaterial& out) {
   const std::vector<double>& factor = m.emissiveFactor;
   if (factor.empty()) return;  // glTF's default material (tinygltf fills only parsed ones)
@@ -118,9 +129,12 @@ void read_emission(const tinygltf::Material& m, const std::string& where, Mapped
     strength = number_field(*ext, "emissiveStrength", 1.0, ext_where);
     require(strength >= 0.0, ext_where, "emissiveStrength must be >= 0");
   }
-  out.emissive_texture = m.emissiveTexture.index >= 0;
-  if (!out.emissive_texture)
-    out.material.emission = dvec3(factor[0], factor[1], factor[2]) * strength;
+  out.material.emission = dvec3(factor[0], factor[1], factor[2]) * strength;
+  if (m.emissiveTexture.index < 0) return;
+  out.gltf_emissive_texture = m.emissiveTexture.index;
+  const TextureTransform t = texture_transform(m.emissiveTexture, where + ": emissiveTexture");
+  out.material.emissive_uv_transform = t.uv;
+  out.emissive_texcoord = t.texcoord;
 }
 
 }  // namespace
@@ -155,11 +169,11 @@ MappedMaterial map_gltf_material(const tinygltf::Material& m, const std::string&
   if (texture.index >= 0) {
     // Coverage comes per point from the factor times the texel's alpha (texture_sampling.h).
     out.gltf_texture = texture.index;
-    out.texcoord = texture.texCoord;
     out.material.coverage_factor = base[3];
     coverage = 1.0;
-    if (const tinygltf::Value* ext = find_extension(texture.extensions, "KHR_texture_transform"))
-      read_texture_transform(*ext, where + ": KHR_texture_transform", out);
+    const TextureTransform t = texture_transform(texture, where);
+    out.material.uv_transform = t.uv;
+    out.texcoord = t.texcoord;
   }
   double transmission = 0.0;
   if (const tinygltf::Value* ext = find_extension(m.extensions, "KHR_materials_transmission")) {

@@ -20,8 +20,9 @@ struct MappedMaterial {
   Interior interior;
   int gltf_texture = -1;
   int texcoord = 0;
-  // An emissiveTexture the material has (deepvox does not read it: its emission is dropped).
-  bool emissive_texture = false;
+  // The emissiveTexture's glTF texture index (-1: none) and the TEXCOORD set it names.
+  int gltf_emissive_texture = -1;
+  int emissive_texcoord = 0;
 };
 
 // The extension object `name` of an extension map, or nullptr.

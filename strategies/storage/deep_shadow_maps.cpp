@@ -2,6 +2,8 @@
 #include "strategies/storage/deep_shadow_maps.h"
 
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "cuda/ensure_buffer.h"
@@ -15,60 +17,100 @@ DeepShadowMaps::DeepShadowMaps(DsmSettings settings) : settings_(std::move(setti
   storage_ = storage_registry().create(settings_.storage, settings_.storage_params);
 }
 
-const ParamTable& dsm_param_table() {
-  static const ParamTable table = [] {
+namespace {
+
+// One key of the dsm parameters: its declaration, how DsmSettings reads it from resolved
+// parameters, and how own_params() writes it back (null for the nested storage.* items, which
+// params() writes).
+struct DsmKey {
+  ParamSpec spec;
+  void (*read)(const StrategyParams& p, const std::string& key, DsmSettings& s);
+  nlohmann::json (*write)(const DsmSettings& s);
+};
+
+// Every key of DsmSettings, once: dsm_param_table(), DsmSettings::read and own_params() are
+// walks over this list, so a key added here is declared, read and echoed alike.
+const std::vector<DsmKey>& dsm_keys() {
+  static const std::vector<DsmKey> keys = [] {
     const DsmSettings d;
     const ClusterSettings& c = d.clusters;
-    ParamSpec bias = number_param("bias", d.bias, -1.0, std::numeric_limits<double>::infinity(),
-                                  "receiver depth bias in world units; < 0: 1e-4 of the scene "
-                                  "diagonal");
-    return ParamTable{
-        name_param("storage", d.storage, "storage strategy of the maps (`deepvox list`)"),
-        nested_param("storage", "a parameter of the storage strategy (storage.alloc=thesis)"),
-        integer_param("res", d.resolution, 1, kMaxRasterSide, "texels per side of each map"),
-        number_param("eps", d.eps, 0.0, std::numeric_limits<double>::infinity(),
-                     "bound on the error of every compressed visibility function"),
-        choice_param("filter", d.bilinear ? "bilinear" : "none", {"none", "bilinear"},
-                     "lookup: nearest texel or bilinear over four"),
-        bias,
-        number_param("slope", d.slope_bias, 0.0, std::numeric_limits<double>::infinity(),
-                     "slope bias: texel sizes times the receiver's tangent to the light"),
-        integer_choice_param("subrays", d.subrays, {1, 4, 9, 16},
-                             "jittered sub-rays per texel, averaged (pre-filtering)"),
-        choice_param("volume", d.precompressed ? "table" : "midpoint", {"midpoint", "table"},
-                     "volume steps: midpoint samples, or Hadwiger's pre-compressed tables"),
-        integer_param("table_bins", d.table_bins, 2, 1024, "bins of the pre-compressed tables"),
-        positive_param("step_scale", d.step_scale, "multiplies the volumes' steps in generation"),
-        integer_param("clusters", c.max_clusters, 1, std::numeric_limits<int32_t>::max(),
-                      "most clusters per light (Knecht 2011); 1: one map per light face"),
-        number_param("cluster_d0", c.d0, 0.0, std::numeric_limits<double>::infinity(),
-                     "distance threshold of the clustering, NDC units of the face"),
-        integer_choice_param("lispsm", c.lispsm ? 1 : 0, {0, 1},
-                             "1: cluster in the light-space perspective of the camera"),
-        number_param("cluster_hysteresis", c.hysteresis, 0.0,
-                     std::numeric_limits<double>::infinity(),
-                     "fraction of cluster_d0 a distance may move before reclustering")};
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    using Params = const StrategyParams&;
+    using Key = const std::string&;
+    using Settings = const DsmSettings&;
+    return std::vector<DsmKey>{
+        {name_param("storage", d.storage, "storage strategy of the maps (`deepvox list`)"),
+         [](Params p, Key k, DsmSettings& s) { s.storage = p.string(k); },
+         [](Settings s) -> nlohmann::json { return s.storage; }},
+        {nested_param("storage", "a parameter of the storage strategy (storage.alloc=thesis)"),
+         [](Params p, Key k, DsmSettings& s) { s.storage_params = p.prefixed(k); }, nullptr},
+        {integer_param("res", d.resolution, 1, kMaxRasterSide, "texels per side of each map"),
+         [](Params p, Key k, DsmSettings& s) { s.resolution = p.integer(k); },
+         [](Settings s) -> nlohmann::json { return s.resolution; }},
+        {number_param("eps", d.eps, 0.0, inf,
+                      "bound on the error of every compressed visibility function"),
+         [](Params p, Key k, DsmSettings& s) { s.eps = float(p.number(k)); },
+         [](Settings s) -> nlohmann::json { return s.eps; }},
+        {choice_param("filter", d.bilinear ? "bilinear" : "none", {"none", "bilinear"},
+                      "lookup: nearest texel or bilinear over four"),
+         [](Params p, Key k, DsmSettings& s) { s.bilinear = p.string(k) == "bilinear"; },
+         [](Settings s) -> nlohmann::json { return s.bilinear ? "bilinear" : "none"; }},
+        {number_param("bias", d.bias, -1.0, inf,
+                      "receiver depth bias in world units; < 0: 1e-4 of the scene diagonal"),
+         [](Params p, Key k, DsmSettings& s) { s.bias = p.number(k); },
+         [](Settings s) -> nlohmann::json { return s.bias; }},
+        {number_param("slope", d.slope_bias, 0.0, inf,
+                      "slope bias: texel sizes times the receiver's tangent to the light"),
+         [](Params p, Key k, DsmSettings& s) { s.slope_bias = p.number(k); },
+         [](Settings s) -> nlohmann::json { return s.slope_bias; }},
+        {integer_choice_param("subrays", d.subrays, {1, 4, 9, 16},
+                              "jittered sub-rays per texel, averaged (pre-filtering)"),
+         [](Params p, Key k, DsmSettings& s) { s.subrays = p.integer(k); },
+         [](Settings s) -> nlohmann::json { return s.subrays; }},
+        {choice_param("volume", d.precompressed ? "table" : "midpoint", {"midpoint", "table"},
+                      "volume steps: midpoint samples, or Hadwiger's pre-compressed tables"),
+         [](Params p, Key k, DsmSettings& s) { s.precompressed = p.string(k) == "table"; },
+         [](Settings s) -> nlohmann::json { return s.precompressed ? "table" : "midpoint"; }},
+        {integer_param("table_bins", d.table_bins, 2, 1024, "bins of the pre-compressed tables"),
+         [](Params p, Key k, DsmSettings& s) { s.table_bins = p.integer(k); },
+         [](Settings s) -> nlohmann::json { return s.table_bins; }},
+        {positive_param("step_scale", d.step_scale, "multiplies the volumes' steps in generation"),
+         [](Params p, Key k, DsmSettings& s) { s.step_scale = p.number(k); },
+         [](Settings s) -> nlohmann::json { return s.step_scale; }},
+        {integer_param("clusters", c.max_clusters, 1, std::numeric_limits<int32_t>::max(),
+                       "most clusters per light (Knecht 2011); 1: one map per light face"),
+         [](Params p, Key k, DsmSettings& s) { s.clusters.max_clusters = p.integer(k); },
+         [](Settings s) -> nlohmann::json { return s.clusters.max_clusters; }},
+        {number_param("cluster_d0", c.d0, 0.0, inf,
+                      "distance threshold of the clustering, NDC units of the face"),
+         [](Params p, Key k, DsmSettings& s) { s.clusters.d0 = p.number(k); },
+         [](Settings s) -> nlohmann::json { return s.clusters.d0; }},
+        {integer_choice_param("lispsm", c.lispsm ? 1 : 0, {0, 1},
+                              "1: cluster in the light-space perspective of the camera"),
+         [](Params p, Key k, DsmSettings& s) { s.clusters.lispsm = p.integer(k) == 1; },
+         [](Settings s) -> nlohmann::json { return s.clusters.lispsm ? 1 : 0; }},
+        {number_param("cluster_hysteresis", c.hysteresis, 0.0, inf,
+                      "fraction of cluster_d0 a distance may move before reclustering"),
+         [](Params p, Key k, DsmSettings& s) { s.clusters.hysteresis = p.number(k); },
+         [](Settings s) -> nlohmann::json { return s.clusters.hysteresis; }}};
+  }();
+  return keys;
+}
+
+}  // namespace
+
+const ParamTable& dsm_param_table() {
+  static const ParamTable table = [] {
+    ParamTable specs;
+    for (const DsmKey& key : dsm_keys()) specs.push_back(key.spec);
+    return specs;
   }();
   return table;
 }
 
 DsmSettings DsmSettings::read(const StrategyParams& p) {
   DsmSettings s;
-  s.storage = p.string("storage");
-  s.storage_params = p.prefixed("storage");
-  s.resolution = p.integer("res");
-  s.eps = float(p.number("eps"));
-  s.bilinear = p.string("filter") == "bilinear";
-  s.bias = p.number("bias");
-  s.slope_bias = p.number("slope");
-  s.subrays = p.integer("subrays");
-  s.precompressed = p.string("volume") == "table";
-  s.table_bins = p.integer("table_bins");
-  s.step_scale = p.number("step_scale");
-  s.clusters.max_clusters = p.integer("clusters");
-  s.clusters.d0 = p.number("cluster_d0");
-  s.clusters.lispsm = p.integer("lispsm") == 1;
-  s.clusters.hysteresis = p.number("cluster_hysteresis");
+  for (const DsmKey& key : dsm_keys()) key.read(p, key.spec.key, s);
   return s;
 }
 
@@ -81,20 +123,10 @@ nlohmann::json DsmSettings::params(const DsmStorage& created) const {
 }
 
 nlohmann::json DsmSettings::own_params() const {
-  return {{"storage", storage},
-          {"res", resolution},
-          {"eps", eps},
-          {"filter", bilinear ? "bilinear" : "none"},
-          {"bias", bias},
-          {"slope", slope_bias},
-          {"subrays", subrays},
-          {"volume", precompressed ? "table" : "midpoint"},
-          {"table_bins", table_bins},
-          {"step_scale", step_scale},
-          {"clusters", clusters.max_clusters},
-          {"cluster_d0", clusters.d0},
-          {"lispsm", clusters.lispsm ? 1 : 0},
-          {"cluster_hysteresis", clusters.hysteresis}};
+  nlohmann::json j = nlohmann::json::object();
+  for (const DsmKey& key : dsm_keys())
+    if (key.write) j[key.spec.key] = key.write(*this);
+  return j;
 }
 
 ClusteredLayout DeepShadowMaps::plan_clusters(const SceneData& scene, const Camera* camera) const {

@@ -1,6 +1,9 @@
 // The voxelizer registry (each voxelizer registers itself from its own file: exact, sat,
-// slicemap, atlas and atlas-compute), the (empty) registry of GL implementations, and the pass
-// bookkeeping of VoxelizeResult.
+// slicemap, atlas and atlas-compute) with the voxelizers' traits (core/strategy_traits.h), the
+// (empty) registry of GL implementations, and the pass bookkeeping of VoxelizeResult.
+#include <map>
+
+#include "core/strategy_traits.h"
 #include "strategies/voxelizer/voxelizer.h"
 
 namespace dv {
@@ -27,6 +30,17 @@ Registry<Voxelizer>& voxelizer_registry() {
       "voxelizer", {register_exact_voxelizer, register_sat_voxelizer, register_slicemap_voxelizer,
                     register_atlas_voxelizers});
   return registry;
+}
+
+const StrategyTraits* voxelizer_traits(const std::string& name) {
+  static const std::map<std::string, StrategyTraits> traits{
+      {"exact", {"exact oracle", "black", "*"}},
+      {"sat", {"voxelizers", "#17becf", "o"}},
+      {"slicemap", {"voxelizers", "#17becf", "s"}},
+      {"atlas", {"voxelizers", "#17becf", "^"}},
+      {"atlas-compute", {"voxelizers", "#17becf", "D"}}};
+  auto it = traits.find(lowercase(name));
+  return it == traits.end() ? nullptr : &it->second;
 }
 
 Registry<Voxelizer>& gl_voxelizer_registry() {

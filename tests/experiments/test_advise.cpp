@@ -11,8 +11,8 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
-#include "experiments/harness/advise.h"
-#include "experiments/harness/error_model.h"
+#include "experiments/advise/advise.h"
+#include "experiments/advise/error_model.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/suite_file.h"
 #include "strategies/shadow/shadow_method.h"

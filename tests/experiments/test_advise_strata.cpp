@@ -17,8 +17,8 @@
 #include <random>
 
 #include "apps/common/error_budget.h"
-#include "experiments/harness/advise.h"
-#include "experiments/harness/advise_report.h"
+#include "experiments/advise/advise.h"
+#include "experiments/advise/advise_report.h"
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/scene_cache.h"

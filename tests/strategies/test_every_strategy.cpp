@@ -158,6 +158,28 @@ INSTANTIATE_TEST_SUITE_P(Registry, EveryVoxelizer,
                                             ::testing::ValuesIn(test::all_backends())),
                          test_name);
 
+// The round trip above with defaults, here with every key of the dsm method given a value other
+// than its default: each is read into the settings and echoed as given (one table declares,
+// reads and writes them, strategies/storage/deep_shadow_maps.cpp).
+TEST(DsmMethod, EveryKeyEchoedAsGiven) {
+  const std::vector<std::string> items = {"storage=chunked", "res=48",
+                                          "eps=0.125",       "filter=bilinear",
+                                          "bias=0.25",       "slope=1.5",
+                                          "subrays=4",       "volume=table",
+                                          "table_bins=16",   "step_scale=0.75",
+                                          "clusters=3",      "cluster_d0=0.125",
+                                          "lispsm=1",        "cluster_hysteresis=0.375"};
+  const nlohmann::json echoed =
+      shadow_registry().create("dsm", StrategyParams::parse(items))->params();
+  for (const std::string& item : items) {
+    const size_t equals = item.find('=');
+    const std::string key = item.substr(0, equals), given = item.substr(equals + 1);
+    ASSERT_TRUE(echoed.contains(key)) << key;
+    const nlohmann::json& value = echoed[key];
+    EXPECT_EQ(value.is_string() ? value.get<std::string>() : value.dump(), given) << key;
+  }
+}
+
 TEST(Registries, RegisteringANameTwiceIsAnError) {
   Registry<Voxelizer> registry("voxelizer");
   const auto make = [](const StrategyParams&) -> std::unique_ptr<Voxelizer> { return nullptr; };

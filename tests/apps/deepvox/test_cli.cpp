@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -19,6 +20,8 @@
 #include "render/io/deep_exr.h"
 #include "render/io/layer_heatmap.h"
 #include "render/load/scene_loader.h"
+#include "strategies/shadow/shadow_method.h"
+#include "strategies/storage/dsm_storage.h"
 #include "tests/apps/deepvox/cli_run.h"
 #include "tests/render/load/gltf_builder.h"
 
@@ -96,6 +99,27 @@ TEST_F(Cli, StrategyDocsAreTheRegisteredTables) {
     EXPECT_NE(r.output.find(row), std::string::npos) << row;
   const CommandResult text = run("list");
   EXPECT_NE(text.output.find("res=1024"), std::string::npos) << text.output;
+}
+
+// `deepvox list --json`, what the plots read: every registered strategy once, each with its
+// plot family and colour; dsm is plotted as its storage.
+TEST_F(Cli, ListJsonHasEveryStrategyWithFamilyAndColour) {
+  const CommandResult r = run("list --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json list = nlohmann::json::parse(r.output).at("strategies");
+  std::set<std::pair<std::string, std::string>> listed;
+  for (const nlohmann::json& e : list) {
+    const std::pair<std::string, std::string> key{e.at("registry"), e.at("name")};
+    EXPECT_TRUE(listed.insert(key).second) << e.dump();
+    EXPECT_FALSE(e.at("family").get<std::string>().empty()) << e.dump();
+    EXPECT_FALSE(e.at("colour").get<std::string>().empty()) << e.dump();
+    if (e.at("name").get<std::string>() == "dsm") EXPECT_EQ(e.at("member_param"), "storage");
+  }
+  for (const std::string& name : storage_registry().names())
+    EXPECT_EQ(listed.count({"storage", name}), 1u) << name;
+  for (const std::string& name : shadow_registry().names())
+    EXPECT_EQ(listed.count({"shadow method", name}), 1u) << name;
+  EXPECT_NE(run("list --json --markdown").exit_code, 0);
 }
 
 // docs/cli.md is the output of `deepvox help --markdown`: every command's own --help, so the

@@ -1,6 +1,6 @@
 // glTF emission and the exposure of photometric lights: emissiveFactor (times
 // KHR_materials_emissive_strength) is drawn in the camera pass as added light where the surface
-// covers; an emissiveTexture is not read and says so once per material, naming it; a file whose
+// covers, times its emissiveTexture's texels where it has one; a file whose
 // lights are all its own photometric ones is seen at log2(683 / pi) EV, the exposure that shows
 // them as glTF viewers do, with its ambient level and emission stored on that scale.
 #include <cmath>
@@ -11,6 +11,7 @@
 
 #include "core/log.h"
 #include "render/frame/reference_render.h"
+#include "render/io/image.h"
 #include "render/load/gltf_import.h"
 #include "render/load/scene_loader.h"
 #include "strategies/shadow/shadow_method.h"
@@ -92,23 +93,84 @@ TEST(GltfEmission, EmissiveStrengthScalesTheFactorAndBlendCoverageWeighsIt) {
   EXPECT_NEAR(added.y, 0.5 * 2.0, 1e-6);
 }
 
-TEST(GltfEmission, EmissiveTextureWarnsOnceNamingTheMaterial) {
+// The unit quad of quad() with TEXCOORD_0 (u, v) = (x, 1 - y) and an emissive texture: a 2 x 1
+// PNG (left texel `left`, right `right`, 8-bit sRGB) through a NEAREST, CLAMP sampler.
+GltfBuilder emissive_quad(ScratchDir& dir, const json& material,
+                          const std::vector<unsigned char>& rgb) {
+  GltfBuilder b = quad(material);
+  const std::vector<float> uv = {0, 1, 1, 1, 1, 0, 0, 0};
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
+      b.add_accessor(b.add_view(uv.data(), uv.size() * 4), 5126, 4, "VEC2");
+  write_png_bytes(dir.file("glow.png"), 2, 1, rgb);
+  b.doc["images"] = json::array({{{"uri", "glow.png"}}});
+  b.doc["samplers"] = json::array({{{"magFilter", 9728}, {"wrapS", 33071}, {"wrapT", 33071}}});
+  b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+  return b;
+}
+
+double srgb_linear(unsigned char byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+// An emissiveTexture multiplies the factor by its texel's linear RGB where the surface covers:
+// the left and right halves of the quad glow in their texels' colours, without a warning.
+TEST(GltfEmission, EmissiveTextureDrawsItsTexels) {
   ScratchDir dir;
-  GltfBuilder b = quad(grey({{"name", "label"},
-                             {"emissiveFactor", {1.0, 1.0, 1.0}},
-                             {"emissiveTexture", {{"index", 0}}}}));
-  b.doc["images"] = json::array({{{"uri", "label.png"}}});
-  b.doc["textures"] = json::array({{{"source", 0}}});
-  json second = b.doc["nodes"][0];
-  second["translation"] = {2, 0, 0};
-  b.add_node(second);  // a second object of the same material
+  const std::vector<unsigned char> rgb = {255, 128, 0, 0, 64, 255};  // left, right texel
+  GltfBuilder b = emissive_quad(
+      dir, grey({{"emissiveFactor", {1.0, 0.5, 1.0}}, {"emissiveTexture", {{"index", 0}}}}), rgb);
+  const int before = warning_count();
+  const Scene scene = load_gltf_scene(b.write_gltf(dir.file("glow.gltf")));
+  EXPECT_EQ(warning_count(), before);
+  const Material& m = scene.objects[0].material;
+  EXPECT_EQ(m.emission, dvec3(1.0, 0.5, 1.0));
+  ASSERT_EQ(m.emissive_texture, 0);
+  EXPECT_EQ(m.base_texture, -1);
+  Scene dark = scene;
+  dark.objects[0].material.emission = dvec3(0.0);
+  const Image lit = render(scene), unlit = render(dark);
+  // Pixel column 4 sees x of about 0.23 (the left texel), column 11 about 0.77 (the right).
+  for (const auto& [column, texel] : {std::pair{4, 0}, std::pair{11, 1}}) {
+    const dvec3 added = lit.at(column, 8) - unlit.at(column, 8);
+    const dvec3 expected = dvec3(srgb_linear(rgb[3 * texel]), srgb_linear(rgb[3 * texel + 1]),
+                                 srgb_linear(rgb[3 * texel + 2])) *
+                           m.emission;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(added[c], expected[c], 1e-6) << "column " << column << " channel " << c;
+  }
+  EXPECT_EQ(lit.at(0, 0), unlit.at(0, 0));  // the background: no surface, no emission
+}
+
+// Its KHR_texture_transform is its own: an offset of half the texture shows the right texel on
+// the left half too (CLAMP beyond it); an unusable image drops the emission, naming the image.
+TEST(GltfEmission, EmissiveTextureTransformAndMissingImage) {
+  ScratchDir dir;
+  const std::vector<unsigned char> rgb = {255, 0, 0, 0, 0, 255};
+  GltfBuilder b = emissive_quad(
+      dir,
+      grey({{"emissiveFactor", {1.0, 1.0, 1.0}},
+            {"emissiveTexture",
+             {{"index", 0},
+              {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0.0}}}}}}}}}),
+      rgb);
+  b.use_extension("KHR_texture_transform");
+  const Scene shifted = load_gltf_scene(b.write_gltf(dir.file("shifted.gltf")));
+  Scene dark = shifted;
+  dark.objects[0].material.emission = dvec3(0.0);
+  const dvec3 left = render(shifted).at(4, 8) - render(dark).at(4, 8);
+  EXPECT_NEAR(left.x, 0.0, 1e-6);
+  EXPECT_NEAR(left.z, 1.0, 1e-6);
+
+  b.doc["images"][0]["uri"] = "gone.png";
   const int before = warning_count();
   testing::internal::CaptureStderr();
-  const Scene scene = load_gltf_scene(b.write_gltf(dir.file("label.gltf")));
+  const Scene missing = load_gltf_scene(b.write_gltf(dir.file("missing.gltf")));
   const std::string log = testing::internal::GetCapturedStderr();
-  EXPECT_EQ(warning_count() - before, 1) << log;
-  EXPECT_NE(log.find("material 0 'label': emissiveTexture is not read"), std::string::npos) << log;
-  for (const Object& o : scene.objects) EXPECT_EQ(o.material.emission, dvec3(0.0));
+  EXPECT_GE(warning_count() - before, 1) << log;
+  EXPECT_NE(log.find("gone.png"), std::string::npos) << log;
+  EXPECT_EQ(missing.objects[0].material.emission, dvec3(0.0));
+  EXPECT_EQ(missing.objects[0].material.emissive_texture, -1);
 }
 
 // A file lit by its own photometric lights is seen at log2(683 / pi) EV: there a white

@@ -332,30 +332,34 @@ TEST(GltfBuffers, ExternalBufferBelowTheModelFolderLoads) {
 
 // '..' steps out of the model's folder: refused although the file exists, the error names the
 // model, the URI and the rule.
+// The quad in DIR/model/quad.gltf with its buffer written to `uri` (relative to the model).
+std::string quad_with_buffer_at(ScratchDir& dir, const std::string& uri) {
+  std::filesystem::create_directories(dir.file("model"));
+  return quad(untextured_material(), nullptr)
+      .write_gltf_external_bin(dir.file("model/quad.gltf"), uri);
+}
+
+// The error loading `model` gives, checked to name each of `parts`.
+std::string error_naming(const std::string& model, const std::vector<std::string>& parts) {
+  const std::string error = load_error(model);
+  for (const std::string& part : parts) EXPECT_NE(error.find(part), std::string::npos) << error;
+  return error;
+}
+
 TEST(GltfBuffers, DotDotOutsideTheModelFolderIsRefused) {
   ScratchDir dir;
-  std::filesystem::create_directories(dir.file("model"));
-  const std::string model =
-      quad(untextured_material(), nullptr)
-          .write_gltf_external_bin(dir.file("model/quad.gltf"), "../outside.bin");
+  const std::string model = quad_with_buffer_at(dir, "../outside.bin");
   ASSERT_TRUE(std::filesystem::exists(dir.file("outside.bin")));
-  const std::string error = load_error(model);
-  EXPECT_NE(error.find(model), std::string::npos) << error;
-  EXPECT_NE(error.find("buffer URI '../outside.bin'"), std::string::npos) << error;
-  EXPECT_NE(error.find("leave the model's folder"), std::string::npos) << error;
+  error_naming(model, {model, "buffer URI '../outside.bin'", "leave the model's folder"});
 }
 
 // An absolute path: refused as absolute, not "not found".
 TEST(GltfBuffers, AbsolutePathIsRefusedAsAbsolute) {
   ScratchDir dir;
-  std::filesystem::create_directories(dir.file("model"));
   const std::string absolute = std::filesystem::absolute(dir.file("elsewhere.bin")).string();
-  const std::string model = quad(untextured_material(), nullptr)
-                                .write_gltf_external_bin(dir.file("model/quad.gltf"), absolute);
+  const std::string model = quad_with_buffer_at(dir, absolute);
   ASSERT_TRUE(std::filesystem::exists(absolute));
-  const std::string error = load_error(model);
-  EXPECT_NE(error.find(absolute), std::string::npos) << error;
-  EXPECT_NE(error.find("absolute path"), std::string::npos) << error;
+  const std::string error = error_naming(model, {absolute, "absolute path"});
   EXPECT_EQ(error.find("buffer file not found"), std::string::npos) << error;
 }
 
@@ -363,9 +367,7 @@ TEST(GltfBuffers, AbsolutePathIsRefusedAsAbsolute) {
 // model's folder is not read (tinygltf's own fallback would read it).
 TEST(GltfBuffers, MissingBufferNamesTheFileAndTheWorkingDirectoryIsNotSearched) {
   ScratchDir dir;
-  std::filesystem::create_directories(dir.file("model"));
-  const std::string model = quad(untextured_material(), nullptr)
-                                .write_gltf_external_bin(dir.file("model/quad.gltf"), "quad.bin");
+  const std::string model = quad_with_buffer_at(dir, "quad.bin");
   std::filesystem::rename(dir.file("model/quad.bin"), dir.file("quad.bin"));
   const std::filesystem::path was = std::filesystem::current_path();
   std::filesystem::current_path(dir.file(""));

@@ -1,5 +1,5 @@
 // Measuring a shadow configuration for `deepvox advise` (advise_measure.h).
-#include "experiments/harness/advise_measure.h"
+#include "experiments/advise/advise_measure.h"
 
 #include <algorithm>
 #include <cmath>

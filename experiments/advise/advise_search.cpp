@@ -1,10 +1,13 @@
 // The search space, the coarse-to-fine walk, the front and the pick (advise_search.h).
-#include "experiments/harness/advise_search.h"
+#include "experiments/advise/advise_search.h"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <utility>
+
+#include "strategies/shadow/strategy_catalog.h"
+#include "strategies/storage/dsm_storage.h"
 
 namespace dv {
 
@@ -133,6 +136,31 @@ std::vector<AdvisePoint> neighbours(const std::vector<AdviseFamily>& space, cons
   return out;
 }
 
+// A storage's family of the space: res, and its size knob at eps 0.01 where it has one (from
+// the knob's registered default on), else eps, filter and clusters where it keeps the error
+// bound eps (compact), else res alone (beer).
+AdviseFamily advise_storage_family(const CatalogEntry& storage, const AdviseAxis& res) {
+  AdviseFamily f{"dsm " + storage.name, "dsm", {{"storage", storage.name}}, {res}, {1}};
+  const StrategyTraits& t = storage.traits;
+  if (!t.size_key.empty()) {
+    // The knob's default (the registered one) is the start; eps is fine enough that the
+    // storage's own size, not the node compression, limits the error.
+    std::string fallback;
+    for (const ParamSpec& spec : storage.params)
+      if (spec.key == t.size_key) fallback = spec.fallback;
+    const auto start = std::find(t.sizes.begin(), t.sizes.end(), fallback);
+    f.fixed["eps"] = "0.01";
+    f.axes.push_back({"storage." + t.size_key, t.sizes});
+    f.start.push_back(start == t.sizes.end() ? 0 : int(start - t.sizes.begin()));
+  } else if (storage_registry().create(storage.name)->keeps_error_bound()) {
+    f.axes.push_back({"eps", {"0.2", "0.05", "0.02", "0.01", "0.005", "0.002"}});
+    f.axes.push_back({"filter", {"none", "bilinear"}});
+    f.axes.push_back({"clusters", {"1", "4"}});
+    f.start = {1, 1, 0, 0};
+  }
+  return f;
+}
+
 }  // namespace
 
 std::vector<AdviseResult> advise_search(const std::vector<AdviseFamily>& space,
@@ -196,38 +224,16 @@ std::vector<AdviseFamily> advise_space(const AdviseSceneKind& kind) {
   const AdviseAxis res{"res", {"128", "256", "512", "1024", "2048"}};
   if (!kind.translucent && !kind.media)
     return {{"shadowmap", "shadowmap", {}, {res, {"pcf", {"1", "3"}}}, {1, 0}}};
-  const AdviseAxis eps{"eps", {"0.2", "0.05", "0.02", "0.01", "0.005", "0.002"}};
-  const AdviseAxis filter{"filter", {"none", "bilinear"}};
-  const AdviseAxis clusters{"clusters", {"1", "4"}};
-  const std::map<std::string, std::string> basis_eps{{"eps", "0.01"}};
-  std::vector<AdviseFamily> space{
-      {"dsm compact", "dsm", {{"storage", "compact"}}, {res, eps, filter, clusters}, {1, 1, 0, 0}},
-      {"dsm avsm",
-       "dsm",
-       {{"storage", "avsm"}, {"eps", "0.01"}},
-       {res, {"storage.nodes", {"4", "8", "16", "32"}}},
-       {1, 1}},
-      {"dsm moments",
-       "dsm",
-       {{"storage", "moments"}, {"eps", "0.01"}},
-       {res, {"storage.moments", {"4", "6"}}},
-       {1, 0}},
-      {"dsm fourier",
-       "dsm",
-       {{"storage", "fourier"}, {"eps", "0.01"}},
-       {res, {"storage.frequencies", {"4", "8", "16", "32"}}},
-       {1, 1}},
-      {"dsm occupancy",
-       "dsm",
-       {{"storage", "occupancy"}, {"eps", "0.01"}},
-       {res, {"storage.slices", {"32", "64", "128"}}},
-       {1, 1}},
-      {"dsm beer", "dsm", {{"storage", "beer"}}, {res}, {1}},
-      {"transmittance-slicemap",
-       "transmittance-slicemap",
-       {},
-       {{"res", {"256", "512", "1024"}}, {"slices", {"32", "64", "128"}}},
-       {0, 0}}};
+  std::vector<AdviseFamily> space;
+  for (const CatalogEntry& storage : catalog_of("storage")) {
+    if (!storage.traits.not_advised.empty()) continue;
+    space.push_back(advise_storage_family(storage, res));
+  }
+  space.push_back({"transmittance-slicemap",
+                   "transmittance-slicemap",
+                   {},
+                   {{"res", {"256", "512", "1024"}}, {"slices", {"32", "64", "128"}}},
+                   {0, 0}});
   return space;
 }
 

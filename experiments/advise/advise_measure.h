@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "cuda/execute.h"
-#include "experiments/harness/advise_search.h"
+#include "experiments/advise/advise_search.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/shadow_measure.h"
 

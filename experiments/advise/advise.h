@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "cuda/execute.h"
-#include "experiments/harness/advise_measure.h"
-#include "experiments/harness/advise_search.h"
+#include "experiments/advise/advise_measure.h"
+#include "experiments/advise/advise_search.h"
 
 namespace dv {
 

@@ -143,9 +143,11 @@ struct AdviseSceneKind {
   bool translucent = false;  // some light reaches a caster with 0 < alpha < 1
   bool media = false;        // some light reaches a constant medium or a volume
 };
-// The search space: shadow maps when every reached caster is opaque; otherwise the DSM storages
-// (compact over resolution, eps, filter and clusters; avsm, moments, fourier, occupancy over
-// resolution and their size; beer over resolution) and the transmittance slice map.
+// The search space: shadow maps when every reached caster is opaque; otherwise every registered
+// DSM storage whose traits do not leave it out (strategy_catalog.h): one with a size knob over
+// resolution and its size (avsm, moments, fourier, occupancy), one that keeps the error bound
+// over resolution, eps, filter and clusters (compact), the others over resolution (beer); and
+// the transmittance slice map.
 std::vector<AdviseFamily> advise_space(const AdviseSceneKind& kind);
 
 }  // namespace dv

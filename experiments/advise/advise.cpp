@@ -1,5 +1,5 @@
 // The advise run: search, front, verified pick (advise.h).
-#include "experiments/harness/advise.h"
+#include "experiments/advise/advise.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,5 +1,5 @@
 // Tables, JSON and the SVG plot of an advice (advise_report.h).
-#include "experiments/harness/advise_report.h"
+#include "experiments/advise/advise_report.h"
 
 #include <algorithm>
 #include <cmath>

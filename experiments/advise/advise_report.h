@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiments/harness/advise.h"
+#include "experiments/advise/advise.h"
 
 namespace dv {
 

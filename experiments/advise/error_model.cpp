@@ -1,5 +1,5 @@
 // The calibrated error model (error_model.h).
-#include "experiments/harness/error_model.h"
+#include "experiments/advise/error_model.h"
 
 #include <algorithm>
 #include <cmath>
