@@ -434,6 +434,16 @@ TEST(AaControls, TieBandFromTheSpreadAndTheFalsePositiveRate) {
             "4 A/A pairs, no interval: they need timings in at least 2 runs");
 }
 
+// The report of the first run with the second recorded beside it (runs.json), as text.
+std::string pooled_report(const SuiteOutcome& first, const SuiteOutcome& second) {
+  record_runs(first.folder, {second.folder});
+  build_report(first.folder);
+  std::ifstream in(fs::path(first.folder) / "report.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 class AaReport : public test::HarnessTest {};
 
 // A suite run twice on the CPU with A/A copies: rows.csv marks the copies, the report's header
@@ -457,12 +467,7 @@ TEST_F(AaReport, HeaderPrintsTheFalsePositiveRateAndTheExperimentItsTieBands) {
     copies += row.metric == "generate_ms" && row.stat == "median" &&
               row.params.find("aa=copy") != std::string::npos;
   EXPECT_EQ(copies, 2);
-  record_runs(r.folder, {r2.folder});
-  build_report(r.folder);
-  std::ifstream in(fs::path(r.folder) / "report.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string md = text.str();
+  const std::string md = pooled_report(r, r2);
   const size_t rate = md.find("- A/A false-positive rate: ");
   ASSERT_NE(rate, std::string::npos) << md;
   EXPECT_LT(rate, md.find("## "));  // at the top, before the first experiment
@@ -579,12 +584,7 @@ TEST_F(OldFolders, ShapeTablePutsThePapersRatiosBesideOurs) {
   const SuiteOutcome r = run_suite(o), r2 = run_suite(o);
   ASSERT_EQ(r.exit_code, 0);
   ASSERT_EQ(r2.exit_code, 0);
-  record_runs(r.folder, {r2.folder});
-  build_report(r.folder);
-  std::ifstream in(fs::path(r.folder) / "report.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string md = text.str();
+  const std::string md = pooled_report(r, r2);
   EXPECT_NE(md.find("overhead above the no-shadow frame: the paper's 43 ms (Tiny's text)"),
             std::string::npos)
       << md;
