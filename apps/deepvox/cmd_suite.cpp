@@ -2,9 +2,11 @@
 // experiment suite through the harness (experiments/harness/runner.h), continues a killed run
 // (--resume; with --gpus a worker session, with --slurm a SLURM session), runs it as worker
 // processes on this node (workers.h), as N independent process runs for the findings' intervals
-// (--runs, workers.h) or as SLURM jobs (slurm.h), and prints where the report is. Exit codes:
+// (--runs, workers.h; --protocol replicate: at least 5, each in its own item order, run_order.h)
+// or as SLURM jobs (slurm.h), and prints where the report is. Exit codes:
 // runner.h (kSuite*), docs/suite-format.md.
 #include <cstdio>
+#include <random>
 
 #include "apps/deepvox/commands.h"
 #include "apps/deepvox/suite_command.h"
@@ -59,15 +61,28 @@ Runner add_suite(CLI::App& app) {
                 "with --resume: continue although the suite file or the deepvox commit differ "
                 "from the folder's (meta.json and the report say the run is mixed)");
   cmd->add_option("--runs", command->runs,
-                  "N independent process runs, one after another (at least 3 for intervals "
-                  "that hold drift between runs); the report pools them")
+                  "N independent process runs, one after another (a verdict needs at least 2; "
+                  "the t-intervals over runs narrow with 5 or more); the report pools them")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--protocol", command->protocol,
+                  "replicate: at least 5 independent process runs (default 5), each with its "
+                  "items in a random order of its own (seed recorded in meta.json) and the two "
+                  "sides of every comparison claim measured in adjacent pairs, ABBA; the report "
+                  "pools the runs");
+  CLI::Option* order_seed =
+      cmd->add_option("--order-seed", opt->order_seed,
+                      "permute the items with this seed (with --protocol replicate: run k uses "
+                      "seed + k - 1; default there: a random seed)");
   cmd->add_flag("--smoke", opt->smoke,
                 "run each experiment's `smoke` form: tiny scenes and sweeps, a CPU correctness "
                 "check in seconds, not a measurement");
-  return [command, resume] {
+  return [command, resume, order_seed] {
     SuiteOptions& o = command->suite;
     o.resume = resume->count() > 0;
+    command->order_seed_given = order_seed->count() > 0;
+    o.permute = command->order_seed_given || command->protocol == "replicate";
+    if (command->protocol == "replicate" && !command->order_seed_given)
+      o.order_seed = (uint64_t(std::random_device{}()) << 32) | std::random_device{}();
     const SuiteMode mode = suite_mode(*command);
     if (mode == SuiteMode::list) {
       std::fputs(list_suites().c_str(), stdout);
@@ -81,7 +96,7 @@ Runner add_suite(CLI::App& app) {
     }
     SuiteOutcome r;
     try {
-      r = mode == SuiteMode::rounds   ? run_rounds(o, command->runs)
+      r = mode == SuiteMode::rounds   ? run_rounds(o, round_count(*command))
           : mode == SuiteMode::single ? run_suite(o)
                                       : run_workers(o, worker_count(command->gpus, o.backend));
     } catch (const ResultWriteError& e) {

@@ -11,13 +11,22 @@
 namespace dv::cli {
 
 struct SuiteCommand {
-  SuiteOptions suite;      // what the harness runs (suite.resume: --resume was given)
-  SlurmOptions slurm;      // --partition, --time, --submit, --dry-run (tasks: from --gpus)
-  bool list = false;       // --list
-  bool use_slurm = false;  // --slurm
-  std::string gpus;        // --gpus N|all; empty: one process
-  int runs = 0;            // --runs N; 0: one run
+  SuiteOptions suite;             // what the harness runs (suite.resume: --resume was given)
+  SlurmOptions slurm;             // --partition, --time, --submit, --dry-run (tasks: from --gpus)
+  bool list = false;              // --list
+  bool use_slurm = false;         // --slurm
+  std::string gpus;               // --gpus N|all; empty: one process
+  int runs = 0;                   // --runs N; 0: one run
+  std::string protocol;           // --protocol: "replicate" or empty
+  bool order_seed_given = false;  // --order-seed S: suite.order_seed (and suite.permute)
 };
+
+// The replicate protocol's runs when --runs is not given (and the fewest it accepts).
+inline constexpr int kReplicateRuns = 5;
+
+// How many process runs the command asks for: --runs, or kReplicateRuns for --protocol
+// replicate without it; 0: one run in this process.
+int round_count(const SuiteCommand& command);
 
 enum class SuiteMode {
   list,     // print the built-in suites
@@ -28,8 +37,10 @@ enum class SuiteMode {
 };
 
 // The way the command runs; InputError naming the option when options do not go together
-// (--force without --resume, --runs beside --resume/--slurm/--gpus/--shard, a SLURM option
-// without --slurm, --gpus beside --shard, no suite).
+// (--force without --resume, --runs or --protocol beside --resume/--slurm/--gpus/--shard, a
+// protocol other than "replicate" or with fewer than kReplicateRuns runs, --order-seed beside
+// --resume/--slurm/--gpus/--shard, a SLURM option without --slurm, --gpus beside --shard, no
+// suite).
 SuiteMode suite_mode(const SuiteCommand& command);
 
 }  // namespace dv::cli

@@ -1,11 +1,14 @@
-// Bootstrap intervals of effect sizes (effect_interval.h). Indices are drawn as rng() % n from
-// mt19937_64 (no std distributions), so the same seed gives the same interval everywhere.
+// Intervals of effect sizes (effect_interval.h): Student-t over per-run effects, and a paired
+// bootstrap over probe points whose indices are drawn as rng() % n from mt19937_64 (no std
+// distributions), so the same seed gives the same interval everywhere.
 #include "experiments/harness/effect_interval.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
+
+#include "experiments/harness/student_t.h"
 
 namespace dv {
 
@@ -21,10 +24,6 @@ double mean_of(const std::vector<double>& v) {
   return v.empty() ? 0.0 : sum / double(v.size());
 }
 
-double effect_of(double first, double second, bool ratio) {
-  return ratio ? first / second : first - second;
-}
-
 EffectInterval percentile_interval(double effect, bool ratio, std::vector<double> resampled) {
   std::sort(resampled.begin(), resampled.end());
   const auto at = [&](double q) {
@@ -34,17 +33,10 @@ EffectInterval percentile_interval(double effect, bool ratio, std::vector<double
   return {effect, at(0.025), at(0.975), ratio};
 }
 
-// One item's resampled mean: for each drawn run (mapped into the item's runs), its samples drawn
-// with replacement.
-double resampled_item_mean(const RunSamples& item, const std::vector<size_t>& runs,
-                           std::mt19937_64& rng) {
-  double sum = 0.0;
-  size_t n = 0;
-  for (size_t r : runs) {
-    const std::vector<double>& samples = item[r % item.size()];
-    for (size_t k = 0; k < samples.size(); ++k) sum += samples[draw(rng, samples.size())], ++n;
-  }
-  return n ? sum / double(n) : 0.0;
+// An item's mean sample in run `r`, or NaN where it was not measured in that run.
+double item_run_mean(const RunSamples& item, size_t r) {
+  if (r >= item.size() || item[r].empty()) return std::nan("");
+  return mean_of(item[r]);
 }
 
 double statistic_of(std::vector<double>& values, const std::string& statistic) {
@@ -73,30 +65,51 @@ double side_mean(const std::vector<RunSamples>& side) {
   return side.empty() ? 0.0 : sum / double(side.size());
 }
 
-EffectInterval cluster_bootstrap(const std::vector<RunSamples>& first,
-                                 const std::vector<RunSamples>& second, uint64_t seed,
-                                 bool difference) {
-  const double a = side_mean(first), b = side_mean(second);
-  const bool ratio = !difference && b != 0.0;
-  size_t runs = 1;
+EffectInterval t_interval(const std::vector<double>& per_run_effects, bool ratio) {
+  std::vector<double> x;
+  for (double e : per_run_effects) x.push_back(ratio ? std::log(e) : e);
+  const double n = double(x.size());
+  const double mean = mean_of(x);
+  double squares = 0.0;
+  for (double v : x) squares += (v - mean) * (v - mean);
+  const double half = student_t_quantile(0.975, n - 1.0) * std::sqrt(squares / (n - 1.0) / n);
+  if (ratio) return {std::exp(mean), std::exp(mean - half), std::exp(mean + half), true};
+  return {mean, mean - half, mean + half, false};
+}
+
+RunInterval run_interval(const std::vector<RunSamples>& first,
+                         const std::vector<RunSamples>& second, bool difference) {
+  size_t runs = 0;
   for (const auto* side : {&first, &second})
     for (const RunSamples& item : *side) runs = std::max(runs, item.size());
-  std::mt19937_64 rng(seed);
-  std::vector<double> effects;
-  effects.reserve(kResamples);
-  std::vector<size_t> drawn(runs);
-  for (int i = 0; i < kResamples; ++i) {
-    for (size_t& r : drawn) r = draw(rng, runs);
+  // Per run in which every item of both sides was measured: the two sides' means.
+  std::vector<double> means[2];
+  for (size_t r = 0; r < runs; ++r) {
     double sums[2] = {0.0, 0.0};
-    for (int s = 0; s < 2; ++s) {
+    bool complete = true;
+    for (int s = 0; s < 2 && complete; ++s) {
       const std::vector<RunSamples>& side = s == 0 ? first : second;
-      for (const RunSamples& item : side) sums[s] += resampled_item_mean(item, drawn, rng);
+      for (const RunSamples& item : side) {
+        const double m = item_run_mean(item, r);
+        complete &= !std::isnan(m);
+        sums[s] += m;
+      }
       sums[s] /= double(side.size());
     }
-    effects.push_back(ratio && sums[1] == 0.0 ? effect_of(a, b, ratio)
-                                              : effect_of(sums[0], sums[1], ratio));
+    if (!complete) continue;
+    means[0].push_back(sums[0]);
+    means[1].push_back(sums[1]);
   }
-  return percentile_interval(effect_of(a, b, ratio), ratio, std::move(effects));
+  RunInterval out;
+  out.runs = means[0].size();
+  if (out.runs < 2) return out;
+  bool ratio = !difference;
+  for (size_t r = 0; r < out.runs; ++r) ratio &= means[0][r] > 0.0 && means[1][r] > 0.0;
+  std::vector<double> effects;
+  for (size_t r = 0; r < out.runs; ++r)
+    effects.push_back(ratio ? means[0][r] / means[1][r] : means[0][r] - means[1][r]);
+  out.interval = t_interval(effects, ratio);
+  return out;
 }
 
 EffectInterval paired_bootstrap(const std::vector<PointErrors>& first,

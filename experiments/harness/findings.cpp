@@ -190,14 +190,16 @@ bool is_timing_column(const Column& c, const std::vector<int>& items,
   return false;
 }
 
-// Per item, per run: the repetitions (a timing) or the row's value. Empty runs are left out;
-// an item without any is reported through `missing`.
+// Per item, per run: the repetitions (a timing) or the row's value, empty for a run without
+// them (so runs keep their places); an item without any is reported through `missing`.
+// `measured_runs`: the most runs any item has data in.
 std::vector<RunSamples> run_samples(const std::vector<int>& items, const Column& column,
                                     bool timing, const std::vector<RunView>& runs, int& missing,
-                                    size_t& max_runs, size_t& repetitions) {
+                                    size_t& measured_runs, size_t& repetitions) {
   std::vector<RunSamples> out;
   for (int index : items) {
     RunSamples item;
+    size_t measured = 0;
     for (const RunView& run : runs) {
       std::vector<double> samples;
       if (timing) {
@@ -207,15 +209,15 @@ std::vector<RunSamples> run_samples(const std::vector<int>& items, const Column&
       } else if (const auto it = run.items.find(index); it != run.items.end()) {
         if (const Row* r = find_row(it->second, column)) samples.push_back(r->value);
       }
-      if (samples.empty()) continue;
       repetitions = std::max(repetitions, samples.size());
+      measured += !samples.empty();
       item.push_back(std::move(samples));
     }
-    if (item.empty()) {
+    if (!measured) {
       ++missing;
       continue;
     }
-    max_runs = std::max(max_runs, item.size());
+    measured_runs = std::max(measured_runs, measured);
     out.push_back(std::move(item));
   }
   return out;
@@ -281,7 +283,8 @@ std::string reading(const nlohmann::json& f, bool confirmed) {
   return "; " + std::string(confirmed ? "reading: " : "") + text;
 }
 
-FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>& runs) {
+FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>& runs,
+                             const TieBands& tie_bands) {
   FindingResult r;
   r.claim = f["claim"].get<std::string>();
   r.why = f.value("why", "");
@@ -312,9 +315,9 @@ FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>
   for (size_t k = 0; k + 1 < levels.size(); ++k) {
     const std::string here = selector + " " + over + "=" + levels[k];
     const std::string next = selector + " " + over + "=" + levels[k + 1];
-    TrendStep step{
-        levels[k], levels[k + 1],
-        compare_selections(next, column, here, column, runs, seed + k, false, expects_loss(f))};
+    TrendStep step{levels[k], levels[k + 1],
+                   compare_selections(next, column, here, column, runs, seed + k, false,
+                                      expects_loss(f), tie_bands)};
     const Comparison& c = step.comparison;
     r.effect += (r.effect.empty() ? "" : "; ") + levels[k] + " → " + levels[k + 1] + ": " +
                 (c.has_interval ? interval_text(c.interval) : c.verdict);
@@ -366,7 +369,7 @@ std::string interval_text(const EffectInterval& iv) {
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
                               const std::vector<RunView>& runs, uint64_t seed, bool difference,
-                              bool lossy_expected) {
+                              bool lossy_expected, const TieBands& tie_bands) {
   Comparison c;
   const RunView& run = runs[0];
   const SelectionMean a = selection_mean(first_selector, first_column, run.items);
@@ -423,34 +426,50 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
   const bool timing =
       is_timing_column(first_column, first, runs) || is_timing_column(second_column, second, runs);
   int missing = 0;
-  size_t max_runs = 0, repetitions = 0;
+  size_t measured_runs = 0, repetitions = 0;
   const std::vector<RunSamples> sa =
-      run_samples(first, first_column, timing, runs, missing, max_runs, repetitions);
+      run_samples(first, first_column, timing, runs, missing, measured_runs, repetitions);
   const std::vector<RunSamples> sb =
-      run_samples(second, second_column, timing, runs, missing, max_runs, repetitions);
+      run_samples(second, second_column, timing, runs, missing, measured_runs, repetitions);
   if (missing)
     return not_comparable(c, std::to_string(missing) +
                                  " items without per-repetition samples: interval unavailable "
                                  "(a result folder from before samples/)");
-  c.interval = cluster_bootstrap(sa, sb, seed, difference);
-  c.has_interval = true;
   c.first = side_mean(sa);
   c.second = side_mean(sb);
-  c.basis = std::to_string(max_runs) + " run" + (max_runs == 1 ? "" : "s") + " x " +
+  const RunInterval ri = run_interval(sa, sb, difference);
+  const std::string runs_text = std::to_string(ri.runs) + " run" + (ri.runs == 1 ? "" : "s");
+  c.basis = runs_text + " x " +
             (timing ? std::to_string(repetitions) + " repetitions" : "1 value") + ", " + items_text;
-  if (max_runs < 3 && timing) c.basis += " (fewer than 3 runs: drift between runs not in it)";
+  if (ri.runs < measured_runs)
+    c.basis += " (" + std::to_string(measured_runs - ri.runs) +
+               " more left out: an item of a side was not measured in them)";
   if (!lossy.empty()) c.basis += "; lossy as the claim expects (" + lossy + ")";
+  if (ri.runs < 2)
+    return not_comparable(c, runs_text +
+                                 ": a t-interval over runs needs at least 2; run the "
+                                 "suite with --runs 5");
+  c.interval = ri.interval;
+  if (c.interval.ratio)
+    for (const Column* column : {&first_column, &second_column})
+      if (const auto it = tie_bands.find(column->metric);
+          it != tie_bands.end() && it->second > c.interval.band)
+        c.interval.band = it->second;
+  if (c.interval.band > kSmallestRatio)
+    c.basis += "; tie band ±" + significant_text(100.0 * c.interval.band, 2) + " % (A/A)";
+  c.has_interval = true;
   c.verdict = verdict_of(c.interval);
   return c;
 }
 
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
-                                             const std::vector<RunView>& runs) {
+                                             const std::vector<RunView>& runs,
+                                             const TieBands& tie_bands) {
   std::vector<FindingResult> out;
   if (!findings.is_array() || runs.empty()) return out;
   for (const auto& f : findings) {
     if (f.contains("trend")) {
-      out.push_back(evaluate_trend(f, runs));
+      out.push_back(evaluate_trend(f, runs, tie_bands));
       continue;
     }
     FindingResult r;
@@ -464,7 +483,7 @@ std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
     const Column than_column = parse_column(f["than"][1].get<std::string>());
     const Comparison c =
         compare_selections(lower_selector, lower_column, than_selector, than_column, runs,
-                           seed_of(r.claim + r.lower_text), false, expects_loss(f));
+                           seed_of(r.claim + r.lower_text), false, expects_loss(f), tie_bands);
     r.lower = c.first;
     r.than = c.second;
     r.lower_items = c.first_items;

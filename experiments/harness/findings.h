@@ -4,9 +4,9 @@
 //   "why_not"}: the first side's items measure lower than the second's. The effect: for probe
 //   error columns (probe_error_<class>:mean|max|p99) the difference of the sides' means, with a
 //   paired bootstrap over the probe points (samples/<item>.json of the first run); for every
-//   other column the ratio of the sides' means (first / second), with a cluster bootstrap over
-//   the runs and, within a run, its repetitions (timings from samples/<item>.json; other values
-//   one per run, from rows.csv).
+//   other column the ratio of the sides' means (first / second), with a Student-t interval over
+//   the per-run ratios on the log scale (timings from samples/<item>.json, a run's mean over its
+//   repetitions; other values one per run, from rows.csv); fewer than 2 runs give no verdict.
 // - a trend {"claim", "trend": "increasing"|"decreasing"|"plateau", "over": KEY, "selector",
 //   "column", "levels" (optional), "from" (plateau), "why", "why_not"}: the items matching
 //   `selector` grouped by the value of KEY (a parameter, or "scene" with `levels` naming
@@ -19,8 +19,8 @@
 // that moves), "tie" (the interval contains "no effect", whatever the claim: a plateau whose
 // every step holds no effect is a tie, as it claims, never "confirmed"), "not comparable (...)"
 // (a side without items, units that differ, no samples to build an interval: a folder from
-// before samples/), "defect (...)" (an item of a side has a row whose metric names an
-// "overflow" or "dropped" count above 0: its measurement lost data). A selector is
+// before samples/, or fewer than 2 runs), "defect (...)" (an item of a side has a row whose metric
+// names an "overflow" or "dropped" count above 0: its measurement lost data). A selector is
 // space-separated `key=value` terms that all must hold: `strategy=NAME`, `scene=SUBSTRING`,
 // `experiment=NAME`, or a parameter (`storage=chunked`); an empty selector matches every item. The
 // explanation is built from the data (difference and ratio of the means and, for a time column
@@ -88,18 +88,23 @@ SelectionMean selection_mean(const std::string& selector, const Column& column,
                              const std::map<int, std::vector<const Row*>>& items);
 
 // The first selection against the second on `runs` (runs[0]: the folder reported; at least
-// one run); `seed` makes the bootstrap reproducible.
+// one run); `seed` makes the probe points' bootstrap reproducible.
 // `difference`: the effect is the difference of the means, not their ratio. `lossy_expected`:
 // the claim is about the loss itself (a finding's "lossy": "expected", e.g. a layer limit
 // exercised on purpose), so overflowed or dropped rows are named in the basis, not a defect.
+// `tie_bands`: as evaluate_findings.
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
                               const std::vector<RunView>& runs, uint64_t seed,
-                              bool difference = false, bool lossy_expected = false);
+                              bool difference = false, bool lossy_expected = false,
+                              const TieBands& tie_bands = {});
 
-// `findings` as validated by the suite loader.
+// `findings` as validated by the suite loader; `tie_bands`: per metric the band of no effect
+// that A/A controls measured (aa_controls.h), for ratios over runs (the wider of the two
+// columns' bands, never below kSmallestRatio).
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
-                                             const std::vector<RunView>& runs);
+                                             const std::vector<RunView>& runs,
+                                             const TieBands& tie_bands = {});
 
 // "0.61x [0.58, 0.64]" or "+0.012 [+0.010, +0.015]".
 std::string interval_text(const EffectInterval& interval);

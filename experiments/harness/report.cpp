@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "core/number_text.h"
+#include "experiments/harness/aa_controls.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/findings.h"
@@ -315,13 +316,15 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
        << cell(t["notes"]) << "\n\n</details>\n\n";
 }
 
-void write_findings(std::ostream& md, const ExperimentSpec& e, const std::vector<RunView>& runs) {
-  const std::vector<FindingResult> results = evaluate_findings(e.findings, runs);
+void write_findings(std::ostream& md, const ExperimentSpec& e, const std::vector<RunView>& runs,
+                    const TieBands& tie_bands) {
+  const std::vector<FindingResult> results = evaluate_findings(e.findings, runs, tie_bands);
   if (results.empty()) return;
   md << "\nFindings (effect: first side / second side, or their difference for probe errors, "
-        "with its 95 % bootstrap interval; confirmed: the interval entirely on the claimed "
-        "side, refuted: entirely on the other, tie: it holds no effect; a trend tests every "
-        "step of its sweep):\n\n";
+        "with its 95 % interval: Student's t over the per-run effects, a bootstrap over the "
+        "points for probe errors; confirmed: the interval entirely on the claimed side, "
+        "refuted: entirely on the other, tie: it holds no effect; a trend tests every step of "
+        "its sweep):\n\n";
   std::vector<std::vector<std::string>> body;
   for (const FindingResult& f : results)
     body.push_back({f.claim, f.lower_text, f.lower_items ? table_text(f.lower, 4) : "-",
@@ -461,7 +464,12 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
   for (size_t p = 0; p < e.paper_files.size(); ++p)
     write_paper_table(md, e.paper_files[p], our_machine,
                       p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items, e.name, all_runs);
-  write_findings(md, e, runs);
+  // The experiment's A/A controls: their false-positive rate and the tie bands the findings use.
+  const AaControls aa = measure_aa_controls(runs);
+  if (!aa.pairs.empty())
+    md << "\nA/A controls (`aa_duplicates`): " << aa_rate_text(aa)
+       << "; tie bands from the A/A spread: " << tie_bands_text(aa) << "\n";
+  write_findings(md, e, runs, aa.tie_bands);
   write_pareto(md, e, items);
   // Image strip: the reference, then each render with its difference below.
   std::string reference;
@@ -652,6 +660,28 @@ void record_runs(const std::string& folder, const std::vector<std::string>& othe
   write_file_atomically(dir / "runs.json", Json{{"runs", runs}}.dump(1) + "\n");
 }
 
+namespace {
+
+// How the runs ordered their items (meta.json "order"; folders from before it: the suite's).
+std::string order_text(const std::vector<RunState>& states) {
+  std::string seeds;
+  size_t permuted = 0;
+  for (const RunState& s : states) {
+    const Json order = s.meta.value("order", Json::object());
+    if (order.value("protocol", "") != "replicate") continue;
+    ++permuted;
+    seeds += (seeds.empty() ? "" : ", ") + order["seed"].dump();
+  }
+  if (permuted == 0) return "the suite's, the same in every run";
+  return "replicate protocol in " + std::to_string(permuted) + " of " +
+         std::to_string(states.size()) + " runs: each run's items permuted with its own seed (" +
+         seeds +
+         "; meta.json \"order\"), the two sides of each comparison claim in adjacent pairs, "
+         "ABBA";
+}
+
+}  // namespace
+
 void build_report(const std::string& folder) {
   const fs::path dir(folder);
   const RunState state = read_run_state(dir);
@@ -706,9 +736,12 @@ void build_report(const std::string& folder) {
      << " repetitions, median (min, max in rows.csv; every repetition in samples/)\n";
   md << "- findings' intervals rest on " << states.size() << " independent process run"
      << (states.size() == 1 ? " (this folder)" : "s (this folder and those runs.json names)")
-     << (states.size() < 3 ? "; fewer than 3: drift between runs is not in the timing intervals"
-                           : "")
+     << (states.size() < 2 ? "; a t-interval over runs needs at least 2, so timings and values "
+                             "per run get no verdict (deepvox suite NAME --runs 5)"
+                           : "; 95 % t-intervals over the per-run effects")
      << "\n";
+  md << "- item order: " << order_text(states) << "\n";
+  md << "- A/A false-positive rate: " << aa_rate_text(measure_aa_controls(all_runs)) << "\n";
   md << status_lines(state, dir);
   if (meta.contains("scale_out")) md << scale_out_line(meta);
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)

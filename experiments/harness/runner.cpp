@@ -18,6 +18,7 @@
 #include "experiments/harness/report.h"
 #include "experiments/harness/run_journal.h"
 #include "experiments/harness/run_metadata.h"
+#include "experiments/harness/run_order.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/shard_plan.h"
 
@@ -73,6 +74,7 @@ Plan new_run(const SuiteOptions& o) {
   const ItemCosts costs = item_costs(chosen, p.suite, o.costs, o.out);
   const ShardPlan plan = plan_shards(chosen, costs, shard.count);
   p.items = shard_items(chosen, plan, shard);
+  if (o.permute) p.items = protocol_order(p.items, p.suite, o.order_seed);
   if (o.repeat < 0) throw InputError("--repeat", "expected a positive count");
   p.repeat = o.repeat > 0 ? o.repeat : p.suite.repeat;
   Json planned = Json::array();
@@ -92,6 +94,12 @@ Plan new_run(const SuiteOptions& o) {
             {"items_in_suite", all.size()},
             {"items", p.items.size()},
             {"planned_items", planned},
+            {"order", o.permute ? Json{{"protocol", "replicate"},
+                                       {"seed", o.order_seed},
+                                       {"rule",
+                                        "items permuted with the seed, the two sides of "
+                                        "each comparison claim in adjacent pairs, ABBA"}}
+                                : Json{{"protocol", "suite order"}}},
             {"state", "running"},
             {"attempts", Json::array({attempt_entry(p.suite.hash)})},
             {"run", run_metadata(p.backend)}};
@@ -251,6 +259,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
       Json echoed = {{"item", item.index},       {"experiment", item.experiment_name},
                      {"scene", item.scene},      {"strategy", item.strategy},
                      {"requested", item.params}, {"settings", item.settings}};
+      if (item.aa_copy) echoed["aa_copy"] = true;
       const std::string result = run_item(item, context, drivers, sink, echoed);
       if (result == "failed") {
         progress.finish();

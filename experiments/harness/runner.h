@@ -7,6 +7,7 @@
 // disk or unwritable folder stops the run with an error and the folder resumable.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace dv {
@@ -28,6 +29,10 @@ struct SuiteOptions {
   bool resume = false;
   std::string resume_dir;
   bool force = false;  // resume even when the suite file or the commit differ (noted in meta)
+  // The replicate protocol's item order (run_order.h) with this seed, recorded in meta.json
+  // ("order"); otherwise the suite's order.
+  bool permute = false;
+  uint64_t order_seed = 0;
 };
 
 // Exit codes of `deepvox suite` (docs/suite-format.md, "Exit codes"); an error is 1, bad input

@@ -399,6 +399,7 @@ ExperimentSpec parse_experiment(JsonReader& r, const Json& object, const std::st
     check_pareto(r, e.pareto);
   }
   if (r.has("smoke")) e.smoke = merged_smoke(r, object);
+  e.aa_duplicates = r.boolean("aa_duplicates", false);
   if (r.has("plots")) {
     e.plots = r.raw("plots");
     if (!e.plots.is_array()) r.fail("plots", "expected an array of plot objects");
@@ -469,6 +470,7 @@ std::vector<RunItem> expand_suite(const Suite& suite) {
   std::vector<RunItem> items;
   for (size_t ei = 0; ei < suite.experiments.size(); ++ei) {
     const ExperimentSpec& e = suite.experiments[ei];
+    const size_t first = items.size();
     size_t points = 1;
     for (const auto& [key, values] : e.sweep) points *= values.size();
     for (size_t si = 0; si < e.scenes.size(); ++si)
@@ -495,6 +497,14 @@ std::vector<RunItem> expand_suite(const Suite& suite) {
           items.push_back(std::move(item));
         }
       }
+    if (!e.aa_duplicates) continue;
+    const size_t end = items.size();
+    for (size_t i = first; i < end; ++i) {
+      RunItem copy = items[i];
+      copy.index = int(items.size());
+      copy.aa_copy = true;
+      items.push_back(std::move(copy));
+    }
   }
   return items;
 }

@@ -56,6 +56,9 @@ struct ExperimentSpec {
   nlohmann::json pareto;    // optional {"error": [...], "cost": [...]}: fronts per scene
   nlohmann::json smoke;     // the experiment as `--smoke` runs it (overrides merged), or null
   nlohmann::json plots;     // optional plot specs for the plot script (array)
+  // Every item run a second time as an A/A control (RunItem::aa_copy), after the experiment's
+  // items in the same order.
+  bool aa_duplicates = false;
 };
 
 struct Suite {
@@ -74,7 +77,8 @@ Suite smoke_suite(const Suite& suite);
 // `text` is the file's content; `path` names it in errors and anchors relative scene paths.
 Suite parse_suite(const std::string& text, const std::string& path);
 
-// Scenes x strategies x the sweep's cartesian product, per experiment in file order.
+// Scenes x strategies x the sweep's cartesian product, per experiment in file order; an
+// experiment with `aa_duplicates` then has a copy of each of its items.
 std::vector<RunItem> expand_suite(const Suite& suite);
 
 struct Shard {

@@ -379,7 +379,8 @@ SuiteOutcome run_rounds(const SuiteOptions& o, int runs) {
   const std::string suite_path = fs::absolute(resolve_suite_path(o.suite)).string();
   const Suite suite = load_suite(suite_path);
   const fs::path session =
-      make_run_folder(o.out, suite.name, build_git_sha(), std::to_string(runs) + "runs");
+      make_run_folder(o.out, suite.name, build_git_sha(),
+                      std::to_string(runs) + "runs" + (o.permute ? "-replicate" : ""));
   const std::string exe = fs::read_symlink("/proc/self/exe").string();
   const InterruptScope ctrl_c;  // a Ctrl-C stops the round after its current experiment
   std::vector<std::string> folders;
@@ -391,6 +392,7 @@ SuiteOutcome run_rounds(const SuiteOptions& o, int runs) {
     if (o.repeat > 0) args.insert(args.end(), {"--repeat", std::to_string(o.repeat)});
     if (!o.only.empty()) args.insert(args.end(), {"--only", o.only});
     if (o.smoke) args.push_back("--smoke");
+    if (o.permute) args.insert(args.end(), {"--order-seed", std::to_string(o.order_seed + k - 1)});
     const fs::path log = session / ("run" + std::to_string(k) + ".log");
     std::fprintf(stderr, "deepvox suite: run %d of %d (log: %s)\n", k, runs, log.c_str());
     const pid_t pid = spawn(args, {}, log);

@@ -45,6 +45,8 @@ SuiteOutcome run_workers(const SuiteOptions& o, int count);
 // runs). The rounds go to OUT/<suite>/<date>_<sha>-Nruns/<suite>/<date>_<sha>[-k]/ with their
 // logs run<k>.log beside; the first round's folder gets runs.json naming the others and the
 // report, whose findings' intervals pool the rounds. A round that is interrupted stops the rest.
+// With `o.permute` (the replicate protocol) round k orders its items with seed o.order_seed +
+// k - 1 (run_order.h) and the session folder's tag says "-replicate".
 SuiteOutcome run_rounds(const SuiteOptions& o, int runs);
 
 }  // namespace dv

@@ -19,6 +19,7 @@
 #include "core/json_reader.h"
 #include "experiments/harness/findings.h"
 #include "experiments/harness/pareto.h"
+#include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"
 #include "experiments/harness/suite_file.h"
@@ -61,15 +62,16 @@ Row row(int item, const std::string& strategy, const std::string& params, const 
   return r;
 }
 
-// One run of `rows` whose timings (median rows) have three repetitions each: the median and
-// +-1 % around it.
-std::vector<RunView> one_run(const std::vector<Row>& rows) {
-  std::vector<RunView> runs(1);
-  for (const Row& r : rows) {
-    runs[0].items[r.item].push_back(&r);
-    if (r.stat == "median")
-      runs[0].samples[r.item]["timings"][r.metric] = {r.value * 0.99, r.value, r.value * 1.01};
-  }
+// Two runs of the same `rows` (a t-interval needs at least 2) whose timings (median rows) have
+// three repetitions each: the median and +-1 % around it.
+std::vector<RunView> two_runs(const std::vector<Row>& rows) {
+  std::vector<RunView> runs(2);
+  for (RunView& run : runs)
+    for (const Row& r : rows) {
+      run.items[r.item].push_back(&r);
+      if (r.stat == "median")
+        run.samples[r.item]["timings"][r.metric] = {r.value * 0.99, r.value, r.value * 1.01};
+    }
   return runs;
 }
 
@@ -78,7 +80,7 @@ TEST(Findings, MeansOfTheSelectedItemsDecide) {
                               row(1, "dsm", "res=512 storage=chunked", "generate_ms", 4.0),
                               row(2, "dsm", "res=256 storage=texture3d", "generate_ms", 5.0),
                               row(3, "shadowmap", "res=256", "generate_ms", 1.0)};
-  const std::vector<RunView> runs = one_run(rows);
+  const std::vector<RunView> runs = two_runs(rows);
   const auto findings = nlohmann::json::parse(R"([
     {"claim": "chunked faster", "lower": ["storage=chunked", "generate_ms:median"],
      "than": ["storage=texture3d", "generate_ms"]},
@@ -119,7 +121,7 @@ TEST(Findings, ExplanationNamesThePassAndTheTimeOutsideThePasses) {
   add(1, "storage=texture3d", "generate.generation_ms", 2.0);
   add(1, "storage=texture3d", "generate.passes.raster_ms", 1.0);
   add(1, "storage=texture3d", "generate.passes.write_ms", 1.0);
-  const std::vector<RunView> runs = one_run(rows);
+  const std::vector<RunView> runs = two_runs(rows);
   const auto findings = nlohmann::json::parse(R"([
     {"claim": "chunked faster", "lower": ["storage=chunked", "generate_ms"],
      "than": ["storage=texture3d", "generate_ms"], "why": "fewer layers",
@@ -155,19 +157,22 @@ TEST(Findings, DifferenceWithinTheSpreadIsATie) {
   add(1, "storage=texture3d", "median", 3.01);
   add(1, "storage=texture3d", "min", 2.9);
   add(1, "storage=texture3d", "max", 3.1);
-  std::vector<RunView> runs(1);
-  for (const Row& r : rows) runs[0].items[r.item].push_back(&r);
-  runs[0].samples[0]["timings"]["render_ms"] = {2.9, 3.0, 3.1};
-  runs[0].samples[1]["timings"]["render_ms"] = {2.9, 3.01, 3.1};
+  // Three runs whose means drift by up to 2 %, more than the 0.3 % between the sides.
+  std::vector<RunView> runs(3);
+  const double drift[3][2] = {{0.0, 0.0}, {0.05, -0.03}, {-0.05, 0.03}};
+  for (size_t k = 0; k < runs.size(); ++k) {
+    for (const Row& r : rows) runs[k].items[r.item].push_back(&r);
+    const double a = 3.0 + drift[k][0], b = 3.01 + drift[k][1];
+    runs[k].samples[0]["timings"]["render_ms"] = {a - 0.1, a, a + 0.1};
+    runs[k].samples[1]["timings"]["render_ms"] = {b - 0.1, b, b + 0.1};
+  }
   const auto findings = nlohmann::json::parse(R"([
     {"claim": "chunked renders faster", "lower": ["storage=chunked", "render_ms:median"],
      "than": ["storage=texture3d", "render_ms:median"]}])");
   const std::vector<FindingResult> r = evaluate_findings(findings, runs);
   ASSERT_EQ(r.size(), 1u);
   EXPECT_EQ(r[0].verdict, "tie");
-  EXPECT_EQ(r[0].basis,
-            "1 run x 3 repetitions, 1 vs 1 items (fewer than 3 runs: drift between "
-            "runs not in it)");
+  EXPECT_EQ(r[0].basis, "3 runs x 3 repetitions, 1 vs 1 items");
 }
 
 class PaperFindings : public test::HarnessTest {
@@ -208,8 +213,12 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
                     "lower": ["strategy=none", "probe_error_all:mean"],
                     "than": ["strategy=dsm", "probe_error_all:mean"]}],
       "pareto": {"error": "probe_error_all:mean", "cost": ["bytes"]}}]})");
-  const SuiteOutcome r = run(suite, false);
+  // Two runs: the verdicts on values per run need a t-interval over at least 2.
+  const SuiteOutcome r = run(suite, false), second = run(suite, false);
   ASSERT_EQ(r.exit_code, 0);
+  ASSERT_EQ(second.exit_code, 0);
+  record_runs(r.folder, {second.folder});
+  build_report(r.folder);
   const std::string md = read(fs::path(r.folder) / "report.md");
   EXPECT_NE(md.find("Paper: **Tiny 2024, Table 9** — tiny caption"), std::string::npos) << md;
   EXPECT_NE(md.find("- paper machine: a 1990 abacus"), std::string::npos) << md;

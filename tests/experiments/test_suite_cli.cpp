@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -146,6 +147,65 @@ TEST(SuiteCli, RunsMakesIndependentProcessRunsPooledInOneReport) {
       run("suite " + suite.string() + " --backend cpu --runs 3 --shard 1/2 --out " + out);
   EXPECT_EQ(sharded.exit_code, 2) << sharded.output;
   EXPECT_NE(sharded.output.find("--runs"), std::string::npos) << sharded.output;
+}
+
+// --protocol replicate on a CPU smoke suite: 5 rounds, each with its items permuted by its own
+// recorded seed (--order-seed 100: 100 .. 104) and the claim's sides in adjacent pairs; the
+// report says so and pools the 5 runs.
+TEST(SuiteCli, ReplicateProtocolPermutesEachRunWithARecordedSeed) {
+  const fs::path dir = temp_dir("cli_replicate");
+  const fs::path suite = dir / "replicate.json";
+  std::ofstream(suite) << R"({"suite": "replicate", "repeat": 2, "experiments": [{"name": "a",
+    "kind": "shadow", "scene": ")"
+                       << test::source_dir() << R"(/experiments/scenes/demo.json",
+    "strategy": ["none", {"name": "dsm", "params": {"res": 16}}, {"name": "dsm", "params": {"res": 32}}],
+    "settings": {"width": 64, "height": 48, "probe_points": 10, "images": 0},
+    "smoke": {"settings": {"width": 16, "height": 12}},
+    "aa_duplicates": true,
+    "findings": [{"claim": "none generates faster", "lower": ["strategy=none", "generate_ms"],
+                  "than": ["strategy=dsm", "generate_ms"]}]}]})";
+  const std::string out = (dir / "out").string();
+  const CommandResult r =
+      run("suite " + suite.string() +
+          " --backend cpu --smoke --protocol replicate --order-seed 100 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("run 5 of 5"), std::string::npos) << r.output;
+  const size_t at = r.output.find("report: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const fs::path report = r.output.substr(at + 8, r.output.find('\n', at) - at - 8);
+  const fs::path folder = report.parent_path();
+  EXPECT_NE(folder.string().find("5runs-replicate"), std::string::npos) << folder;
+  std::vector<fs::path> folders{folder};
+  std::ifstream runs_in(folder / "runs.json");
+  const nlohmann::json runs = nlohmann::json::parse(runs_in);
+  for (const auto& other : runs["runs"]) folders.push_back(folder / other.get<std::string>());
+  ASSERT_EQ(folders.size(), 5u);
+  std::set<nlohmann::json> orders;
+  for (size_t k = 0; k < folders.size(); ++k) {
+    std::ifstream meta_in(folders[k] / "meta.json");
+    const nlohmann::json meta = nlohmann::json::parse(meta_in);
+    EXPECT_EQ(meta["order"]["protocol"], "replicate");
+    EXPECT_EQ(meta["order"]["seed"].get<uint64_t>(), 100 + k);
+    EXPECT_EQ(meta["planned_items"].size(), 6u);  // 3 configurations and their A/A copies
+    orders.insert(meta["planned_items"]);
+  }
+  EXPECT_GT(orders.size(), 1u);  // the runs' orders differ
+  std::ifstream md_in(report);
+  std::stringstream md;
+  md << md_in.rdbuf();
+  EXPECT_NE(md.str().find("- item order: replicate protocol in 5 of 5 runs: each run's items "
+                          "permuted with its own seed (100, 101, 102, 103, 104"),
+            std::string::npos)
+      << md.str();
+  EXPECT_NE(md.str().find("5 runs x 2 repetitions, 2 vs 4 items"), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("- A/A false-positive rate: "), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("3 pairs, 5 runs"), std::string::npos) << md.str();
+  // Fewer than 5 runs is not the protocol.
+  const CommandResult short_run =
+      run("suite " + suite.string() +
+          " --backend cpu --smoke --protocol replicate --runs 3 --out " + out);
+  EXPECT_EQ(short_run.exit_code, 2) << short_run.output;
+  EXPECT_NE(short_run.output.find("--protocol replicate"), std::string::npos) << short_run.output;
 }
 
 }  // namespace

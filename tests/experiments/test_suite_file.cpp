@@ -2,6 +2,7 @@
 // rows.csv round trip, timing spreads and result folders that are never overwritten.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -9,6 +10,7 @@
 #include "core/error.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/run_folder.h"
+#include "experiments/harness/run_order.h"
 #include "experiments/harness/shard_plan.h"
 #include "experiments/harness/suite_file.h"
 #include "experiments/harness/timing.h"
@@ -68,6 +70,74 @@ TEST(SuiteFile, SweepIsTheCartesianProductLastKeyFastest) {
   for (const RunItem& item : items)
     distinct.insert(item.scene + item.strategy + item.params_text());
   EXPECT_EQ(distinct.size(), items.size());
+}
+
+// "aa_duplicates": every item of the experiment again, after its items in the same order, as an
+// A/A copy that rows.csv marks "aa=copy" and the strategy never sees.
+TEST(SuiteFile, AaDuplicatesCopyEveryItemOfTheExperiment) {
+  const std::string text = R"({"suite": "aa", "experiments": [
+    {"name": "a", "kind": "shadow", "scene": "s.json", "strategy": "dsm",
+     "sweep": {"res": [16, 32]}, "aa_duplicates": true},
+    {"name": "b", "kind": "shadow", "scene": "s.json", "strategy": "none"}]})";
+  const std::vector<RunItem> items = expand_suite(parse_suite(text, "aa.json"));
+  ASSERT_EQ(items.size(), 5u);
+  for (size_t i = 0; i < items.size(); ++i) EXPECT_EQ(items[i].index, int(i));
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_FALSE(items[i].aa_copy);
+    EXPECT_TRUE(items[i + 2].aa_copy);
+    EXPECT_EQ(items[i + 2].params, items[i].params);  // the strategy's parameters are the same
+    EXPECT_EQ(items[i + 2].params_text(), items[i].params_text() + " aa=copy");
+  }
+  EXPECT_EQ(items[2].describe(), "a: dsm res=16 aa=copy on s.json");
+  EXPECT_EQ(items[4].experiment_name, "b");
+  EXPECT_FALSE(items[4].aa_copy);
+  std::string bad = text;
+  bad.replace(bad.find("true"), 4, "\"yes\"");
+  EXPECT_THROW(parse_suite(bad, "aa.json"), InputError);
+}
+
+// The replicate protocol's order: a permutation of the items fixed by the seed, the two sides of
+// a comparison claim in adjacent pairs whose orientation alternates (ABBA), the first pair's
+// orientation from the seed's lowest bit.
+TEST(RunOrder, PermutedBySeedWithClaimSidesInAlternatingPairs) {
+  const std::string text = R"({"suite": "order", "experiments": [
+    {"name": "a", "kind": "shadow", "scene": "s.json",
+     "strategy": ["none", {"name": "dsm", "params": {"res": 32}}],
+     "sweep": {"width_hint": [1, 2, 3, 4]},
+     "findings": [{"claim": "none faster", "lower": ["strategy=none", "generate_ms"],
+                   "than": ["strategy=dsm", "generate_ms"]}]},
+    {"name": "b", "kind": "shadow", "scene": "s.json", "strategy": "none",
+     "sweep": {"x": [1, 2, 3]}}]})";
+  const Suite suite = parse_suite(text, "order.json");
+  const std::vector<RunItem> items = expand_suite(suite);
+  ASSERT_EQ(items.size(), 11u);
+  const auto indices = [](const std::vector<RunItem>& v) {
+    std::vector<int> out;
+    for (const RunItem& item : v) out.push_back(item.index);
+    return out;
+  };
+  for (uint64_t seed : {7ull, 8ull, 12345ull}) {
+    const std::vector<RunItem> ordered = protocol_order(items, suite, seed);
+    EXPECT_EQ(indices(ordered), indices(protocol_order(items, suite, seed)));  // reproducible
+    std::vector<int> sorted = indices(ordered);
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, indices(items));  // a permutation
+    // Experiment a's 8 items: 4 adjacent (none, dsm) pairs, orientations alternating.
+    int pairs = 0;
+    bool none_first = (seed & 1) == 0;
+    for (size_t i = 0; i + 1 < ordered.size(); ++i) {
+      if (ordered[i].experiment_name != "a") continue;
+      ASSERT_EQ(ordered[i + 1].experiment_name, "a") << seed;
+      EXPECT_EQ(ordered[i].strategy, none_first ? "none" : "dsm") << seed << " pair " << pairs;
+      EXPECT_NE(ordered[i].strategy, ordered[i + 1].strategy) << seed;
+      none_first = !none_first;
+      ++pairs;
+      ++i;
+    }
+    EXPECT_EQ(pairs, 4) << seed;
+  }
+  EXPECT_NE(indices(protocol_order(items, suite, 7)), indices(protocol_order(items, suite, 8)));
+  EXPECT_NE(indices(protocol_order(items, suite, 7)), indices(items));
 }
 
 // A strategy object's `scenes` runs it only on the scenes whose path contains one of the

@@ -96,5 +96,40 @@ TEST(SuiteCommand, RefusesOptionsThatDoNotGoTogether) {
   EXPECT_EQ(refused_option(c), "--gpus");
 }
 
+// --protocol replicate: rounds of at least 5 runs (5 when --runs is not given), never beside the
+// options of one folder; --order-seed orders one whole run.
+TEST(SuiteCommand, ReplicateProtocolRunsAtLeastFiveRounds) {
+  SuiteCommand c = named("quick");
+  c.protocol = "replicate";
+  EXPECT_EQ(suite_mode(c), SuiteMode::rounds);
+  EXPECT_EQ(round_count(c), kReplicateRuns);
+  c.runs = 8;
+  EXPECT_EQ(round_count(c), 8);
+  c.runs = 3;
+  EXPECT_EQ(refused_option(c), "--protocol replicate");
+  c = named("quick");
+  c.protocol = "shuffle";
+  EXPECT_EQ(refused_option(c), "--protocol");
+  for (const auto& beside : {"resume", "slurm", "gpus", "shard"}) {
+    const std::string option = beside;
+    for (const bool protocol : {true, false}) {
+      c = named("quick");
+      if (protocol)
+        c.protocol = "replicate";
+      else
+        c.order_seed_given = true;
+      if (option == "resume") c.suite.resume = true;
+      if (option == "slurm") c.use_slurm = true;
+      if (option == "gpus") c.gpus = "2";
+      if (option == "shard") c.suite.shard = "1/2";
+      EXPECT_EQ(refused_option(c), protocol ? "--protocol" : "--order-seed") << option;
+    }
+  }
+  c = named("quick");
+  c.order_seed_given = true;
+  EXPECT_EQ(suite_mode(c), SuiteMode::single);
+  EXPECT_EQ(round_count(c), 0);
+}
+
 }  // namespace
 }  // namespace dv::cli
