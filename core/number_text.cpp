@@ -14,6 +14,12 @@ std::string significant_text(double value, int digits) {
   return text;
 }
 
+std::string fixed_text(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
 std::string signed_text(double value, int digits) {
   return (value >= 0 ? "+" : "") + significant_text(value, digits);
 }

@@ -9,6 +9,8 @@ namespace dv {
 
 // printf's %.Ng: `digits` significant digits, trailing zeros dropped ("0.0123", "1.2e+06").
 std::string significant_text(double value, int digits);
+// printf's %.Nf: `decimals` digits after the point ("0.0123", "12.300").
+std::string fixed_text(double value, int decimals);
 // As significant_text with a '+' before zero and positive values: a change or a difference.
 std::string signed_text(double value, int digits);
 // Whole numbers below 1e15 in full ("1048576", counts and bytes), others as significant_text.

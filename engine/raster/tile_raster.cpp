@@ -161,9 +161,9 @@ DV_HD inline void sift_down(TileEntry* e, int64_t root, int64_t end) {
 
 // Lists up to this long are sorted by rank, one thread per entry (as many comparisons as the
 // list has entries, all in parallel); longer ones by one thread per list. On the GPU a thread
-// that heap-sorts a list of hundreds of entries alone held the whole pass (0.26 of the 0.59 ms
-// of tile binning on knecht-fig56), so ranks go much further there; CPU threads are few and
-// sort faster alone.
+// that heap-sorts a list of hundreds of entries alone holds up the whole pass (the tile binning
+// of knecht-fig56 waited mostly on such threads: results/perf), so ranks go much further there;
+// CPU threads are few and sort faster alone.
 int64_t rank_sorted_entries(Backend backend) {
   return backend == Backend::cuda ? 4096 : 64;
 }

@@ -3,16 +3,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
+
+#include "core/number_text.h"
 
 namespace dv {
 
 namespace {
 
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
+// `text` left-aligned in a table column `width` characters wide.
+std::string column(std::string text, size_t width) {
+  if (text.size() < width) text.append(width - text.size(), ' ');
   return text;
 }
 
@@ -61,9 +62,9 @@ std::string strata_text(const AdviseMeasurement& m) {
     const StratumError& e = m.strata[size_t(s)];
     if (e.count == 0) continue;
     text += std::string(" ") + to_string(s) + (e.few ? " max " : " p95 ") +
-            format("%.4g", e.judged()) + " (" + std::to_string(e.count) + ")";
+            significant_text(e.judged(), 4) + " (" + std::to_string(e.count) + ")";
   }
-  return text + "; worst " + to_string(m.worst_stratum()) + " " + format("%.4g", m.error_p95);
+  return text + "; worst " + to_string(m.worst_stratum()) + " " + significant_text(m.error_p95, 4);
 }
 
 std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
@@ -77,7 +78,8 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
          "     configuration\n";
   const auto stratum = [](const AdviseMeasurement& m, Stratum s) {
     const StratumError& e = m.strata[size_t(s)];
-    return e.count == 0 ? std::string("-         ") : format("%-9.4g ", e.judged());
+    return e.count == 0 ? std::string("-         ")
+                        : column(significant_text(e.judged(), 4), 9) + " ";
   };
   for (size_t i : a.front) {
     const AdviseResult& r = a.results[i];
@@ -86,16 +88,18 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
     out << (pick                ? "=> "
             : budgets.met_by(m) ? " + "
                                 : "   ")
-        << format("%-9.4g ", m.error_p95) << stratum(m, Stratum::lit) << stratum(m, Stratum::umbra)
-        << stratum(m, Stratum::partial) << stratum(m, Stratum::media)
-        << format("%-8.4f ", m.image_edge) << format("%-8.4f ", m.image_rmse)
-        << format("%-10.3f ", m.frame_ms) << format("%-8.2f ", m.bytes / 1e6)
-        << r.config.param_line() << (a.default_index && *a.default_index == i ? " (default)" : "")
+        << column(significant_text(m.error_p95, 4), 9) + " " << stratum(m, Stratum::lit)
+        << stratum(m, Stratum::umbra) << stratum(m, Stratum::partial) << stratum(m, Stratum::media)
+        << column(fixed_text(m.image_edge, 4), 8) + " "
+        << column(fixed_text(m.image_rmse, 4), 8) + " "
+        << column(fixed_text(m.frame_ms, 3), 10) + " "
+        << column(fixed_text(m.bytes / 1e6, 2), 8) + " " << r.config.param_line()
+        << (a.default_index && *a.default_index == i ? " (default)" : "")
         << (m.rejected_at_fresh_points ? " (rejected at fresh points)" : "") << "\n";
   }
   out << "(=> the pick, + meets the bound " << budgets.error << " in every stratum";
   if (budgets.image_error)
-    out << " and edge error " << format("%.4f", *budgets.image_error)
+    out << " and edge error " << fixed_text(*budgets.image_error, 4)
         << (a.default_index ? " (the default's)" : "");
   if (budgets.frame_ms) out << " and " << *budgets.frame_ms << " ms";
   if (budgets.bytes) out << " and " << *budgets.bytes / 1e6 << " MB";
@@ -103,18 +107,18 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
   if (a.pick) {
     const AdviseMeasurement& m = a.results[*a.pick].measurement;
     out << "pick: " << a.results[*a.pick].config.param_line() << "\n  search p95 "
-        << format("%.4g", m.error_p95) << ", verified p95 at fresh points (seed " << a.verify_seed
-        << ") " << format("%.4g", a.verified.error_p95) << " <= " << budgets.error
-        << ", worst stratum " << to_string(a.verified.worst_stratum()) << ", edge "
-        << format("%.4f", m.image_edge) << ", " << format("%.3f", a.chosen_ms(*a.pick)) << " ms, "
-        << format("%.2f", m.bytes / 1e6) << " MB\n";
+        << significant_text(m.error_p95, 4) << ", verified p95 at fresh points (seed "
+        << a.verify_seed << ") " << significant_text(a.verified.error_p95, 4)
+        << " <= " << budgets.error << ", worst stratum " << to_string(a.verified.worst_stratum())
+        << ", edge " << fixed_text(m.image_edge, 4) << ", " << fixed_text(a.chosen_ms(*a.pick), 3)
+        << " ms, " << fixed_text(m.bytes / 1e6, 2) << " MB\n";
     out << "  verified " << strata_text(a.verified)
         << "\n  fresh points: " << a.verified_strata_counts << "\n";
   } else if (a.tried) {
     out << "no pick: the cheapest candidates' verified p95 ("
-        << format("%.4g", a.verified.error_p95) << " in " << to_string(a.verified.worst_stratum())
-        << " for " << a.results[*a.tried].config.param_line() << ") misses " << budgets.error
-        << "\n";
+        << significant_text(a.verified.error_p95, 4) << " in "
+        << to_string(a.verified.worst_stratum()) << " for "
+        << a.results[*a.tried].config.param_line() << ") misses " << budgets.error << "\n";
   } else {
     out << "no pick: no measured configuration meets the bound and budgets\n";
   }
@@ -122,8 +126,9 @@ std::string advice_table(const Advice& a, const AdviseBudgets& budgets) {
     out << "final timing (" << a.final_timing.front().times_ms.size()
         << " interleaved rounds; median ms, search ms):\n";
     for (const Advice::FinalTiming& t : a.final_timing)
-      out << (a.pick && *a.pick == t.index ? "=> " : "   ") << format("%-9.3f ", t.median_ms)
-          << format("%-9.3f ", a.results[t.index].measurement.frame_ms)
+      out << (a.pick && *a.pick == t.index ? "=> " : "   ")
+          << column(fixed_text(t.median_ms, 3), 9) + " "
+          << column(fixed_text(a.results[t.index].measurement.frame_ms, 3), 9) + " "
           << a.results[t.index].config.param_line() << "\n";
   }
   if (a.interrupted) out << "(interrupted: the front holds what was measured)\n";
@@ -219,10 +224,10 @@ std::string advice_svg(const Advice& a, const AdviseBudgets& budgets) {
     << "\" y2=\"" << kH - kBottom << "\" stroke=\"black\"/>\n"
     << "<line x1=\"" << kLeft << "\" y1=\"" << kTop << "\" x2=\"" << kLeft << "\" y2=\""
     << kH - kBottom << "\" stroke=\"black\"/>\n"
-    << "<text x=\"" << (kW / 2) << "\" y=\"" << kH - 12 << "\">frame ms (" << format("%.3g", x0)
-    << " .. " << format("%.3g", x1) << ")</text>\n"
-    << "<text x=\"8\" y=\"" << kTop + 10 << "\">" << format("%.2g", y1) << "</text>\n"
-    << "<text x=\"8\" y=\"" << kH - kBottom << "\">" << format("%.2g", y0) << "</text>\n"
+    << "<text x=\"" << (kW / 2) << "\" y=\"" << kH - 12 << "\">frame ms ("
+    << significant_text(x0, 3) << " .. " << significant_text(x1, 3) << ")</text>\n"
+    << "<text x=\"8\" y=\"" << kTop + 10 << "\">" << significant_text(y1, 2) << "</text>\n"
+    << "<text x=\"8\" y=\"" << kH - kBottom << "\">" << significant_text(y0, 2) << "</text>\n"
     << "<line x1=\"" << kLeft << "\" x2=\"" << kW - kRight << "\" y1=\"" << py(budgets.error)
     << "\" y2=\"" << py(budgets.error) << "\" stroke=\"#c00\" stroke-dasharray=\"5,4\"/>\n"
     << "<text x=\"" << kW - kRight - 90 << "\" y=\"" << py(budgets.error) - 4

@@ -104,8 +104,8 @@ std::vector<size_t> advise_picks(const std::vector<AdviseResult>& results,
 
 // The final timing of advise (advise.h): of `picks` (advise_picks' order), the leading ones whose
 // search time is within `band` times the first's, at most `most`; these are timed again in
-// interleaved rounds, since one search measurement of a ~1 ms frame varies by 10-30 % between
-// measurements (clock and launch jitter) and would decide a near tie by chance.
+// interleaved rounds, since one search measurement of a frame of about a millisecond varies
+// between measurements by more than the near ties it would decide (clock and launch jitter).
 std::vector<size_t> timing_contenders(const std::vector<AdviseResult>& results,
                                       const std::vector<size_t>& picks, double band, size_t most);
 // The order of `rounds` interleaved rounds over n configurations: every round times each once,

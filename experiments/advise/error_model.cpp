@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "core/number_text.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/suite_file.h"
 #include "render/load/scene_loader.h"
@@ -247,16 +248,6 @@ ErrorModel calibrate_error_model(const std::string& run_dir) {
   return model;
 }
 
-namespace {
-
-std::string number_text(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", v);
-  return text;
-}
-
-}  // namespace
-
 BudgetPrediction predict_budget(const ErrorModel& model, const std::vector<LightStats>& lights,
                                 double budget) {
   BudgetPrediction out;
@@ -285,9 +276,9 @@ BudgetPrediction predict_budget(const ErrorModel& model, const std::vector<Light
           std::string("no calibration scene has a light with ") + to_string(s.kind) + " casters";
       every_light = false;
     } else if (s.smallest_caster < 0.5 * finest) {
-      p.why = "its smallest caster spans " + number_text(s.smallest_caster) +
+      p.why = "its smallest caster spans " + significant_text(s.smallest_caster, 3) +
               " of its field, finer than half the finest the model calibrated (" +
-              number_text(finest) + ")";
+              significant_text(finest, 3) + ")";
       every_light = false;
     } else {
       p.confident = true;
@@ -330,17 +321,17 @@ BudgetPrediction predict_budget(const ErrorModel& model, const std::vector<Light
     if (cand.predicted <= budget && (!best || cand.cost < best->cost)) best = &cand;
   }
   if (!best) {
-    out.why = "no calibrated configuration is predicted within " + number_text(budget);
+    out.why = "no calibrated configuration is predicted within " + significant_text(budget, 3);
     for (LightPrediction& p : out.lights) p.confident = false;
     return out;
   }
   out.confident = true;
   out.pick = best->config;
   for (size_t l = 0; l < lights.size(); ++l) out.lights[l].predicted = best->per_light[l];
-  out.why = "the cheapest calibrated configuration (" + number_text(best->cost) +
-            " ms mean calibrated frame) predicted within " + number_text(budget) + " (" +
-            number_text(best->predicted) + " = worst calibrated p95 x margin " +
-            number_text(model.margin) + ")";
+  out.why = "the cheapest calibrated configuration (" + significant_text(best->cost, 3) +
+            " ms mean calibrated frame) predicted within " + significant_text(budget, 3) + " (" +
+            significant_text(best->predicted, 3) + " = worst calibrated p95 x margin " +
+            significant_text(model.margin, 3) + ")";
   return out;
 }
 

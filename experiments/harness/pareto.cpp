@@ -3,19 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "core/number_text.h"
 
 namespace dv {
-
-namespace {
-
-std::string number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-
-}  // namespace
 
 std::vector<size_t> pareto_front(const std::vector<ParetoPoint>& points) {
   std::vector<size_t> order;
@@ -40,17 +31,19 @@ std::string pareto_regimes(const std::vector<ParetoPoint>& points, const std::ve
   const ParetoPoint& best = points[front.back()];
   if (front.size() == 1)
     return cheapest.label + " wins every regime: cheapest (" + cost_name + " " +
-           number(cheapest.cost) + ") and most accurate (" + error_name + " " +
-           number(cheapest.error) + ").";
-  std::string s = "Cheapest: " + cheapest.label + " (" + cost_name + " " + number(cheapest.cost) +
-                  ", " + error_name + " " + number(cheapest.error) + ")";
+           significant_text(cheapest.cost, 4) + ") and most accurate (" + error_name + " " +
+           significant_text(cheapest.error, 4) + ").";
+  std::string s = "Cheapest: " + cheapest.label + " (" + cost_name + " " +
+                  significant_text(cheapest.cost, 4) + ", " + error_name + " " +
+                  significant_text(cheapest.error, 4) + ")";
   for (size_t k = 1; k + 1 < front.size(); ++k) {
     const ParetoPoint& p = points[front[k]];
-    s += "; from " + cost_name + " " + number(p.cost) + ": " + p.label + " (" + error_name + " " +
-         number(p.error) + ")";
+    s += "; from " + cost_name + " " + significant_text(p.cost, 4) + ": " + p.label + " (" +
+         error_name + " " + significant_text(p.error, 4) + ")";
   }
-  s += "; most accurate: " + best.label + " (" + error_name + " " + number(best.error) + " from " +
-       cost_name + " " + number(best.cost) + ").";
+  s += "; most accurate: " + best.label + " (" + error_name + " " +
+       significant_text(best.error, 4) + " from " + cost_name + " " +
+       significant_text(best.cost, 4) + ").";
   return s;
 }
 

@@ -14,8 +14,8 @@
 namespace dv {
 
 // Default footprint limit of a triangle voxelized by one thread (the `small` parameter): the
-// fastest of 32, 64, 128 and 256 for the bunny x2 at 1024^3 in bench_voxelizer's sweep (H200,
-// 2026-12-02), where most triangles have 64-256 columns; at 512^3 nearly all are small anyway.
+// fastest of 32, 64, 128 and 256 for the bunny x2 at 1024^3 in bench_voxelizer's sweep
+// (results/perf), where most triangles have 64-256 columns; at 512^3 nearly all are small anyway.
 inline constexpr int64_t kSatSmallItems = 256;
 // Its upper limit (a million columns on one thread: far past any sensible split).
 inline constexpr int64_t kSatMaxSmallItems = int64_t(1) << 20;
