@@ -163,6 +163,21 @@ class GltfBuilder {
   }
 };
 
+// A node holding the unit quad (0,0,0)-(1,1,0) facing +z with `material`, two triangles with
+// UNSIGNED_SHORT indices and, with `texcoords`, TEXCOORD_0 (u, v) = (x, 1 - y); its index.
+inline int add_quad_node(GltfBuilder& b, const json& material, bool texcoords) {
+  const std::vector<float> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const std::vector<float> uv = {0, 1, 1, 1, 1, 0, 0, 0};
+  const std::vector<uint16_t> idx = {0, 1, 2, 0, 2, 3};
+  json attributes = {{"POSITION", b.add_positions(xyz)}};
+  if (texcoords)
+    attributes["TEXCOORD_0"] =
+        b.add_accessor(b.add_view(uv.data(), uv.size() * 4), 5126, 4, "VEC2");
+  return b.add_node({{"mesh", b.add_mesh({{"attributes", attributes},
+                                          {"indices", b.add_indices(idx)},
+                                          {"material", b.add_material(material)}})}});
+}
+
 // The unit cube [-1,1]^3 as an exporter writes it: 24 vertices (4 per face, split at the
 // normal seams) and 12 outward-facing triangles with UNSIGNED_SHORT indices.
 inline int add_box_mesh(GltfBuilder& b, json extra_primitive_fields = json::object()) {

@@ -26,14 +26,11 @@ using test::ScratchDir;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The unit quad (0,0,0)-(1,1,0) facing +z with `material`; a camera 2 units in front of it.
-GltfBuilder quad(const json& material) {
+// The unit quad (0,0,0)-(1,1,0) facing +z with `material` (and TEXCOORD_0 with `texcoords`); a
+// camera 2 units in front of it.
+GltfBuilder quad(const json& material, bool texcoords = false) {
   GltfBuilder b;
-  const std::vector<float> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const std::vector<uint16_t> idx = {0, 1, 2, 0, 2, 3};
-  b.add_node({{"mesh", b.add_mesh({{"attributes", {{"POSITION", b.add_positions(xyz)}}},
-                                   {"indices", b.add_indices(idx)},
-                                   {"material", b.add_material(material)}})}});
+  add_quad_node(b, material, texcoords);
   b.doc["cameras"] =
       json::array({{{"type", "perspective"},
                     {"perspective", {{"yfov", 0.6}, {"aspectRatio", 1.0}, {"znear", 0.1}}}}});
@@ -97,10 +94,7 @@ TEST(GltfEmission, EmissiveStrengthScalesTheFactorAndBlendCoverageWeighsIt) {
 // PNG (left texel `left`, right `right`, 8-bit sRGB) through a NEAREST, CLAMP sampler.
 GltfBuilder emissive_quad(ScratchDir& dir, const json& material,
                           const std::vector<unsigned char>& rgb) {
-  GltfBuilder b = quad(material);
-  const std::vector<float> uv = {0, 1, 1, 1, 1, 0, 0, 0};
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
-      b.add_accessor(b.add_view(uv.data(), uv.size() * 4), 5126, 4, "VEC2");
+  GltfBuilder b = quad(material, true);
   write_png_bytes(dir.file("glow.png"), 2, 1, rgb);
   b.doc["images"] = json::array({{{"uri", "glow.png"}}});
   b.doc["samplers"] = json::array({{{"magFilter", 9728}, {"wrapS", 33071}, {"wrapT", 33071}}});

@@ -51,19 +51,12 @@ void write_test_png(const std::string& path) {
 // `material`; `image` (if not null) is image 0 under texture 0 with a NEAREST, REPEAT sampler.
 GltfBuilder quad(const json& material, const json& image) {
   GltfBuilder b;
-  const std::vector<float> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const std::vector<float> uv = {0, 1, 1, 1, 1, 0, 0, 0};
-  const std::vector<uint16_t> idx = {0, 1, 2, 0, 2, 3};
-  const int uvs = b.add_accessor(b.add_view(uv.data(), uv.size() * 4), 5126, 4, "VEC2");
   if (!image.is_null()) {
     b.doc["images"] = json::array({image});
     b.doc["samplers"] = json::array({{{"magFilter", 9728}, {"wrapS", 10497}, {"wrapT", 10497}}});
     b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
   }
-  b.add_node({{"mesh", b.add_mesh({{"attributes",
-                                    {{"POSITION", b.add_positions(xyz)}, {"TEXCOORD_0", uvs}}},
-                                   {"indices", b.add_indices(idx)},
-                                   {"material", b.add_material(material)}})}});
+  add_quad_node(b, material, true);
   return b;
 }
 

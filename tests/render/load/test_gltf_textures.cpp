@@ -40,10 +40,6 @@ std::vector<unsigned char> file_bytes(const std::string& path) {
 // the image) with a NEAREST, CLAMP sampler.
 GltfBuilder textured_quad(const json& image, const std::string& alpha_mode) {
   GltfBuilder b;
-  const std::vector<float> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const std::vector<float> uv = {0, 1, 1, 1, 1, 0, 0, 0};
-  const std::vector<uint16_t> idx = {0, 1, 2, 0, 2, 3};
-  const int uvs = b.add_accessor(b.add_view(uv.data(), uv.size() * 4), 5126, 4, "VEC2");
   json material = {
       {"pbrMetallicRoughness",
        {{"baseColorFactor", {1.0, 1.0, 1.0, 0.5}}, {"baseColorTexture", {{"index", 0}}}}},
@@ -51,10 +47,7 @@ GltfBuilder textured_quad(const json& image, const std::string& alpha_mode) {
   b.doc["images"] = json::array({image});
   b.doc["samplers"] = json::array({{{"magFilter", 9728}, {"wrapS", 33071}, {"wrapT", 33648}}});
   b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
-  b.add_node({{"mesh", b.add_mesh({{"attributes",
-                                    {{"POSITION", b.add_positions(xyz)}, {"TEXCOORD_0", uvs}}},
-                                   {"indices", b.add_indices(idx)},
-                                   {"material", b.add_material(material)}})}});
+  add_quad_node(b, material, true);
   return b;
 }
 
