@@ -72,11 +72,18 @@ TEST_F(Resume, KilledAtRandomInstantsResumesToTheRowsOfOneRun) {
   bool finished = false;
   for (; !finished && attempts < (kKills + 5) * (kRestarts + 1); ++attempts) {
     // Resume the folder when one exists (the first kill may land before it does).
+    // A kill that lands after the last row but before the process ends leaves a finished
+    // folder, which `--resume` alone does not look for (it finds unfinished runs): it is named
+    // then, as a user would, so that its report is written.
     const bool resuming = !result_folders(root).empty();
     std::vector<std::string> args = {"suite", suite_, "--backend", "cpu", "--out", out.string()};
-    if (resuming) args.push_back("--resume");
     int missing = total;
-    if (resuming) missing = int(read_run_state(result_folders(root).back()).missing.size());
+    if (resuming) {
+      const RunState state = read_run_state(result_folders(root).back());
+      missing = int(state.missing.size());
+      args.push_back("--resume");
+      if (state.finished) args.push_back(result_folders(root).back().string());
+    }
     // A delay spread over most of what this attempt has left to do (an item's share of the
     // run for start-up), so that the kill lands while it runs; after kKills kills the run goes
     // to its end.
