@@ -21,20 +21,24 @@ bool scene_tints_light(const SceneData& scene) {
   return false;
 }
 
-void generate_colour_exponents(Backend backend, const DsmGenerator& generator,
-                               View<vec3> exponents) {
+void generate_colour_texels(Backend backend, const DsmGenerator& generator,
+                            View<DsmColourTexel> texels) {
   const DsmGenerator g = generator;
   parallel_for(
-      backend, "dsm_colour_exponents", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
+      backend, "dsm_colour_texels", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
         DsmTexel t;
         if (!g.texel_of_thread(i, t)) return;
         DiscardingTarget target;
         double final_visibility = 1.0;
-        ColourDepth depth;
-        g.walk(t, 1.0, target, final_visibility, &depth);
-        vec3 k(1.0f);
-        if (depth.optical_depth > 0.0) k = vec3(depth.optical_depth_rgb / depth.optical_depth);
-        exponents[t.index] = k;
+        ColourDepth tinted;
+        g.walk(t, 1.0, target, final_visibility, &tinted);
+        DsmColourTexel c;
+        if (tinted.tinted_end >= 0.0 && tinted.optical_depth > 0.0) {
+          c.k = vec3(tinted.optical_depth_rgb / tinted.optical_depth);
+          c.tinted_end = float(tinted.tinted_end);
+          c.tinted_optical_depth = float(tinted.optical_depth);
+        }
+        texels[t.index] = c;
       });
 }
 

@@ -2,14 +2,19 @@
 // texel: the luminance-weighted opacity of glass crossings and the scalar extinction sigma of
 // media (what grey scenes store). For scenes where some caster tints light (coloured glass,
 // tinted media: tints_light in engine/scene/surface_transmittance.h) a second pass walks each
-// texel's centre ray once more and keeps, per texel, the per-channel exponents
-//   k_c = (optical depth of channel c) / (optical depth of the stored function)
-// summed up to the first opaque crossing; a lookup turns V' into T_c = V'^k_c. This is exact
-// for one tint per texel (one glass pane, one tinted medium, or several of the same colour) at
-// every depth, and approximate where differently tinted casters share a texel (the far end's
-// mix then holds for every depth). It costs 12 bytes per texel, only for scenes with tinted
-// casters; grey scenes get no pass and no bytes. Host and device code (the lookup) and the
-// pass (dsm_colour.cpp, compiled by nvcc when CUDA is on).
+// texel's centre ray once more and keeps, per texel, where the last tinted stretch (a coloured
+// crossing or a tinted constant medium) ends, z_t, the optical depth tau_t of the stored
+// function there and the per-channel exponents
+//   k_c = (optical depth of channel c) / (optical depth of the stored function), both to z_t.
+// A lookup of V' at depth z turns it into T_c = V'^k_c up to z_t and beyond it into
+// T_c = exp(-tau_t k_c) min(1, V' exp(tau_t)): the layers behind the last tint are grey, so they
+// scale every channel by the ratio V'(z) / V'(z_t) (with V'(z_t) from the walk, no second
+// lookup). This is exact for one tint per texel (one glass pane, one tinted medium, or several
+// of the same colour) at every depth, grey translucent layers behind it included, and
+// approximate where differently tinted casters share a texel (their mix at z_t then holds at
+// every depth in front of it). It costs 20 bytes per texel, only for scenes with tinted casters;
+// grey scenes get no pass and no bytes. Host and device code (the lookup) and the pass
+// (dsm_colour.cpp, compiled by nvcc when CUDA is on).
 #pragma once
 
 #include <cmath>
@@ -26,15 +31,26 @@ namespace dv {
 // Whether any object of the scene can tint light, so that maps of it carry the side channel.
 bool scene_tints_light(const SceneData& scene);
 
-// k per texel of `generator`'s faces into `exponents` (texel_count entries); texels whose ray
-// stays clear get (1, 1, 1).
-void generate_colour_exponents(Backend backend, const DsmGenerator& generator,
-                               View<vec3> exponents);
+// One texel's side channel. A texel whose ray meets no tint keeps k = 1 and z_t = +inf: its
+// channels are V' each.
+struct DsmColourTexel {
+  vec3 k{1.0f};                      // per-channel exponents up to tinted_end
+  float tinted_end = 3.0e38f;        // z_t: depth where the last tinted stretch ends
+  float tinted_optical_depth = 0.f;  // tau_t: optical depth of the stored function at z_t
+};
 
-// The per-channel transmittance of a texel whose stored visibility is v.
-DV_HD inline dvec3 coloured_visibility(double v, const vec3& k) {
+// The side channel of every texel of `generator`'s faces into `texels` (texel_count entries).
+void generate_colour_texels(Backend backend, const DsmGenerator& generator,
+                            View<DsmColourTexel> texels);
+
+// The per-channel transmittance at depth z of a texel whose stored visibility there is v.
+DV_HD inline dvec3 coloured_visibility(double v, double z, const DsmColourTexel& c) {
   if (v <= 0.0) return dvec3(0.0);
-  return dvec3(pow(v, double(k.x)), pow(v, double(k.y)), pow(v, double(k.z)));
+  const dvec3 k(c.k);
+  if (z <= double(c.tinted_end)) return dvec3(pow(v, k.x), pow(v, k.y), pow(v, k.z));
+  const double tau = c.tinted_optical_depth;
+  const double grey = min_value(1.0, v * exp(tau));
+  return dvec3(exp(-tau * k.x), exp(-tau * k.y), exp(-tau * k.z)) * grey;
 }
 
 }  // namespace dv

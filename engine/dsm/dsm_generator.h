@@ -135,7 +135,7 @@ struct DsmGenerator {
         t.face, ray, RasterFragments{&scene, lists[t.face], t.x, t.y, ray.origin, ray.direction},
         payload);
     final_visibility = payload.visibility;
-    if (colour) *colour = {payload.optical_depth, payload.optical_depth_rgb};
+    if (colour) *colour = payload.tinted;
     return status;
   }
 

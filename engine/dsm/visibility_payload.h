@@ -17,7 +17,8 @@
 // The function starts at the first crossing (or where the walk starts inside a medium) with V = 1.
 // With track_colour the payload also sums, up to the first opaque crossing, the optical depth
 // of V (-ln of each factor) and the per-channel optical depth of the crossing rule and the
-// media's sigma_rgb: their ratio is the texel's colour side channel (dsm_colour.h).
+// media's sigma_rgb, and keeps the sums where the last tinted stretch ended: their ratio there
+// and that depth are the texel's colour side channel (dsm_colour.h).
 // Host and device code.
 #pragma once
 
@@ -38,10 +39,13 @@ inline constexpr double kDsmSaturatedVisibility = 1e-6;
 // Most samples one constant-medium segment is split into.
 inline constexpr int kMaxConstantMediumSamples = 1024;
 
-// What a colour-tracking walk summed (VisibilityPayload::track_colour).
+// What a colour-tracking walk summed (VisibilityPayload::track_colour), up to the end of the
+// last tinted stretch (a crossing or a constant medium whose channels differ): beyond it every
+// layer is grey. tinted_end < 0: nothing along the ray tints.
 struct ColourDepth {
   double optical_depth = 0.0;
   dvec3 optical_depth_rgb{0.0};
+  double tinted_end = -1.0;
 };
 
 // Target interface: void push(float z, float v); void push_step(float z, float before, float
@@ -62,6 +66,7 @@ struct VisibilityPayload {
   double optical_depth = 0.0;    // of V, up to the first opaque crossing
   dvec3 optical_depth_rgb{0.0};  // per channel, the same stretch
   dvec3 segment_sigma_rgb{0.0};  // the constant media's per-channel extinction (track_colour)
+  ColourDepth tinted{};          // the sums where the last tinted stretch ended (track_colour)
 
   DV_HD bool done() const { return visibility <= kDsmSaturatedVisibility; }
 
@@ -76,6 +81,7 @@ struct VisibilityPayload {
       const dvec3 t = crossing_transmittance(s, o, h.triangle, dir, p);
       optical_depth -= log(1.0 - alpha);
       optical_depth_rgb -= dvec3(log(t.x), log(t.y), log(t.z));
+      if (!(t.x == t.y && t.y == t.z)) note_tinted_end(h.t);
     }
     target.push_step(float(h.t), float(visibility), float(after));
     started = true;
@@ -91,17 +97,23 @@ struct VisibilityPayload {
     march_media(s, inside, origin, dir, t0, t1, *this, step_scale);
   }
 
-  // Adds a stretch of `length` with scalar extinction `sigma` = constant + volume part, whose
-  // constant media have per-channel extinction segment_sigma_rgb (track_colour only).
-  DV_HD void add_colour_depth(double sigma, double sigma_constant, double length) {
+  // The colour sums so far end the last tinted stretch at depth `end`.
+  DV_HD void note_tinted_end(double end) { tinted = {optical_depth, optical_depth_rgb, end}; }
+
+  // Adds a stretch of `length` ending at depth `end` with scalar extinction `sigma` = constant +
+  // volume part, whose constant media have per-channel extinction segment_sigma_rgb
+  // (track_colour only).
+  DV_HD void add_colour_depth(double sigma, double sigma_constant, double length, double end) {
     if (!track_colour) return;
     optical_depth += sigma * length;
     optical_depth_rgb += (segment_sigma_rgb + dvec3(sigma - sigma_constant)) * length;
+    const dvec3& c = segment_sigma_rgb;
+    if (length > 0.0 && !(c.x == c.y && c.y == c.z)) note_tinted_end(end);
   }
 
   DV_HD void absorb(double sigma_constant, double a, double b) {
     if (b <= a) return;
-    add_colour_depth(sigma_constant, sigma_constant, b - a);
+    add_colour_depth(sigma_constant, sigma_constant, b - a, b);
     if (sigma_constant <= 0.0) {  // an empty stretch: V is flat up to b
       target.push(float(b), float(visibility));
       return;
@@ -129,7 +141,7 @@ struct VisibilityPayload {
       return;
     }
     const double sigma = sigma_constant + volume_extinction(s, inside, x);
-    add_colour_depth(sigma, sigma_constant, b - a);
+    add_colour_depth(sigma, sigma_constant, b - a, b);
     visibility *= exp(-sigma * (b - a));
     target.push(float(b), float(visibility));
   }
@@ -171,7 +183,7 @@ struct VisibilityPayload {
       target.push(float(a + u * dt), float(v0 * exp(-optical - sigma_constant * u * dt)));
     }
     const double mean = transfer_sigma_mean(tf, o.transfer_count, d0, d1);
-    add_colour_depth(mean + sigma_constant, sigma_constant, dt);
+    add_colour_depth(mean + sigma_constant, sigma_constant, dt, b);
     visibility = v0 * exp(-dt * (mean + sigma_constant));
     target.push(float(b), float(visibility));
   }

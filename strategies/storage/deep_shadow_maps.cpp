@@ -180,13 +180,14 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
   storage_->generate(context);
   host_records_stale_ = true;
   figures_ = dsm_figures(*storage_, backend, records_.const_view());
-  colour_exponents_ = Buffer<vec3>();
+  colour_texels_ = Buffer<DsmColourTexel>();
   if (scene_tints_light(scene)) {
     PassTimer timer(backend);
-    colour_exponents_ = Buffer<vec3>(memory_of(backend), g.texel_count(), "dsm colour exponents");
-    generate_colour_exponents(backend, g, colour_exponents_.view());
+    colour_texels_ =
+        Buffer<DsmColourTexel>(memory_of(backend), g.texel_count(), "dsm colour side channel");
+    generate_colour_texels(backend, g, colour_texels_.view());
     passes_.push_back({"colour", timer.stop()});
-    const int64_t colour_bytes = colour_exponents_.bytes();
+    const int64_t colour_bytes = colour_texels_.bytes();
     figures_["colour_bytes"] = colour_bytes;
     figures_["bytes_allocated"] = figures_["bytes_allocated"].get<int64_t>() + colour_bytes;
   }
@@ -201,7 +202,7 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
                       settings_.bias >= 0.0 ? settings_.bias : 1e-4 * s.diagonal,
                       settings_.slope_bias,
                       settings_.bilinear,
-                      colour_exponents_.const_view()};
+                      colour_texels_.const_view()};
   ++generations_;
 }
 

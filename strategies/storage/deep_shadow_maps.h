@@ -88,7 +88,7 @@ class DeepShadowMaps {
   std::unique_ptr<DsmStorage> storage_;
   std::unique_ptr<DsmGeneration> generation_;
   Buffer<DsmTexelRecord> records_;
-  Buffer<vec3> colour_exponents_;  // the colour side channel; empty for grey scenes
+  Buffer<DsmColourTexel> colour_texels_;  // the colour side channel; empty for grey scenes
   mutable std::vector<DsmTexelRecord> host_records_;  // records() fills it when stale
   mutable bool host_records_stale_ = true;
   std::vector<DsmPass> passes_;

@@ -10,8 +10,8 @@
 // node index for the coherent search.
 // Clustered lights (ShadowLight::clustered) multiply the visibilities of their cluster faces.
 // Colour: with the colour side channel (engine/dsm/dsm_colour.h; only for scenes with tinted
-// casters) each tap's V' becomes V'^k_c per channel before the filter; without it the answer is
-// grey.
+// casters) each tap's V' becomes per-channel transmittances (V'^k_c, grey-scaled behind the
+// texel's last tint) before the filter; without it the answer is grey.
 #pragma once
 
 #include <cmath>
@@ -38,7 +38,7 @@ struct DsmSource {
   double bias;
   double slope_bias;
   bool bilinear;
-  View<const vec3> colour_exponents{};  // per texel k (dsm_colour.h); empty: grey maps
+  View<const DsmColourTexel> colour_texels{};  // per texel (dsm_colour.h); empty: grey maps
 
   struct Cursor {
     uint32_t flags = 0;
@@ -141,7 +141,7 @@ struct DsmSource {
     }
     float tv[4];
     reader.visibilities(taps, z, hint, tv);
-    if (colour_exponents.empty()) {
+    if (colour_texels.empty()) {
       if (!bilinear) return dvec3(tv[0]);
       const double v00 = tv[0], v10 = tv[1], v01 = tv[2], v11 = tv[3];
       return dvec3((1.0 - wy) * ((1.0 - wx) * v00 + wx * v10) + wy * ((1.0 - wx) * v01 + wx * v11));
@@ -149,7 +149,7 @@ struct DsmSource {
     dvec3 c[4];
     for (int i = 0; i < taps.count; ++i)
       c[i] = taps.texel[i] < 0 ? dvec3(1.0)
-                               : coloured_visibility(tv[i], colour_exponents[taps.texel[i]]);
+                               : coloured_visibility(tv[i], z, colour_texels[taps.texel[i]]);
     if (!bilinear) return c[0];
     return (1.0 - wy) * ((1.0 - wx) * c[0] + wx * c[1]) + wy * ((1.0 - wx) * c[2] + wx * c[3]);
   }

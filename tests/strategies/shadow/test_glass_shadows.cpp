@@ -126,12 +126,12 @@ TEST(GlassShadows, GreyScenesCarryNoColourBytes) {
   map->prepare(data, Backend::cpu, nullptr);
   EXPECT_EQ(map->stats()["bytes"].get<int64_t>(),
             int64_t(128 * 128 * sizeof(float)) * map->stats()["faces"].get<int64_t>());
-  // The red slab's maps carry colour: 12 bytes per texel beside the storage's own.
+  // The red slab's maps carry colour: 20 bytes per texel beside the storage's own.
   const Scene red = standin("glass-red-slab.json");
   const SceneData red_data(red, Memory::host);
   auto red_dsm = test::make_shadow_method("dsm", "res=128");
   red_dsm->prepare(red_data, Backend::cpu, nullptr);
-  EXPECT_EQ(red_dsm->stats()["storage"]["colour_bytes"].get<int64_t>(), 128 * 128 * 12);
+  EXPECT_EQ(red_dsm->stats()["storage"]["colour_bytes"].get<int64_t>(), 128 * 128 * 20);
 }
 
 // The other colour scheme the issue asks to weigh: three curves, one storage per channel. Its

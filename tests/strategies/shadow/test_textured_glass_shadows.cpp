@@ -158,7 +158,7 @@ TEST(TexturedGlassShadows, ColourTextureSwitchesTheSideChannelOnAndExplainSaysWh
   const SceneData data(scene, Memory::host);
   auto dsm = test::make_shadow_method("dsm", "res=64");
   dsm->prepare(data, Backend::cpu, nullptr);
-  EXPECT_EQ(dsm->stats()["storage"]["colour_bytes"].get<int64_t>(), 64 * 64 * 12);
+  EXPECT_EQ(dsm->stats()["storage"]["colour_bytes"].get<int64_t>(), 64 * 64 * 20);
   const std::string explained = explain_effects(scene, "dsm");
   EXPECT_NE(explained.find("1 glass coloured by its base-colour texture: colour side channel on, "
                            "because the texture has coloured texels"),
