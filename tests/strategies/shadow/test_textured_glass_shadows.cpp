@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "cuda/buffer.h"
 #include "render/load/mesh_generators.h"
 #include "strategies/shadow/effect_losses.h"
 #include "strategies/shadow/probe.h"
@@ -100,15 +101,11 @@ std::vector<Method> every_method_at_defaults() {
   return methods;
 }
 
-Memory memory_of_backend(Backend backend) {
-  return backend == Backend::cuda ? Memory::device : Memory::host;
-}
-
 class TexturedGlassShadows : public ::testing::TestWithParam<Backend> {};
 
 TEST_P(TexturedGlassShadows, OracleShadowTakesEachTexelsColour) {
   DV_SKIP_UNLESS_BACKEND(GetParam());
-  const SceneData data(red_blue_pane(), memory_of_backend(GetParam()));
+  const SceneData data(red_blue_pane(), memory_of(GetParam()));
   auto reference = test::make_shadow_method("reference", "");
   for (const dvec3& t : probe_transmittance(GetParam(), data, *reference, floor_points(-1)).rgb) {
     EXPECT_GT(t.x, 0.6);
@@ -125,7 +122,7 @@ TEST_P(TexturedGlassShadows, OracleShadowTakesEachTexelsColour) {
 TEST_P(TexturedGlassShadows, EveryMethodCastsTheTexturesColours) {
   DV_SKIP_UNLESS_BACKEND(GetParam());
   const Backend backend = GetParam();
-  const SceneData data(red_blue_pane(), memory_of_backend(backend));
+  const SceneData data(red_blue_pane(), memory_of(backend));
   auto reference = test::make_shadow_method("reference", "");
   for (const double side : {-1.0, 1.0}) {
     const std::vector<dvec3> points = floor_points(side);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "cuda/buffer.h"
 #include "engine/scene/surface_transmittance.h"
 #include "render/load/mesh_generators.h"
 #include "strategies/shadow/probe.h"
@@ -71,16 +72,12 @@ std::vector<dvec3> points_at(double y) {
   return points;
 }
 
-Memory memory_of_backend(Backend backend) {
-  return backend == Backend::cuda ? Memory::device : Memory::host;
-}
-
 class TintOverGreyLayers : public ::testing::TestWithParam<Backend> {};
 
 TEST_P(TintOverGreyLayers, GreyLayersBehindTheTintNeitherDiluteNorTintIt) {
   DV_SKIP_UNLESS_BACKEND(GetParam());
   const Backend backend = GetParam();
-  const SceneData data(blue_pane_over_grey_slab(), memory_of_backend(backend));
+  const SceneData data(blue_pane_over_grey_slab(), memory_of(backend));
   auto reference = test::make_shadow_method("reference", "");
   struct Method {
     std::string name, params;
