@@ -1,10 +1,10 @@
 // A tinted caster over grey translucent layers, built here: a blue glass pane (transmission 1)
 // over a grey translucent slab (alpha 0.5) over an opaque floor, under a spot light (the
-// smallest form of TransmissionTest's translucent cloth under its glass bodies,
-// docs/history.md). The grey layer behind the tint must not dilute the tint in front of it, and
-// the layers behind must scale every channel alike. Just above the grey slab and on the floor,
-// one exponent per texel summed to the floor read 0.39 / 0.44 / 0.56 against the oracle's
-// 0.29 / 0.43 / 0.96. Now every dsm storage and auto keep the oracle's colour (each channel over
+// smallest form of TransmissionTest's translucent cloth under its glass bodies). The grey layer
+// behind the tint must not dilute the tint in front of it (a side channel with one exponent per
+// texel summed to the floor would mix the slab's grey into the glass's blue just above the
+// slab), and the layers behind the tint must scale every channel alike. Just above the grey
+// slab and on the floor every dsm storage and auto keep the oracle's colour (each channel over
 // the luminance within 5 % of the oracle's), and auto and the storages that keep their error
 // bound answer within 0.05 of the oracle per channel. The fixed-size storages' own luminance
 // error on this stack of layers is theirs, not the colour's (printed); `beer` is held to blue
