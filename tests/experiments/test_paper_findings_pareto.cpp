@@ -458,10 +458,11 @@ TEST_F(PaperFindings, ScaleSmokeRunsOnTheCpuWithTheOracleAsItsOwnZero) {
   // Every shadow row carries its error at camera-visible points and its frame time; the exact
   // oracle measured against itself is exactly 0 on every scene, and a method that drops shadows
   // ("none") is not.
-  std::map<std::string, int> visible_rows;
+  std::map<std::string, int> visible_rows, copy_rows;
   for (const Row& row : read_rows_csv(r.folder + "/rows.csv")) {
     if (row.metric == "probe_error_visible" && row.stat == "max") {
-      ++visible_rows[row.experiment];
+      const bool aa_copy = row.params.find("aa=copy") != std::string::npos;
+      ++(aa_copy ? copy_rows : visible_rows)[row.experiment];
       if (row.strategy == "reference") {
         EXPECT_EQ(row.value, 0.0) << row.scene;
       }
@@ -473,6 +474,7 @@ TEST_F(PaperFindings, ScaleSmokeRunsOnTheCpuWithTheOracleAsItsOwnZero) {
   for (const char* e : {"casters", "pixels", "lights", "volume", "dsm-res"})
     EXPECT_GT(visible_rows[e], 0) << e;
   EXPECT_EQ(visible_rows["casters"], 6);  // two scenes x (none, dsm, reference)
+  EXPECT_EQ(copy_rows["casters"], 6);     // and their A/A copies
 }
 
 }  // namespace

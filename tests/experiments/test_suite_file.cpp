@@ -233,13 +233,21 @@ TEST(SuiteFile, BuiltInSuitesLoadAndQuickIsAmongThem) {
           EXPECT_TRUE(std::any_of(e.scenes.begin(), e.scenes.end(),
                                   [&](const std::string& sc) { return st.runs_on(sc); }))
               << name << " " << e.name << " " << st.name;
-  int buddha_atlas_items = 0;
+  int buddha_atlas_items = 0, buddha_atlas_copies = 0;
   for (const RunItem& item : expand_suite(load_suite(resolve_suite_path("seeds"))))
     if (item.strategy.rfind("atlas", 0) == 0 && item.scene.find("buddha") != std::string::npos) {
-      ++buddha_atlas_items;
+      ++(item.aa_copy ? buddha_atlas_copies : buddha_atlas_items);
       EXPECT_EQ(item.params.at("atlas"), "1024") << item.experiment_name;
     }
   EXPECT_EQ(buddha_atlas_items, 20);
+  EXPECT_EQ(buddha_atlas_copies, 20);  // the voxelize experiments carry A/A controls
+  // Every timed experiment of seeds, accuracy and scale runs its A/A controls, in both forms.
+  for (const char* name : {"seeds", "accuracy", "scale"}) {
+    const Suite s = load_suite(resolve_suite_path(name));
+    for (const Suite& form : {s, smoke_suite(s)})
+      for (const ExperimentSpec& e : form.experiments)
+        EXPECT_TRUE(e.aa_duplicates) << name << " " << e.name;
+  }
   EXPECT_THROW(resolve_suite_path("no-such-suite"), InputError);
 }
 
