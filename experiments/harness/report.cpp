@@ -20,6 +20,7 @@
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/findings.h"
 #include "experiments/harness/pareto.h"
+#include "experiments/harness/plot_fits.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/run_journal.h"
 #include "experiments/harness/suite_file.h"
@@ -392,7 +393,8 @@ void write_plots(std::ostream& md, const fs::path& dir, const std::string& exper
     const std::string file = p.value("file", "");
     if (!fs::exists(dir / "plots" / file) || !listed.insert(file).second) continue;
     md << "\n**Plot " << experiment << "." << ++number << "** (`plots/" << file
-       << "`): " << p.value("caption", "") << "\n\n![" << file << "](plots/" << file << ")\n";
+       << "`): " << p.value("caption", "") << "\n\n![" << file << "](plots/" << file << ")\n"
+       << fits_table(p.value("fits", Json()));
   }
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir / "plots", ec))
