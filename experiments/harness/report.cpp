@@ -345,7 +345,8 @@ std::vector<std::string> column_list(const Json& v) {
   return out;
 }
 
-// Per scene and (error, cost) pair: the Pareto front as a table and the regime sentence.
+// Per scene and (error, cost) pair: the Pareto front as a table and the regime sentence. A/A
+// copies are left out (the same configuration twice would crowd the front with itself).
 void write_pareto(std::ostream& md, const ExperimentSpec& e,
                   const std::map<int, std::vector<const Row*>>& items) {
   if (e.pareto.is_null()) return;
@@ -358,7 +359,7 @@ void write_pareto(std::ostream& md, const ExperimentSpec& e,
       for (const std::string& cost : column_list(e.pareto["cost"])) {
         std::vector<ParetoPoint> points;
         for (const auto& [index, rows] : items) {
-          if (rows.front()->scene != scene) continue;
+          if (rows.front()->scene != scene || is_aa_copy(rows.front()->params)) continue;
           const Row* x = find_row(rows, parse_column(cost));
           const Row* y = find_row(rows, parse_column(error));
           if (x && y) points.push_back({x->value, y->value, item_label(*rows.front())});

@@ -450,6 +450,11 @@ TEST_F(PaperFindings, AccuracySmokeRunsOnTheCpuWithParetoFronts) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("Cheapest: "), std::string::npos);
+  // The A/A copies run beside every item but stay out of the fronts.
+  const size_t fronts = md.find("Pareto front on ");
+  const std::string pareto = md.substr(fronts, md.find("\n## ", fronts) - fronts);
+  EXPECT_NE(md.find("aa=copy"), std::string::npos);
+  EXPECT_EQ(pareto.find("aa=copy"), std::string::npos) << pareto;
 }
 
 TEST_F(PaperFindings, ScaleSmokeRunsOnTheCpuWithTheOracleAsItsOwnZero) {
