@@ -62,6 +62,10 @@ std::string percent_text(int part, int whole) {
 
 }  // namespace
 
+bool is_aa_copy(const std::string& params) {
+  return params_without_copy(params).second;
+}
+
 AaControls measure_aa_controls(const std::vector<RunView>& runs) {
   AaControls aa;
   if (runs.empty()) return aa;

@@ -36,6 +36,10 @@ struct AaControls {
   std::map<std::string, int> tested_by_metric;
 };
 
+// Whether a row's `params` mark an A/A copy (the term "aa=copy"): the Pareto fronts and plots
+// leave copies out, since a copy repeats an item's work and is no configuration of its own.
+bool is_aa_copy(const std::string& params);
+
 // The A/A pairs among `runs[0]`'s items and what they measure (see above).
 AaControls measure_aa_controls(const std::vector<RunView>& runs);
 

@@ -12,15 +12,18 @@ a caption each in plots/plots.json (the report prints them in that order). Per e
   scene, colours: the others). A line plot takes "x": "scene" (the number in the scene's file
   name, e.g. a cup count) or a column, and "y" (a column or an array: one panel each), one line
   per configuration; "fit": "power" writes each line's fitted exponent k of y = c x^k beside it
-  and in the caption.
+  and, with the fixed-plus-marginal fit y = a + b x over the same points and both fits' relative
+  residuals (suite_fits.py), in the caption and in the plot's "fits" in plots.json, which the
+  report prints as a table.
 - with "pareto": {"error": [...], "cost": [...]}: plots/<experiment>_pareto_<nn>.png per scene
   and (error, cost) pair (every item coloured by method family, the front joined and labelled)
   and, when a cost is frame_ms, plots/<experiment>_headline.png: error against frame time, one
   panel per scene, the exact oracle's time as a dashed line (the headline chart of the report).
 
-Whiskers run from the min to the max of the repetitions where rows.csv has them (frame_ms, the
-median generation plus the median render, from the sum of their minima to the sum of their
-maxima). The strategies' families, colours and markers come from `deepvox list --json`
+A/A control copies (items whose params say aa=copy) repeat an item's work and are left out of
+every plot. Whiskers run from the min to the max of the repetitions where rows.csv has them
+(frame_ms, the median generation plus the median render, from the sum of their minima to the sum
+of their maxima). The strategies' families, colours and markers come from `deepvox list --json`
 (load_catalog: `plot_suite.py DIR [--catalog FILE | --deepvox PATH]`). Exit 3 when matplotlib
 is missing, 4 when there is no catalog."""
 import csv
@@ -39,6 +42,9 @@ try:
     from matplotlib.lines import Line2D
 except ImportError:
     sys.exit(3)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # suite_fits beside this file
+from suite_fits import describe, fits as fit_points  # noqa: E402
 
 # Every registered strategy with its plot family, the family's colour and its marker, as
 # `deepvox list --json` prints them (load_catalog); a strategy the binary does not know (an older
@@ -85,6 +91,11 @@ def value_range(rows, spec):
             return v, v, v
         lo, hi = sum(a for a, _ in parts), sum(b for _, b in parts)
     return v, min(lo, v), max(hi, v)
+
+
+def is_aa_copy(rows):
+    """Whether the item is an A/A control copy (suite field aa_duplicates)."""
+    return "aa=copy" in rows[0]["params"].split()
 
 
 def params_of(rows):
@@ -281,11 +292,13 @@ def without(rows, keys, runs):
     return " ".join(words)
 
 
-def save(fig, folder, name, captions, exp, caption):
+def save(fig, folder, name, captions, exp, caption, fits=None):
     fig.savefig(os.path.join(folder, "plots", name), bbox_inches="tight",
                 metadata={"Software": None})
     plt.close(fig)
     captions.append({"experiment": exp["name"], "file": name, "caption": caption})
+    if fits:
+        captions[-1]["fits"] = fits
 
 
 def whiskers(ax, x, y, colour, xr=None, yr=None):
@@ -480,20 +493,6 @@ def unit_of(runs, spec):
     return next((u for u in (metric_value(r, spec)[1] for r in runs) if u), "")
 
 
-def power_fit(points):
-    """The exponent k of y = c x^k fitted by least squares to log y against log x over the
-    (x, y, ...) points with x > 0 and y > 0; None with fewer than three such points."""
-    logs = [(math.log(p[0]), math.log(p[1])) for p in points if p[0] > 0 and p[1] > 0]
-    if len(logs) < 3:
-        return None
-    mx = sum(x for x, _ in logs) / len(logs)
-    my = sum(y for _, y in logs) / len(logs)
-    sxx = sum((x - mx) ** 2 for x, _ in logs)
-    if sxx <= 0:
-        return None
-    return sum((x - mx) * (y - my) for x, y in logs) / sxx
-
-
 def line_plot(folder, exp, runs, spec, name, captions):
     ys = [spec["y"]] if isinstance(spec["y"], str) else list(spec["y"])
     title = spec.get("title", exp["name"])
@@ -502,6 +501,7 @@ def line_plot(folder, exp, runs, spec, name, captions):
     configs = sorted({without(rows, keys, runs) for rows in runs})
     colours = dict(zip(configs, palette(len(configs))))
     fits = []
+    x_label = spec.get("xlabel", "number in the scene name" if spec["x"] == "scene" else spec["x"])
     for ax, y_spec in zip(axes, ys):
         series = {}
         for rows in runs:
@@ -516,15 +516,15 @@ def line_plot(folder, exp, runs, spec, name, captions):
                         yerr=[[p[1] - p[2] for p in pts], [p[3] - p[1] for p in pts]],
                         color=colours[key], marker="o", markersize=3, linewidth=1,
                         elinewidth=0.6, capsize=1.5)
-            exponent = power_fit(pts) if spec.get("fit") == "power" else None
-            if exponent is not None:
-                fits.append("%s of %s: %.2f" % (y_spec, key or "all", exponent))
-                ax.annotate("^%.2f" % exponent, (pts[-1][0], pts[-1][1]), fontsize=6,
+            fit = fit_points(pts) if spec.get("fit") == "power" else None
+            if fit is not None:
+                fits.append(dict(fit, y=y_spec, line=key or "all",
+                                 unit=unit_of(runs, y_spec), x=x_label))
+                ax.annotate("^%.2f" % fit["power"]["k"], (pts[-1][0], pts[-1][1]), fontsize=6,
                             color=colours[key], xytext=(3, 0), textcoords="offset points",
                             va="center")
         ax.set_ylabel(axis_label(y_spec, unit_of(runs, y_spec)), fontsize=7)
-        ax.set_xlabel(spec.get("xlabel", "number in the scene name" if spec["x"] == "scene"
-                               else spec["x"]), fontsize=7)
+        ax.set_xlabel(x_label, fontsize=7)
         if spec.get("logx"):
             ax.set_xscale("log")
         if spec.get("logy"):
@@ -539,10 +539,15 @@ def line_plot(folder, exp, runs, spec, name, captions):
          "%s: %s against %s, a line and colour per configuration of `%s` (the same in every "
          "panel; a panel lacks the configurations without that column); whiskers: min-max over "
          "the repetitions.%s" % (title, ", ".join(ys), spec.get("xlabel", spec["x"]), exp["name"],
-                                 " Fitted exponents k of y = c x^k (least squares on log y "
-                                 "against log x over the points with both positive, at least "
-                                 "three; written beside each line's last point): " +
-                                 "; ".join(fits) + "." if fits else ""))
+                                 " Fits over each line's points with both x and y positive (at "
+                                 "least three): the exponent k of y = c x^k (least squares on "
+                                 "log y against log x; written beside the line's last point) and "
+                                 "the fixed cost a and marginal cost b per unit of x of y = a + b "
+                                 "x (least squares on y), each with its relative residual (root "
+                                 "mean square of (y - fit) / y): " +
+                                 "; ".join("%s of %s: %s" % (f["y"], f["line"], describe(f))
+                                           for f in fits) + "." if fits else ""),
+         fits)
 
 
 def family_legend(where, used, markers, extra=()):
@@ -734,7 +739,7 @@ def main(folder):
     plots = os.path.join(folder, "plots")
     os.makedirs(plots, exist_ok=True)
     all_runs = [rows for _, rows in sorted(items.items())
-                if not any(r["metric"] == "failed" for r in rows)]
+                if not any(r["metric"] == "failed" for r in rows) and not is_aa_copy(rows)]
     captions, markers = [], Markers()
     for exp in suite["experiments"]:
         runs = [rows for rows in all_runs if rows[0]["experiment"] == exp["name"]]

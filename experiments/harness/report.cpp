@@ -20,6 +20,7 @@
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/findings.h"
 #include "experiments/harness/pareto.h"
+#include "experiments/harness/plot_fits.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/run_journal.h"
 #include "experiments/harness/suite_file.h"
@@ -344,7 +345,8 @@ std::vector<std::string> column_list(const Json& v) {
   return out;
 }
 
-// Per scene and (error, cost) pair: the Pareto front as a table and the regime sentence.
+// Per scene and (error, cost) pair: the Pareto front as a table and the regime sentence. A/A
+// copies are left out (the same configuration twice would crowd the front with itself).
 void write_pareto(std::ostream& md, const ExperimentSpec& e,
                   const std::map<int, std::vector<const Row*>>& items) {
   if (e.pareto.is_null()) return;
@@ -357,7 +359,7 @@ void write_pareto(std::ostream& md, const ExperimentSpec& e,
       for (const std::string& cost : column_list(e.pareto["cost"])) {
         std::vector<ParetoPoint> points;
         for (const auto& [index, rows] : items) {
-          if (rows.front()->scene != scene) continue;
+          if (rows.front()->scene != scene || is_aa_copy(rows.front()->params)) continue;
           const Row* x = find_row(rows, parse_column(cost));
           const Row* y = find_row(rows, parse_column(error));
           if (x && y) points.push_back({x->value, y->value, item_label(*rows.front())});
@@ -392,7 +394,8 @@ void write_plots(std::ostream& md, const fs::path& dir, const std::string& exper
     const std::string file = p.value("file", "");
     if (!fs::exists(dir / "plots" / file) || !listed.insert(file).second) continue;
     md << "\n**Plot " << experiment << "." << ++number << "** (`plots/" << file
-       << "`): " << p.value("caption", "") << "\n\n![" << file << "](plots/" << file << ")\n";
+       << "`): " << p.value("caption", "") << "\n\n![" << file << "](plots/" << file << ")\n"
+       << fits_table(p.value("fits", Json()));
   }
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir / "plots", ec))

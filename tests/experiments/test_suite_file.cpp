@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/run_folder.h"
 #include "experiments/harness/run_order.h"
@@ -233,14 +234,54 @@ TEST(SuiteFile, BuiltInSuitesLoadAndQuickIsAmongThem) {
           EXPECT_TRUE(std::any_of(e.scenes.begin(), e.scenes.end(),
                                   [&](const std::string& sc) { return st.runs_on(sc); }))
               << name << " " << e.name << " " << st.name;
-  int buddha_atlas_items = 0;
+  int buddha_atlas_items = 0, buddha_atlas_copies = 0;
   for (const RunItem& item : expand_suite(load_suite(resolve_suite_path("seeds"))))
     if (item.strategy.rfind("atlas", 0) == 0 && item.scene.find("buddha") != std::string::npos) {
-      ++buddha_atlas_items;
+      ++(item.aa_copy ? buddha_atlas_copies : buddha_atlas_items);
       EXPECT_EQ(item.params.at("atlas"), "1024") << item.experiment_name;
     }
   EXPECT_EQ(buddha_atlas_items, 20);
+  EXPECT_EQ(buddha_atlas_copies, 20);  // the voxelize experiments carry A/A controls
+  // Every timed experiment of seeds, accuracy and scale runs its A/A controls, in both forms.
+  for (const char* name : {"seeds", "accuracy", "scale"}) {
+    const Suite s = load_suite(resolve_suite_path(name));
+    for (const Suite& form : {s, smoke_suite(s)})
+      for (const ExperimentSpec& e : form.experiments)
+        EXPECT_TRUE(e.aa_duplicates) << name << " " << e.name;
+  }
   EXPECT_THROW(resolve_suite_path("no-such-suite"), InputError);
+}
+
+// The scale suite fits each axis from at least six points, its error quantiles rest on at least
+// 2,000 camera-visible points, its pixel axis keeps one aspect ratio (so only the pixel density
+// grows), its light axes hold one kind of light each and every line plot fits.
+TEST(SuiteFile, ScaleSuiteHasSixPointsPerAxis) {
+  const Suite s = load_suite(resolve_suite_path("scale"));
+  std::set<std::string> names;
+  for (const ExperimentSpec& e : s.experiments) {
+    names.insert(e.name);
+    size_t points = e.scenes.size();
+    for (const auto& [key, values] : e.sweep) points *= values.size();
+    EXPECT_GE(points, 6u) << e.name;
+    EXPECT_GE(std::stoi(e.settings.at("visible_points")), 2000) << e.name;
+    for (const auto& plot : e.plots) EXPECT_EQ(plot.value("fit", ""), "power") << e.name;
+    std::set<double> aspects;
+    std::set<std::string> light_types;
+    for (const std::string& path : e.scene_paths) {
+      const Json scene = parse_json_file(path);
+      aspects.insert(scene["camera"]["width"].get<double>() /
+                     scene["camera"]["height"].get<double>());
+      for (const Json& light : scene["lights"]) light_types.insert(light["type"]);
+    }
+    if (e.name == "pixels") {
+      EXPECT_EQ(aspects.size(), 1u);
+    }
+    if (e.name.rfind("lights-", 0) == 0) {
+      EXPECT_EQ(light_types, std::set<std::string>{e.name.substr(7)});
+    }
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"casters", "pixels", "lights-spot", "lights-omni",
+                                          "volume", "dsm-res"}));
 }
 
 TEST(SuiteFile, ShardsPartitionTheItemsInOrder) {
