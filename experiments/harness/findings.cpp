@@ -244,6 +244,18 @@ std::string verdict_of(const EffectInterval& iv) {
   return iv.below() ? "confirmed" : iv.above() ? "refuted" : "tie";
 }
 
+// The verdict of a comparison with an interval: none where both sides measure 0 (a count that
+// stays 0, errors exact on both sides), which says nothing about the claim, else verdict_of.
+void decide(Comparison& c) {
+  if (c.first == 0.0 && c.second == 0.0) {
+    c.has_interval = false;
+    c.verdict = "not comparable (0 against 0: both sides measure 0)";
+    return;
+  }
+  c.has_interval = true;
+  c.verdict = verdict_of(c.interval);
+}
+
 std::string level_text(const nlohmann::json& v) {
   return v.is_string() ? v.get<std::string>() : v.dump();
 }
@@ -428,13 +440,12 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
     for (size_t i = 0; i < both.size(); ++i)
       sides[i < first.size() ? 0 : 1].push_back({&errors[i], first_row(run.items, both[i])->scene});
     c.interval = paired_bootstrap(sides[0], sides[1], first_column.stat, seed);
-    c.has_interval = true;
     c.basis = std::to_string(errors.front().size()) +
               " probe errors per item (paired over the points of each scene, first run), " +
               items_text;
     if (!lossy.empty()) c.basis += "; lossy as the claim expects (" + lossy + ")";
     apply_practical_band(c, practical_bands, first_column, second_column, unit_a);
-    c.verdict = verdict_of(c.interval);
+    decide(c);
     return c;
   }
   const bool timing =
@@ -472,8 +483,7 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
   if (c.interval.ratio && c.interval.band > kSmallestRatio)
     c.basis += "; tie band ±" + significant_text(100.0 * c.interval.band, 2) + " % (A/A)";
   apply_practical_band(c, practical_bands, first_column, second_column, unit_a);
-  c.has_interval = true;
-  c.verdict = verdict_of(c.interval);
+  decide(c);
   return c;
 }
 

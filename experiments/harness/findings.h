@@ -19,8 +19,9 @@
 // that moves), "tie" (the interval contains "no effect", whatever the claim: a plateau whose
 // every step holds no effect is a tie, as it claims, never "confirmed"; for differences "no
 // effect" is the suite's practical band of the metric), "not comparable (...)" (a side without
-// items, units that differ, no row carries the claim's timer, no samples to build an interval: a
-// folder from before samples/, or fewer than 2 runs), "defect (...)" (an item of a side has a row
+// items, units that differ, no row carries the claim's timer, 0 against 0 (both sides measure 0:
+// a count that stays 0 says nothing about the claim), no samples to build an interval: a folder
+// from before samples/, or fewer than 2 runs), "defect (...)" (an item of a side has a row
 // whose metric names an "overflow" or "dropped" count above 0: its measurement lost data),
 // "cannot be tested as the paper did: REASON (ours: VERDICT)" (the claim's "not_as_paper": our
 // rows lack the paper's timer or baseline). Every claim names its "timer": the time metric that

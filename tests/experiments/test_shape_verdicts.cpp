@@ -1,7 +1,8 @@
 // Shape rows' verdicts (shape_verdict.h) on synthetic runs of known effect: the paper's ratio
 // inside our interval, within the band, a ratio that differs, rows that are not comparable (the
 // paper prints no number, 0 against 0 in the paper or in ours, nothing measured), an overhead
-// (a difference) and the table's sentence; the practical band of differences (a difference
+// (a difference) and the table's sentence; claims on two sides that measure 0 (not comparable,
+// not a tie); the practical band of differences (a difference
 // smaller than the band is a tie, named in the basis); claims' timers (the result names its
 // timer, rows without the timer are not comparable, a claim the paper's way cannot test says so)
 // and the suite loader's errors for a claim without a timer or with one its rows do not carry.
@@ -82,13 +83,13 @@ TEST(ShapeVerdicts, NotComparableWhereASideIsMissingOrZeroAgainstZero) {
   EXPECT_EQ(unmeasured.kind, ShapeVerdict::Kind::not_comparable);
   EXPECT_EQ(unmeasured.text, "not comparable (ours: no measured item matches the second side)");
   // A count that is 0 on both sides in every run (wasted chunks where nothing races): our ratio
-  // falls back to a difference of 0 against 0.
+  // is 0 against 0, which the comparison itself leaves without a verdict.
   Runs zeros(3);
   zeros.value(0, "side=a", "wasted", 0.0);
   zeros.value(1, "side=b", "wasted", 0.0);
   const Column w{"wasted", "value"};
   const Comparison none = compare_selections("side=a", w, "side=b", w, zeros.views(), 1);
-  ASSERT_TRUE(none.has_interval);
+  EXPECT_EQ(none.verdict, "not comparable (0 against 0: both sides measure 0)");
   EXPECT_EQ(shape_verdict(3.0, 4.0, none, false, 0.1).text, "not comparable (0 against 0 in ours)");
   // One side 0, the other not: a difference where the paper gives a ratio.
   Runs one_zero(3);
@@ -173,6 +174,37 @@ TEST(PracticalBands, ADifferenceWithinTheBandIsATie) {
   EXPECT_EQ(practical_band({{"m", 0.5}, {"m:mean", 0.25}}, {"m", "mean"}), 0.25);
   EXPECT_EQ(practical_band({{"m", 0.5}}, {"m", "max"}), 0.5);
   EXPECT_EQ(practical_band({}, {"m", "max"}), 0.0);
+}
+
+// A claim whose two sides measure 0 (a count that stays 0, errors exact on both) says nothing:
+// not comparable, not a tie; a trend with such a step says which.
+TEST(ZeroAgainstZero, ClaimsOnTwoZerosAreNotComparable) {
+  Runs runs(3);
+  runs.value(0, "alloc=aggregated", "wasted", 0.0);
+  runs.value(1, "alloc=thesis", "wasted", 0.0);
+  runs.value(2, "alloc=pooled", "wasted", 3.0);
+  runs.errors(0, "alloc=aggregated", "medium", {0.0, 0.0, 0.0});
+  runs.errors(1, "alloc=thesis", "medium", {0.0, -0.0, 0.0});
+  const std::vector<RunView> views = runs.views();
+  const auto verdict = [&](const std::string& json) {
+    return evaluate_findings(nlohmann::json::parse(json), views)[0].verdict;
+  };
+  EXPECT_EQ(verdict(R"([{"claim": "fewer wasted", "timer": "none",
+    "lower": ["alloc=aggregated", "wasted"], "than": ["alloc=thesis", "wasted"]}])"),
+            "not comparable (0 against 0: both sides measure 0)");
+  EXPECT_EQ(verdict(R"([{"claim": "errs less", "timer": "none",
+    "lower": ["alloc=aggregated", "probe_error_medium:mean"],
+    "than": ["alloc=thesis", "probe_error_medium:mean"]}])"),
+            "not comparable (0 against 0: both sides measure 0)");
+  // 0 against 3: a difference, decided.
+  EXPECT_EQ(verdict(R"([{"claim": "fewer wasted", "timer": "none",
+    "lower": ["alloc=aggregated", "wasted"], "than": ["alloc=pooled", "wasted"]}])"),
+            "confirmed");
+  EXPECT_EQ(verdict(R"([{"claim": "grows", "trend": "increasing", "over": "alloc",
+    "levels": ["aggregated", "thesis", "pooled"], "selector": "", "timer": "none",
+    "column": "wasted"}])"),
+            "not comparable (step aggregated → thesis: not comparable (0 against 0: both sides "
+            "measure 0))");
 }
 
 TEST(ClaimTimers, TheResultNamesItsTimerAndRowsWithoutItAreNotComparable) {
