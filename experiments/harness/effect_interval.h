@@ -19,8 +19,10 @@
 //   resampled effects.
 // "No effect" is a band for ratios, not the point 1: a ratio within 1 % of 1 (kSmallestRatio)
 // counts as no effect, so a count that does not vary between runs (layers, bytes, voxels: a
-// zero-width interval) does not confirm a claim by 0.05 %. Differences (probe errors) keep 0:
-// their intervals come from the spread over the points.
+// zero-width interval) does not confirm a claim by 0.05 %. Differences (probe errors, counts that
+// are 0 in some run) have no band unless the suite states a practical band for the metric
+// ("practical_bands": a difference smaller than it does not matter, e.g. a fraction of the
+// error itself); their intervals come from the spread over the points or the runs.
 #pragma once
 
 #include <cstdint>
@@ -38,15 +40,21 @@ struct EffectInterval {
   // Ratios: the relative half-width of "no effect", kSmallestRatio or wider where A/A controls
   // measured a wider spread between identical configurations (aa_controls.h).
   double band = kSmallestRatio;
+  // Differences: the half-width of "no effect" in the metric's unit (a practical band), 0 when
+  // the suite states none.
+  double difference_band = 0.0;
   double none() const { return ratio ? 1.0 : 0.0; }
   // Entirely below / above the band of "no effect" (ratios: 1 / (1 + band) to 1 + band;
-  // differences: 0).
-  bool below() const { return high < (ratio ? 1.0 / (1.0 + band) : 0.0); }
-  bool above() const { return low > (ratio ? 1.0 + band : 0.0); }
+  // differences: -difference_band to +difference_band).
+  bool below() const { return high < (ratio ? 1.0 / (1.0 + band) : -difference_band); }
+  bool above() const { return low > (ratio ? 1.0 + band : difference_band); }
 };
 
 // Per metric: the tie band (EffectInterval::band) that A/A controls measured.
 using TieBands = std::map<std::string, double>;
+// Per column ("metric:stat") or metric: the practical band of differences
+// (EffectInterval::difference_band), as the suite states it ("practical_bands").
+using PracticalBands = std::map<std::string, double>;
 
 constexpr int kResamples = 2000;
 

@@ -228,8 +228,32 @@ Comparison not_comparable(Comparison c, const std::string& why) {
   return c;
 }
 
+// A difference's interval gets the wider practical band of its two columns (none for ratios,
+// whose band of no effect is kSmallestRatio or the A/A tie band); the basis names it.
+void apply_practical_band(Comparison& c, const PracticalBands& bands, const Column& first,
+                          const Column& second, const std::string& unit) {
+  if (c.interval.ratio) return;
+  c.interval.difference_band =
+      std::max(practical_band(bands, first), practical_band(bands, second));
+  if (c.interval.difference_band > 0.0)
+    c.basis += "; practical band ±" + significant_text(c.interval.difference_band, 3) +
+               (unit.empty() || unit == "1" ? "" : " " + unit) + " (suite)";
+}
+
 std::string verdict_of(const EffectInterval& iv) {
   return iv.below() ? "confirmed" : iv.above() ? "refuted" : "tie";
+}
+
+// The verdict of a comparison with an interval: none where both sides measure 0 (a count that
+// stays 0, errors exact on both sides), which says nothing about the claim, else verdict_of.
+void decide(Comparison& c) {
+  if (c.first == 0.0 && c.second == 0.0) {
+    c.has_interval = false;
+    c.verdict = "not comparable (0 against 0: both sides measure 0)";
+    return;
+  }
+  c.has_interval = true;
+  c.verdict = verdict_of(c.interval);
 }
 
 std::string level_text(const nlohmann::json& v) {
@@ -284,7 +308,7 @@ std::string reading(const nlohmann::json& f, bool confirmed) {
 }
 
 FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>& runs,
-                             const TieBands& tie_bands) {
+                             const TieBands& tie_bands, const PracticalBands& practical_bands) {
   FindingResult r;
   r.claim = f["claim"].get<std::string>();
   r.why = f.value("why", "");
@@ -317,7 +341,7 @@ FindingResult evaluate_trend(const nlohmann::json& f, const std::vector<RunView>
     const std::string next = selector + " " + over + "=" + levels[k + 1];
     TrendStep step{levels[k], levels[k + 1],
                    compare_selections(next, column, here, column, runs, seed + k, false,
-                                      expects_loss(f), tie_bands)};
+                                      expects_loss(f), tie_bands, practical_bands)};
     const Comparison& c = step.comparison;
     r.effect += (r.effect.empty() ? "" : "; ") + levels[k] + " → " + levels[k + 1] + ": " +
                 (c.has_interval ? interval_text(c.interval) : c.verdict);
@@ -369,7 +393,8 @@ std::string interval_text(const EffectInterval& iv) {
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
                               const std::vector<RunView>& runs, uint64_t seed, bool difference,
-                              bool lossy_expected, const TieBands& tie_bands) {
+                              bool lossy_expected, const TieBands& tie_bands,
+                              const PracticalBands& practical_bands) {
   Comparison c;
   const RunView& run = runs[0];
   const SelectionMean a = selection_mean(first_selector, first_column, run.items);
@@ -415,12 +440,12 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
     for (size_t i = 0; i < both.size(); ++i)
       sides[i < first.size() ? 0 : 1].push_back({&errors[i], first_row(run.items, both[i])->scene});
     c.interval = paired_bootstrap(sides[0], sides[1], first_column.stat, seed);
-    c.has_interval = true;
     c.basis = std::to_string(errors.front().size()) +
               " probe errors per item (paired over the points of each scene, first run), " +
               items_text;
     if (!lossy.empty()) c.basis += "; lossy as the claim expects (" + lossy + ")";
-    c.verdict = verdict_of(c.interval);
+    apply_practical_band(c, practical_bands, first_column, second_column, unit_a);
+    decide(c);
     return c;
   }
   const bool timing =
@@ -455,62 +480,92 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
       if (const auto it = tie_bands.find(column->metric);
           it != tie_bands.end() && it->second > c.interval.band)
         c.interval.band = it->second;
-  if (c.interval.band > kSmallestRatio)
+  if (c.interval.ratio && c.interval.band > kSmallestRatio)
     c.basis += "; tie band ±" + significant_text(100.0 * c.interval.band, 2) + " % (A/A)";
-  c.has_interval = true;
-  c.verdict = verdict_of(c.interval);
+  apply_practical_band(c, practical_bands, first_column, second_column, unit_a);
+  decide(c);
   return c;
 }
 
+double practical_band(const PracticalBands& bands, const Column& column) {
+  if (const auto it = bands.find(column.metric + ":" + column.stat);
+      !column.stat.empty() && it != bands.end())
+    return it->second;
+  const auto it = bands.find(column.metric);
+  return it == bands.end() ? 0.0 : it->second;
+}
+
+namespace {
+
+// Whether any item of the run has a row of `metric`.
+bool carries(const RunView& run, const std::string& metric) {
+  for (const auto& [index, rows] : run.items)
+    for (const Row* r : rows)
+      if (r->metric == metric) return true;
+  return false;
+}
+
+FindingResult evaluate_comparison(const nlohmann::json& f, const std::vector<RunView>& runs,
+                                  const TieBands& tie_bands,
+                                  const PracticalBands& practical_bands) {
+  FindingResult r;
+  r.claim = f["claim"].get<std::string>();
+  r.why = f.value("why", "");
+  const std::string lower_selector = f["lower"][0].get<std::string>();
+  const std::string than_selector = f["than"][0].get<std::string>();
+  r.lower_text = lower_selector + ": " + f["lower"][1].get<std::string>();
+  r.than_text = than_selector + ": " + f["than"][1].get<std::string>();
+  const Column lower_column = parse_column(f["lower"][1].get<std::string>());
+  const Column than_column = parse_column(f["than"][1].get<std::string>());
+  const Comparison c = compare_selections(lower_selector, lower_column, than_selector, than_column,
+                                          runs, seed_of(r.claim + r.lower_text), false,
+                                          expects_loss(f), tie_bands, practical_bands);
+  r.lower = c.first;
+  r.than = c.second;
+  r.lower_items = c.first_items;
+  r.than_items = c.second_items;
+  r.verdict = c.verdict;
+  r.basis = c.basis;
+  r.effect = c.has_interval ? interval_text(c.interval) : "-";
+  if (!c.first_items || !c.second_items) {
+    r.explanation = "-";
+    return r;
+  }
+  const double difference = c.first - c.second;
+  r.explanation = difference == 0.0
+                      ? "both sides equal"
+                      : "first side " + std::string(difference < 0.0 ? "lower" : "higher") +
+                            " by " + significant_text(std::abs(difference), 3);
+  if (c.second != 0.0) r.explanation += " (" + significant_text(c.first / c.second, 3) + "x)";
+  if (f["lower"][1] == f["than"][1]) {
+    // The passes are read from the first run's rows: so is the total they split.
+    const double rows_difference =
+        selection_mean(lower_selector, lower_column, runs[0].items).mean -
+        selection_mean(than_selector, than_column, runs[0].items).mean;
+    r.explanation +=
+        pass_breakdown(lower_selector, than_selector, lower_column, rows_difference, runs[0].items);
+  }
+  r.explanation += reading(f, r.verdict == "confirmed");
+  return r;
+}
+
+}  // namespace
+
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
                                              const std::vector<RunView>& runs,
-                                             const TieBands& tie_bands) {
+                                             const TieBands& tie_bands,
+                                             const PracticalBands& practical_bands) {
   std::vector<FindingResult> out;
   if (!findings.is_array() || runs.empty()) return out;
   for (const auto& f : findings) {
-    if (f.contains("trend")) {
-      out.push_back(evaluate_trend(f, runs, tie_bands));
-      continue;
-    }
-    FindingResult r;
-    r.claim = f["claim"].get<std::string>();
-    r.why = f.value("why", "");
-    const std::string lower_selector = f["lower"][0].get<std::string>();
-    const std::string than_selector = f["than"][0].get<std::string>();
-    r.lower_text = lower_selector + ": " + f["lower"][1].get<std::string>();
-    r.than_text = than_selector + ": " + f["than"][1].get<std::string>();
-    const Column lower_column = parse_column(f["lower"][1].get<std::string>());
-    const Column than_column = parse_column(f["than"][1].get<std::string>());
-    const Comparison c =
-        compare_selections(lower_selector, lower_column, than_selector, than_column, runs,
-                           seed_of(r.claim + r.lower_text), false, expects_loss(f), tie_bands);
-    r.lower = c.first;
-    r.than = c.second;
-    r.lower_items = c.first_items;
-    r.than_items = c.second_items;
-    r.verdict = c.verdict;
-    r.basis = c.basis;
-    r.effect = c.has_interval ? interval_text(c.interval) : "-";
-    if (!c.first_items || !c.second_items) {
-      r.explanation = "-";
-      out.push_back(std::move(r));
-      continue;
-    }
-    const double difference = c.first - c.second;
-    r.explanation = difference == 0.0
-                        ? "both sides equal"
-                        : "first side " + std::string(difference < 0.0 ? "lower" : "higher") +
-                              " by " + significant_text(std::abs(difference), 3);
-    if (c.second != 0.0) r.explanation += " (" + significant_text(c.first / c.second, 3) + "x)";
-    if (f["lower"][1] == f["than"][1]) {
-      // The passes are read from the first run's rows: so is the total they split.
-      const double rows_difference =
-          selection_mean(lower_selector, lower_column, runs[0].items).mean -
-          selection_mean(than_selector, than_column, runs[0].items).mean;
-      r.explanation += pass_breakdown(lower_selector, than_selector, lower_column, rows_difference,
-                                      runs[0].items);
-    }
-    r.explanation += reading(f, r.verdict == "confirmed");
+    FindingResult r = f.contains("trend")
+                          ? evaluate_trend(f, runs, tie_bands, practical_bands)
+                          : evaluate_comparison(f, runs, tie_bands, practical_bands);
+    r.timer = f.value("timer", "");
+    if (!r.timer.empty() && r.timer != "none" && !carries(runs[0], r.timer))
+      r.verdict = "not comparable (no row carries the timer " + r.timer + ")";
+    if (const std::string reason = f.value("not_as_paper", ""); !reason.empty())
+      r.verdict = "cannot be tested as the paper did: " + reason + " (ours: " + r.verdict + ")";
     out.push_back(std::move(r));
   }
   return out;

@@ -17,10 +17,16 @@
 // Verdicts: "confirmed" (the interval entirely on the claimed side; every step for a monotone
 // trend), "refuted" (entirely on the other side; a step of a trend against it, or a plateau step
 // that moves), "tie" (the interval contains "no effect", whatever the claim: a plateau whose
-// every step holds no effect is a tie, as it claims, never "confirmed"), "not comparable (...)"
-// (a side without items, units that differ, no samples to build an interval: a folder from
-// before samples/, or fewer than 2 runs), "defect (...)" (an item of a side has a row whose metric
-// names an "overflow" or "dropped" count above 0: its measurement lost data). A selector is
+// every step holds no effect is a tie, as it claims, never "confirmed"; for differences "no
+// effect" is the suite's practical band of the metric), "not comparable (...)" (a side without
+// items, units that differ, no row carries the claim's timer, 0 against 0 (both sides measure 0:
+// a count that stays 0 says nothing about the claim), no samples to build an interval: a folder
+// from before samples/, or fewer than 2 runs), "defect (...)" (an item of a side has a row
+// whose metric names an "overflow" or "dropped" count above 0: its measurement lost data),
+// "cannot be tested as the paper did: REASON (ours: VERDICT)" (the claim's "not_as_paper": our
+// rows lack the paper's timer or baseline). Every claim names its "timer": the time metric that
+// decides it (generate_ms, a pass such as generate.passes.count_ms, frame_ms) or "none" for a
+// quantity no timer measures (bytes, layers, errors), printed beside the verdict. A selector is
 // space-separated `key=value` terms that all must hold: `strategy=NAME`, `scene=SUBSTRING`,
 // `experiment=NAME`, or a parameter (`storage=chunked`); an empty selector matches every item. The
 // explanation is built from the data (difference and ratio of the means and, for a time column
@@ -74,6 +80,7 @@ struct FindingResult {
   std::string basis;
   std::vector<TrendStep> steps;  // trends
   std::string explanation;       // from the data, then the suite's reading
+  std::string timer;             // the claim's "timer": a time metric or "none"
 };
 
 // Whether an item's rows match a selector (see above).
@@ -92,19 +99,25 @@ SelectionMean selection_mean(const std::string& selector, const Column& column,
 // `difference`: the effect is the difference of the means, not their ratio. `lossy_expected`:
 // the claim is about the loss itself (a finding's "lossy": "expected", e.g. a layer limit
 // exercised on purpose), so overflowed or dropped rows are named in the basis, not a defect.
-// `tie_bands`: as evaluate_findings.
+// `tie_bands`, `practical_bands`: as evaluate_findings.
 Comparison compare_selections(const std::string& first_selector, const Column& first_column,
                               const std::string& second_selector, const Column& second_column,
                               const std::vector<RunView>& runs, uint64_t seed,
                               bool difference = false, bool lossy_expected = false,
-                              const TieBands& tie_bands = {});
+                              const TieBands& tie_bands = {},
+                              const PracticalBands& practical_bands = {});
+
+// The practical band of a column: its "metric:stat" entry, else its metric's, else 0.
+double practical_band(const PracticalBands& bands, const Column& column);
 
 // `findings` as validated by the suite loader; `tie_bands`: per metric the band of no effect
 // that A/A controls measured (aa_controls.h), for ratios over runs (the wider of the two
-// columns' bands, never below kSmallestRatio).
+// columns' bands, never below kSmallestRatio); `practical_bands`: per column or metric the
+// suite's band of differences that do not matter (the wider of the two columns').
 std::vector<FindingResult> evaluate_findings(const nlohmann::json& findings,
                                              const std::vector<RunView>& runs,
-                                             const TieBands& tie_bands = {});
+                                             const TieBands& tie_bands = {},
+                                             const PracticalBands& practical_bands = {});
 
 // "0.61x [0.58, 0.64]" or "+0.012 [+0.010, +0.015]".
 std::string interval_text(const EffectInterval& interval);

@@ -23,6 +23,7 @@
 #include "experiments/harness/plot_fits.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/run_journal.h"
+#include "experiments/harness/shape_verdict.h"
 #include "experiments/harness/suite_file.h"
 #include "strategies/shadow/strategy_catalog.h"
 
@@ -142,8 +143,11 @@ std::string our_cell(const Json& map, size_t row, size_t column,
 // The shape table of a mapped paper table with a "shape" entry (suite-format.md): the paper's
 // ratios beside ours with our intervals (between two value columns of a row: across the sweep;
 // between two rows of a column: within the table) and the overhead above the no-shadow frame,
-// then the suite's sentence on what the machine change predicts. `runs`: every experiment's
-// items, so that a baseline in another experiment can be selected (`experiment=NAME`).
+// then the suite's sentence on what the machine change predicts. Each row gets a verdict
+// (shape_verdict.h: the paper's value inside our interval, within the shape's band, or differs;
+// not comparable) and the table one sentence naming which rows reproduce and at what loads.
+// `runs`: every experiment's items, so that a baseline in another experiment can be selected
+// (`experiment=NAME`).
 void write_shape_table(std::ostream& md, const Json& t, const Json& map,
                        const std::string& experiment, const std::vector<RunView>& runs) {
   const Json& shape = map["shape"];
@@ -165,11 +169,15 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
     return v.is_number() ? as_time(v.get<double>()) : std::nan("");
   };
   const auto column_name = [&](size_t c) { return cell(columns[labels + c]); };
+  const double band = shape.value("band", kDefaultShapeBand);
   std::vector<std::vector<std::string>> body;
-  // One line: a paper number beside our comparison of two selections.
-  const auto line = [&](const std::string& what, double paper, const std::string& first_selector,
-                        const Column& first, const std::string& second_selector,
-                        const Column& second, bool difference) {
+  std::vector<ShapeRow> verdicts;
+  // One line: the paper's two numbers (their ratio or difference) beside our comparison of two
+  // selections, and the verdict.
+  const auto line = [&](const std::string& what, double paper_first, double paper_second,
+                        const std::string& first_selector, const Column& first,
+                        const std::string& second_selector, const Column& second, bool difference) {
+    const double paper = difference ? paper_first - paper_second : paper_first / paper_second;
     const Comparison c =
         compare_selections("experiment=" + experiment + " " + first_selector, first,
                            second_selector, second, runs, seed_of(experiment + what), difference);
@@ -181,8 +189,15 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
       ours = (difference ? table_text(c.first - c.second, 4)
                          : table_text(c.first / c.second, 4) + "x") +
              ", " + c.verdict;
-    body.push_back({what, std::isnan(paper) ? "–" : table_text(paper, 4) + (difference ? "" : "x"),
-                    ours, c.basis.empty() ? "-" : c.basis});
+    const ShapeVerdict verdict = shape_verdict(paper_first, paper_second, c, difference, band);
+    body.push_back({what,
+                    std::isnan(paper) || std::isinf(paper)
+                        ? "–"
+                        : table_text(paper, 4) + (difference ? "" : "x"),
+                    ours, c.basis.empty() ? "-" : c.basis, verdict.text});
+    const bool time =
+        first.metric.size() > 3 && first.metric.compare(first.metric.size() - 3, 3, "_ms") == 0;
+    verdicts.push_back({what, verdict, c.first, c.second, time});
   };
   const auto pairs = [&](const char* key, bool of_rows) {
     for (const Json& pair : shape.value(key, Json::array())) {
@@ -197,7 +212,7 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
         const std::string what =
             of_rows ? row_name(ra) + " / " + row_name(rb) + ", " + column_name(ca)
                     : row_name(ra) + ", " + column_name(ca) + " / " + column_name(cb);
-        line(what, paper_value(rows[ra][labels + ca]) / paper_value(rows[rb][labels + cb]), sa, ma,
+        line(what, paper_value(rows[ra][labels + ca]), paper_value(rows[rb][labels + cb]), sa, ma,
              "experiment=" + experiment + " " + sb, mb, false);
       }
     }
@@ -214,7 +229,7 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
         Column metric;
         if (!cell_selection(map, row, c, selector, metric)) continue;
         line(row_name(row) + ", " + column_name(c) + " − the no-shadow frame",
-             paper_value(rows[row][labels + c]) - base["paper"].get<double>(), selector, metric,
+             paper_value(rows[row][labels + c]), base["paper"].get<double>(), selector, metric,
              base["selector"].get<std::string>(), base_column, true);
       }
     }
@@ -229,8 +244,12 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
                    shape["baseline"].value("source", std::string("paper")) + ") against ours, `" +
                    shape["baseline"]["selector"].get<std::string>() + "`"
              : std::string())
-     << "):\n\n";
-  write_table(md, {"ratio", "paper", "ours [95 % interval]", "interval rests on"}, body);
+     << "; verdict: the paper's value inside our interval, or within ±"
+     << significant_text(100.0 * band, 2)
+     << " % of it (the interval widened by the band), else differs; not comparable where a side "
+        "is missing or 0 against 0):\n\n";
+  write_table(md, {"ratio", "paper", "ours [95 % interval]", "interval rests on", "verdict"}, body);
+  md << "Shape verdicts: " << shape_sentence(verdicts, band) << "\n\n";
   if (shape.contains("machine")) md << "Machine change: " << cell(shape["machine"]) << "\n\n";
 }
 
@@ -318,24 +337,28 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
 }
 
 void write_findings(std::ostream& md, const ExperimentSpec& e, const std::vector<RunView>& runs,
-                    const TieBands& tie_bands) {
-  const std::vector<FindingResult> results = evaluate_findings(e.findings, runs, tie_bands);
+                    const TieBands& tie_bands, const PracticalBands& practical_bands) {
+  const std::vector<FindingResult> results =
+      evaluate_findings(e.findings, runs, tie_bands, practical_bands);
   if (results.empty()) return;
   md << "\nFindings (effect: first side / second side, or their difference for probe errors, "
         "with its 95 % interval: Student's t over the per-run effects, a bootstrap over the "
         "points for probe errors; confirmed: the interval entirely on the claimed side, "
-        "refuted: entirely on the other, tie: it holds no effect; a trend tests every step of "
-        "its sweep):\n\n";
+        "refuted: entirely on the other, tie: it holds no effect (for differences the suite's "
+        "practical band of the metric); a trend tests every step of its sweep; the timer: the "
+        "time metric that decides the claim, none for a quantity no timer measures):\n\n";
   std::vector<std::vector<std::string>> body;
   for (const FindingResult& f : results)
     body.push_back({f.claim, f.lower_text, f.lower_items ? table_text(f.lower, 4) : "-",
                     f.than_text.empty() ? "-" : f.than_text,
                     f.than_items ? table_text(f.than, 4) : "-", f.effect.empty() ? "-" : f.effect,
-                    f.basis.empty() ? "-" : f.basis, f.verdict, f.explanation});
-  write_table(md,
-              {"claim", "ours (lower?)", "value", "than", "value", "effect [95 % interval]",
-               "interval rests on", "verdict", "why (from the data, then the suite's reading)"},
-              body);
+                    f.basis.empty() ? "-" : f.basis, f.timer.empty() ? "-" : f.timer, f.verdict,
+                    f.explanation});
+  write_table(
+      md,
+      {"claim", "ours (lower?)", "value", "than", "value", "effect [95 % interval]",
+       "interval rests on", "timer", "verdict", "why (from the data, then the suite's reading)"},
+      body);
 }
 
 std::vector<std::string> column_list(const Json& v) {
@@ -408,7 +431,7 @@ void write_plots(std::ostream& md, const fs::path& dir, const std::string& exper
 
 void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpec& e,
                       const std::vector<RunView>& runs, const std::vector<RunView>& all_runs,
-                      const std::string& our_machine) {
+                      const std::string& our_machine, const PracticalBands& practical_bands) {
   const std::map<int, std::vector<const Row*>>& items = runs[0].items;
   md << "## " << e.name << " (" << e.kind << ")\n\n";
   if (!e.description.empty()) md << e.description << "\n\n";
@@ -472,7 +495,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
   if (!aa.pairs.empty())
     md << "\nA/A controls (`aa_duplicates`): " << aa_rate_text(aa)
        << "; tie bands from the A/A spread: " << tie_bands_text(aa) << "\n";
-  write_findings(md, e, runs, aa.tie_bands);
+  write_findings(md, e, runs, aa.tie_bands, practical_bands);
   write_pareto(md, e, items);
   // Image strip: the reference, then each render with its difference below.
   std::string reference;
@@ -683,6 +706,15 @@ std::string order_text(const std::vector<RunState>& states) {
          "ABBA";
 }
 
+// "probe_error_all:mean ±0.002, image_rmse ±0.001 (suite practical_bands)", or none.
+std::string practical_bands_text(const PracticalBands& bands) {
+  if (bands.empty()) return "none stated (suite practical_bands): differences tie only at 0";
+  std::string out;
+  for (const auto& [column, band] : bands)
+    out += (out.empty() ? "" : ", ") + column + " ±" + significant_text(band, 3);
+  return out + " (suite practical_bands, in each metric's unit)";
+}
+
 }  // namespace
 
 void build_report(const std::string& folder) {
@@ -745,6 +777,8 @@ void build_report(const std::string& folder) {
      << "\n";
   md << "- item order: " << order_text(states) << "\n";
   md << "- A/A false-positive rate: " << aa_rate_text(measure_aa_controls(all_runs)) << "\n";
+  md << "- practical bands (a difference whose interval lies within one is a tie): "
+     << practical_bands_text(suite.practical_bands) << "\n";
   md << status_lines(state, dir);
   if (meta.contains("scale_out")) md << scale_out_line(meta);
   md << "- plots: " << (plot_problem.empty() ? "plots/ (matplotlib)" : "skipped: " + plot_problem)
@@ -758,7 +792,8 @@ void build_report(const std::string& folder) {
   md << "Command (command.txt; a merged folder lists its shards' too):\n\n```\n"
      << command.str() << "```\n\n";
   for (size_t e = 0; e < suite.experiments.size(); ++e)
-    write_experiment(md, dir, suite.experiments[e], by_experiment[e], all_runs, our_machine);
+    write_experiment(md, dir, suite.experiments[e], by_experiment[e], all_runs, our_machine,
+                     suite.practical_bands);
   try {
     write_file_atomically(dir / "report.md", md.str());
   } catch (const ResultWriteError& e) {

@@ -12,6 +12,7 @@
 #include "core/json_reader.h"
 #include "core/text.h"
 #include "experiments/harness/driver.h"
+#include "experiments/harness/rows.h"
 #include "strategies/shadow/shadow_config.h"
 #include "strategies/shadow/strategy_catalog.h"
 
@@ -178,8 +179,50 @@ void check_finding_side(JsonReader& r, const Json& side, const std::string& key)
     r.fail(key, "expected [\"selector\", \"metric:stat\"]");
 }
 
-// A comparison {claim, lower, than, why, why_not, lossy} or a trend {claim, trend, over,
-// selector, column, levels, from, why, why_not, lossy} (findings.h).
+bool is_time_metric(const std::string& metric) {
+  return metric.size() > 3 && metric.compare(metric.size() - 3, 3, "_ms") == 0;
+}
+
+// A claim's "timer" (findings.h): present, "none" or a time metric (`X_ms`), and the metric of
+// every column the claim compares, so that the timer printed is the one that decides; "none"
+// only where no column is a time.
+void check_timer(JsonReader& r, const Json& f, const std::string& at) {
+  const std::string claim = f["claim"].get<std::string>();
+  std::vector<std::string> metrics;
+  for (const char* side : {"lower", "than", "column"})
+    if (f.contains(side)) {
+      const Json& c = f[side].is_array() ? f[side][1] : f[side];
+      if (c.is_string()) metrics.push_back(parse_column(c.get<std::string>()).metric);
+    }
+  std::string compared;
+  for (const std::string& m : metrics) compared += (compared.empty() ? "" : " and ") + m;
+  if (!f.contains("timer") || !f["timer"].is_string() || f["timer"].get<std::string>().empty())
+    r.fail(at + "/timer", "the claim '" + claim +
+                              "' names no timer: add \"timer\": the time metric that decides it "
+                              "(here " +
+                              compared +
+                              "; e.g. generate_ms, generate.passes.count_ms, frame_ms) "
+                              "or \"none\" where it compares no time");
+  const std::string timer = f["timer"].get<std::string>();
+  if (timer == "none") {
+    for (const std::string& m : metrics)
+      if (is_time_metric(m))
+        r.fail(at + "/timer", "the claim '" + claim + "' compares a time (" + m +
+                                  "): name it as the timer instead of \"none\"");
+    return;
+  }
+  if (!is_time_metric(timer))
+    r.fail(at + "/timer", "the claim '" + claim + "': timer '" + timer +
+                              "' is not a time metric (X_ms) or \"none\"");
+  for (const std::string& m : metrics)
+    if (m != timer)
+      r.fail(at + "/timer", "the claim '" + claim + "': its rows carry " + compared +
+                                ", not the timer '" + timer + "' it names");
+}
+
+// A comparison {claim, lower, than, timer, why, why_not, lossy, not_as_paper} or a trend {claim,
+// trend, over, selector, column, levels, from, timer, why, why_not, lossy, not_as_paper}
+// (findings.h).
 void check_findings(JsonReader& r, const Json& findings) {
   if (!findings.is_array()) r.fail("findings", "expected an array of claims");
   for (size_t i = 0; i < findings.size(); ++i) {
@@ -191,9 +234,11 @@ void check_findings(JsonReader& r, const Json& findings) {
              "..., \"trend\": ..., \"over\": ..., \"selector\": ..., \"column\": ...}");
     const bool trend = f.contains("trend");
     const std::vector<std::string> known =
-        trend ? std::vector<std::string>{"claim",  "trend", "over", "selector", "column",
-                                         "levels", "from",  "why",  "why_not",  "lossy"}
-              : std::vector<std::string>{"claim", "lower", "than", "why", "why_not", "lossy"};
+        trend ? std::vector<std::string>{"claim",  "trend",   "over",  "selector",
+                                         "column", "levels",  "from",  "timer",
+                                         "why",    "why_not", "lossy", "not_as_paper"}
+              : std::vector<std::string>{"claim", "lower",   "than",  "timer",
+                                         "why",   "why_not", "lossy", "not_as_paper"};
     if (f.contains("lossy") && f["lossy"] != "expected")
       r.fail(at + "/lossy", "expected \"expected\" (the claim is about a loss, e.g. a limit)");
     for (const auto& [key, v] : f.items())
@@ -202,11 +247,15 @@ void check_findings(JsonReader& r, const Json& findings) {
         for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
         r.fail(at + "/" + key, "unknown key (known: " + list + ")");
       }
+    if (f.contains("not_as_paper") &&
+        (!f["not_as_paper"].is_string() || f["not_as_paper"].get<std::string>().empty()))
+      r.fail(at + "/not_as_paper", "expected the reason the paper's test cannot be repeated");
     if (!trend) {
       if (!f.contains("lower") || !f.contains("than"))
         r.fail(at, "expected {\"claim\": ..., \"lower\": [...], \"than\": [...]}");
       check_finding_side(r, f["lower"], at + "/lower");
       check_finding_side(r, f["than"], at + "/than");
+      check_timer(r, f, at);
       continue;
     }
     const Json& t = f["trend"];
@@ -217,6 +266,7 @@ void check_findings(JsonReader& r, const Json& findings) {
     if (f.contains("levels") && (!f["levels"].is_array() || f["levels"].size() < 2))
       r.fail(at + "/levels", "expected an array of at least two levels");
     if (f.contains("from") && t != "plateau") r.fail(at + "/from", "only for a plateau");
+    check_timer(r, f, at);
   }
 }
 
@@ -235,10 +285,15 @@ void check_shape(JsonReader& r, const Json& shape, size_t rows, size_t columns) 
                "expected pairs of indices below " + std::to_string(limit));
   };
   for (const auto& [key, v] : shape.items())
-    if (key != "machine" && key != "column_pairs" && key != "row_pairs" && key != "baseline")
-      r.fail("shape/" + key, "unknown key (known: machine, column_pairs, row_pairs, baseline)");
+    if (key != "machine" && key != "column_pairs" && key != "row_pairs" && key != "baseline" &&
+        key != "band")
+      r.fail("shape/" + key,
+             "unknown key (known: machine, column_pairs, row_pairs, baseline, band)");
   if (shape.contains("machine") && !shape["machine"].is_string())
     r.fail("shape/machine", "expected a sentence");
+  if (shape.contains("band") && (!shape["band"].is_number() || shape["band"].get<double>() <= 0.0 ||
+                                 shape["band"].get<double>() >= 1.0))
+    r.fail("shape/band", "expected a relative band between 0 and 1 (0.1: within 10 %)");
   index_pairs("column_pairs", columns);
   index_pairs("row_pairs", rows);
   if (!shape.contains("baseline")) return;
@@ -438,6 +493,15 @@ Suite parse_suite(const std::string& text, const std::string& path) {
   s.description = r.string("description", "");
   s.repeat = r.integer("repeat", 3);
   if (s.repeat < 1 || s.repeat > 1000) r.fail("repeat", "expected 1..1000");
+  if (r.has("practical_bands")) {
+    const Json& bands = r.raw("practical_bands");
+    if (!bands.is_object()) r.fail("practical_bands", "expected {\"metric[:stat]\": band, ...}");
+    for (const auto& [column, band] : bands.items()) {
+      if (!band.is_number() || band.get<double>() <= 0.0)
+        r.fail("practical_bands/" + column, "expected a positive band in the metric's unit");
+      s.practical_bands[column] = band.get<double>();
+    }
+  }
   std::vector<JsonReader> experiments = r.children("experiments");
   for (size_t i = 0; i < experiments.size(); ++i)
     s.experiments.push_back(parse_experiment(experiments[i], doc["experiments"][i], path));

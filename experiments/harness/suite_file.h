@@ -68,6 +68,9 @@ struct Suite {
   std::string hash;  // FNV-1a 64 of the file's bytes, 16 hex digits
   int repeat = 3;
   std::vector<ExperimentSpec> experiments;
+  // Per column ("metric:stat") or metric: the practical band of differences (findings.h), in the
+  // metric's unit; a difference whose interval lies within it is a tie.
+  std::map<std::string, double> practical_bands;
 };
 
 Suite load_suite(const std::string& path);

@@ -199,6 +199,7 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
     "notes": "n"})");
   const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
   const std::string suite = write("tiny.json", R"({"suite": "tiny-paper", "repeat": 1,
+    "practical_bands": {"probe_error_all:mean": 0.001},
     "experiments": [{"name": "dsm", "kind": "shadow", "scene": ")" +
                                                    scene + R"(",
       "strategy": ["none", {"name": "dsm", "params": {"res": 32}}],
@@ -208,10 +209,11 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
                  "rows": [["", "bytes"], null, ["", "bytes"], ["res=32", "stats.storage.max_layers"]],
                  "columns": [""]}],
       "findings": [{"claim": "no shadows are cheaper than a DSM",
-                    "lower": ["strategy=none", "bytes"], "than": ["strategy=dsm", "bytes"]},
+                    "lower": ["strategy=none", "bytes"], "than": ["strategy=dsm", "bytes"],
+                    "timer": "none"},
                    {"claim": "a DSM errs more than no shadows",
                     "lower": ["strategy=none", "probe_error_all:mean"],
-                    "than": ["strategy=dsm", "probe_error_all:mean"]}],
+                    "than": ["strategy=dsm", "probe_error_all:mean"], "timer": "none"}],
       "pareto": {"error": "probe_error_all:mean", "cost": ["bytes"]}}]})");
   // Two runs: the verdicts on values per run need a t-interval over at least 2.
   const SuiteOutcome r = run(suite, false), second = run(suite, false);
@@ -231,6 +233,15 @@ TEST_F(PaperFindings, ReportPrintsThePaperTableBesideOursWithBothMachinesAndVerd
   EXPECT_NE(md.find("| confirmed |"), std::string::npos) << md;  // 0 bytes < the DSM's
   // New semantics: "refuted" where the old rule said "not confirmed" (none errs more).
   EXPECT_NE(md.find("| refuted |"), std::string::npos) << md;
+  // Each claim's timer beside its verdict; the suite's practical band in the header and in the
+  // basis of the difference it applies to.
+  EXPECT_NE(md.find("| none | confirmed |"), std::string::npos) << md;
+  EXPECT_NE(md.find("- practical bands (a difference whose interval lies within one is a tie): "
+                    "probe_error_all:mean ±0.001 (suite practical_bands, in each metric's unit)"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("; practical band ±0.001 T (suite) | none | refuted |"), std::string::npos)
+      << md;
   EXPECT_NE(md.find("Pareto front on `"), std::string::npos) << md;
   EXPECT_NE(md.find("probe_error_all:mean vs bytes (2 of 2 points)"), std::string::npos) << md;
   // The mapped copy shows ours beside each mapped paper value: the DSM's bytes and max layers.
@@ -439,6 +450,10 @@ TEST_F(PaperFindings, SeedsSmokeRunsOnTheCpu) {
   EXPECT_NE(md.find("Paper: **Knecht 2011"), std::string::npos);
   EXPECT_NE(md.find("- paper machine: "), std::string::npos);
   EXPECT_NE(md.find("Findings ("), std::string::npos);
+  // Shape rows carry verdicts and each table its sentence; claims print their timers.
+  EXPECT_NE(md.find("Shape verdicts: "), std::string::npos);
+  EXPECT_NE(md.find(" | generate.generation_ms | "), std::string::npos);
+  EXPECT_NE(md.find(" | generate.passes.count_ms | "), std::string::npos);
 }
 
 TEST_F(PaperFindings, AccuracySmokeRunsOnTheCpuWithParetoFronts) {

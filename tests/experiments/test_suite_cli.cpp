@@ -68,6 +68,22 @@ TEST(SuiteCli, BadSuiteFileExitsTwoNamingTheFileAndTheProblem) {
   EXPECT_EQ(run("merge " + dir.string()).exit_code, 2);
 }
 
+// A claim that names no timer stops the suite before anything runs, naming the claim.
+TEST(SuiteCli, ClaimWithoutATimerExitsTwoNamingTheClaim) {
+  const fs::path dir = temp_dir("cli_no_timer");
+  const fs::path bad = dir / "no-timer.json";
+  std::ofstream(bad) << R"({"suite": "x", "experiments": [{"name": "a", "kind": "shadow",
+    "scene": "s", "strategy": "none",
+    "findings": [{"claim": "none generates fast", "lower": ["", "generate_ms"],
+                  "than": ["", "generate_ms"]}]}]})";
+  const CommandResult r = run("suite " + bad.string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("no-timer.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the claim 'none generates fast' names no timer"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 TEST(SuiteCli, SigintStopsARunningSuiteWithRowsAndAReport) {
   const fs::path dir = temp_dir("cli_sigint");
   const std::string scene = test::source_dir() + "/experiments/scenes/demo.json";
@@ -123,7 +139,7 @@ fs::path claim_suite(const fs::path& dir, const std::string& name, const std::st
     "scene": ")" << test::source_dir()
                        << R"(/experiments/scenes/demo.json", )" << fields << R"(
     "findings": [{"claim": "none generates faster", "lower": ["strategy=none", "generate_ms"],
-                  "than": ["strategy=dsm", "generate_ms"]}]}]})";
+                  "than": ["strategy=dsm", "generate_ms"], "timer": "generate_ms"}]}]})";
   return suite;
 }
 

@@ -106,7 +106,7 @@ TEST(RunOrder, PermutedBySeedWithClaimSidesInAlternatingPairs) {
      "strategy": ["none", {"name": "dsm", "params": {"res": 32}}],
      "sweep": {"width_hint": [1, 2, 3, 4]},
      "findings": [{"claim": "none faster", "lower": ["strategy=none", "generate_ms"],
-                   "than": ["strategy=dsm", "generate_ms"]}]},
+                   "than": ["strategy=dsm", "generate_ms"], "timer": "generate_ms"}]},
     {"name": "b", "kind": "shadow", "scene": "s.json", "strategy": "none",
      "sweep": {"x": [1, 2, 3]}}]})";
   const Suite suite = parse_suite(text, "order.json");
@@ -282,6 +282,39 @@ TEST(SuiteFile, ScaleSuiteHasSixPointsPerAxis) {
   }
   EXPECT_EQ(names, (std::set<std::string>{"casters", "pixels", "lights-spot", "lights-omni",
                                           "volume", "dsm-res"}));
+}
+
+// Every seeds claim names its timer (the loader checks that its rows carry it); the claims the
+// papers timed otherwise than generate_ms are decided on the papers' timers and baselines: Knecht's
+// generation on its passes (allocation excluded), Hadwiger's growth with resolution on the march
+// pass, Bornik's saving against a texture sized for the deepest texel.
+TEST(SuiteFile, SeedsClaimsNameThePapersTimers) {
+  const Suite seeds = load_suite(resolve_suite_path("seeds"));
+  EXPECT_GT(seeds.practical_bands.count("probe_error_all:mean"), 0u);
+  int claims = 0, generation = 0, march = 0, counted = 0;
+  for (const ExperimentSpec& e : seeds.experiments)
+    for (const auto& f : e.findings) {
+      ++claims;
+      ASSERT_TRUE(f.contains("timer")) << f["claim"];
+      const std::string claim = f["claim"].get<std::string>(), timer = f["timer"];
+      if (claim.find("Chunked") == 0 && claim.find("generat") != std::string::npos) {
+        EXPECT_EQ(timer, "generate.generation_ms") << claim;
+        ++generation;
+      }
+      if (e.name == "hadwiger" && f.value("over", "") == "res") {
+        EXPECT_EQ(timer, "generate.passes.count_ms") << claim;
+        ++march;
+      }
+      if (claim.find("about 80 %") != std::string::npos) {
+        EXPECT_NE(f["than"][0].get<std::string>().find("storage.sizing=counted"),
+                  std::string::npos);
+        ++counted;
+      }
+    }
+  EXPECT_GT(claims, 40);
+  EXPECT_EQ(generation, 4);  // dsm-resolution, eps (two), cups
+  EXPECT_EQ(march, 1);
+  EXPECT_EQ(counted, 1);
 }
 
 TEST(SuiteFile, ShardsPartitionTheItemsInOrder) {

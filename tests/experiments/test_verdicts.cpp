@@ -26,75 +26,14 @@
 #include "experiments/harness/student_t.h"
 #include "experiments/source_paths.h"
 #include "tests/experiments/harness_test.h"
+#include "tests/experiments/synthetic_runs.h"
 
 namespace dv {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Synthetic runs: items with params and, per run, rows and timing samples.
-class Runs {
- public:
-  explicit Runs(int count) : views_(size_t(count)), rows_(size_t(count)) {}
-  // A timed item: `samples[run]` its repetitions in each run; the rows carry their median.
-  void timed(int item, const std::string& params, const std::string& metric,
-             const std::vector<std::vector<double>>& samples) {
-    for (size_t run = 0; run < samples.size(); ++run) {
-      std::vector<double> s = samples[run];
-      std::sort(s.begin(), s.end());
-      add(run, item, params, metric, "median", s[s.size() / 2], "ms");
-      views_[run].samples[item]["timings"][metric] = samples[run];
-    }
-  }
-  // A value row in every run.
-  void value(int item, const std::string& params, const std::string& metric, double v,
-             const std::string& unit = "count") {
-    for (size_t run = 0; run < views_.size(); ++run)
-      add(run, item, params, metric, "value", v, unit);
-  }
-  // Signed probe errors of one class (first run's samples) and the rows' mean of |error|.
-  void errors(int item, const std::string& params, const std::string& name,
-              const std::vector<double>& errors) {
-    double sum = 0.0;
-    for (double e : errors) sum += std::abs(e);
-    for (size_t run = 0; run < views_.size(); ++run)
-      for (const std::string& c : {name, std::string("all")})
-        add(run, item, params, "probe_error_" + c, "mean", sum / double(errors.size()), "T");
-    views_[0].samples[item]["probe_errors"][name] = errors;
-  }
-  std::vector<RunView> views() {
-    for (size_t run = 0; run < views_.size(); ++run) {
-      views_[run].items.clear();
-      for (const Row& r : rows_[run]) views_[run].items[r.item].push_back(&r);
-    }
-    return views_;
-  }
-  void drop_samples() {
-    for (RunView& v : views_) v.samples.clear();
-  }
-
- private:
-  void add(size_t run, int item, const std::string& params, const std::string& metric,
-           const std::string& stat, double value, const std::string& unit) {
-    Row r;
-    r.item = item;
-    r.strategy = "dsm";
-    r.scene = "scenes/a.json";
-    r.params = params;
-    r.metric = metric;
-    r.stat = stat;
-    r.value = value;
-    r.unit = unit;
-    rows_[run].push_back(r);
-  }
-  std::vector<RunView> views_;
-  std::vector<std::vector<Row>> rows_;  // stable: views are rebuilt from them
-};
-
-// Five repetitions around `centre` (+-2 %).
-std::vector<double> reps(double centre) {
-  return {centre * 0.98, centre * 0.99, centre, centre * 1.01, centre * 1.02};
-}
+using test::reps;
+using test::Runs;
 
 FindingResult one(const std::string& json, std::vector<RunView> views) {
   const std::vector<FindingResult> r = evaluate_findings(nlohmann::json::parse(json), views);
@@ -457,7 +396,8 @@ TEST_F(AaReport, HeaderPrintsTheFalsePositiveRateAndTheExperimentItsTieBands) {
       "settings": {"width": 32, "height": 24, "probe_points": 0, "images": 0},
       "findings": [{"claim": "no shadows generate faster",
                     "lower": ["strategy=none", "generate_ms:median"],
-                    "than": ["strategy=dsm", "generate_ms:median"]}]}]})");
+                    "than": ["strategy=dsm", "generate_ms:median"],
+                    "timer": "generate_ms"}]}]})");
   const SuiteOptions o = cpu_options(suite);
   const SuiteOutcome r = run_suite(o), r2 = run_suite(o);
   ASSERT_EQ(r.exit_code, 0);
@@ -476,9 +416,19 @@ TEST_F(AaReport, HeaderPrintsTheFalsePositiveRateAndTheExperimentItsTieBands) {
   EXPECT_NE(md.find("A/A controls (`aa_duplicates`): "), std::string::npos) << md;
   EXPECT_NE(md.find("tie bands from the A/A spread: "), std::string::npos) << md;
   EXPECT_NE(md.find("generate_ms ±"), std::string::npos) << md;
+  EXPECT_NE(md.find("- practical bands (a difference whose interval lies within one is a tie): "
+                    "none stated (suite practical_bands): differences tie only at 0"),
+            std::string::npos)
+      << md;
 }
 
 class OldFolders : public test::HarnessTest {};
+
+// The rest of the line of `md` that begins with `start` (from it on), or "" when none does.
+std::string line_from(const std::string& md, const std::string& start) {
+  const size_t at = md.find(start);
+  return at == std::string::npos ? "" : md.substr(at, md.find('\n', at) - at);
+}
 
 // A folder written before samples/ (here: its samples removed) still reports; its timing claim
 // says why it has no interval, its byte claim (rows alone) still decides.
@@ -490,12 +440,12 @@ TEST_F(OldFolders, ReportWithoutSamplesStillBuilds) {
       "strategy": ["none", {"name": "dsm", "params": {"res": 32}}],
       "settings": {"width": 32, "height": 24, "probe_points": 20, "images": 0},
       "findings": [{"claim": "no shadows are cheaper", "lower": ["strategy=none", "bytes"],
-                    "than": ["strategy=dsm", "bytes"]},
+                    "than": ["strategy=dsm", "bytes"], "timer": "none"},
                    {"claim": "no shadows generate faster",
                     "lower": ["strategy=none", "generate_ms:median"],
-                    "than": ["strategy=dsm", "generate_ms:median"]},
+                    "than": ["strategy=dsm", "generate_ms:median"], "timer": "generate_ms"},
                    {"claim": "no shadows err less", "lower": ["strategy=none", "probe_error_all:mean"],
-                    "than": ["strategy=dsm", "probe_error_all:mean"]}]}]})");
+                    "than": ["strategy=dsm", "probe_error_all:mean"], "timer": "none"}]}]})");
   SuiteOptions o = cpu_options(suite);
   const SuiteOutcome r = run_suite(o);
   ASSERT_EQ(r.exit_code, 0);
@@ -522,14 +472,15 @@ TEST_F(OldFolders, ReportWithoutSamplesStillBuilds) {
                     "needs at least 2"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("| - | 1 run x 2 repetitions, 1 vs 1 items | not comparable (1 run: a "
-                    "t-interval over runs needs at least 2"),
-            std::string::npos)
+  EXPECT_NE(
+      md.find("| - | 1 run x 2 repetitions, 1 vs 1 items | generate_ms | not comparable (1 run: a "
+              "t-interval over runs needs at least 2"),
+      std::string::npos)
       << md;
   fs::remove_all(dir / "samples");
   md = report();
   EXPECT_NE(md.find("| no shadows are cheaper |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| - | 1 run x 1 value, 1 vs 1 items | not comparable (1 run: "),
+  EXPECT_NE(md.find("| - | 1 run x 1 value, 1 vs 1 items | none | not comparable (1 run: "),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("not comparable (2 items without per-repetition samples: interval "
@@ -548,11 +499,11 @@ TEST_F(OldFolders, ReportWithoutSamplesStillBuilds) {
             std::string::npos)
       << md;
   // The bytes of no shadows are 0 in every run: the difference, the same in every run.
-  const size_t at = md.find("| no shadows are cheaper |");
-  ASSERT_NE(at, std::string::npos) << md;
-  const std::string line = md.substr(at, md.find('\n', at) - at);
+  const std::string line = line_from(md, "| no shadows are cheaper |");
+  ASSERT_FALSE(line.empty()) << md;
   EXPECT_NE(line.find(" [-"), std::string::npos) << line;
-  EXPECT_NE(line.find("| 3 runs x 1 value, 1 vs 1 items | confirmed |"), std::string::npos) << line;
+  EXPECT_NE(line.find("| 3 runs x 1 value, 1 vs 1 items | none | confirmed |"), std::string::npos)
+      << line;
   EXPECT_THROW(record_runs(dir.string(), {(dir_ / "nowhere").string()}), InputError);
 }
 
@@ -592,12 +543,25 @@ TEST_F(OldFolders, ShapeTablePutsThePapersRatiosBesideOurs) {
        {"| gen, 32 / 16 | 2x | ", "| render, 32 / 16 | 1.1x | ", "| render / gen, 16 | 5x | ",
         "| render / gen, 32 | 2.75x | ", "| render, 16 − the no-shadow frame | 7 | ",
         "| render, 32 − the no-shadow frame | 12 | "}) {
-    const size_t at = md.find(line);
-    ASSERT_NE(at, std::string::npos) << line << "\n" << md;
-    const std::string rest = md.substr(at, md.find('\n', at) - at);
+    const std::string rest = line_from(md, line);
+    ASSERT_FALSE(rest.empty()) << line << "\n" << md;
     EXPECT_NE(rest.find(" ["), std::string::npos) << rest;  // ours with its interval
     EXPECT_NE(rest.find("2 runs x 2 repetitions"), std::string::npos) << rest;
+    // Each row's verdict: the paper's ratio against our interval (CPU timings decide which).
+    EXPECT_TRUE(rest.find("| reproduces (inside our interval) |") != std::string::npos ||
+                rest.find("| reproduces (within ±10 %) |") != std::string::npos ||
+                rest.find("| differs (ours ") != std::string::npos)
+        << rest;
   }
+  EXPECT_NE(md.find("| ratio | paper | ours [95 % interval] | interval rests on | verdict |"),
+            std::string::npos)
+      << md;
+  // One sentence under the table: how many of its 6 rows reproduce, which, and at what loads.
+  const std::string text = line_from(md, "Shape verdicts: ");
+  ASSERT_FALSE(text.empty()) << md;
+  EXPECT_NE(text.find(" of 6 rows reproduce the paper ("), std::string::npos) << text;
+  EXPECT_NE(text.find(" within ±10 %)"), std::string::npos) << text;
+  EXPECT_NE(text.find(". Our loads: "), std::string::npos) << text;
   EXPECT_NE(md.find("Machine change: Abacus to silicon predicts nothing."), std::string::npos)
       << md;
   // A shape that names a row the map lacks is rejected when the suite loads.
