@@ -722,7 +722,7 @@ void build_report(const std::string& folder) {
   const RunState state = read_run_state(dir);
   const Json& meta = state.meta;
   const Suite parsed =
-      parse_suite(read_file_text(dir / "suite.json"), (dir / "suite.json").string());
+      parse_recorded_suite(read_file_text(dir / "suite.json"), (dir / "suite.json").string());
   Suite suite = meta.value("smoke", false) ? smoke_suite(parsed) : parsed;
   // Paper tables named beside the suite file as run (not in the result folder): look there too.
   for (ExperimentSpec& e : suite.experiments)

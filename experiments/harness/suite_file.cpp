@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -183,17 +184,23 @@ bool is_time_metric(const std::string& metric) {
   return metric.size() > 3 && metric.compare(metric.size() - 3, 3, "_ms") == 0;
 }
 
+// The metrics of the columns a claim compares (its two sides, or a trend's column).
+std::vector<std::string> compared_metrics(const Json& f) {
+  std::vector<std::string> metrics;
+  for (const char* side : {"lower", "than", "column"})
+    if (f.contains(side)) {
+      const Json& c = f[side].is_array() && f[side].size() == 2 ? f[side][1] : f[side];
+      if (c.is_string()) metrics.push_back(parse_column(c.get<std::string>()).metric);
+    }
+  return metrics;
+}
+
 // A claim's "timer" (findings.h): present, "none" or a time metric (`X_ms`), and the metric of
 // every column the claim compares, so that the timer printed is the one that decides; "none"
 // only where no column is a time.
 void check_timer(JsonReader& r, const Json& f, const std::string& at) {
   const std::string claim = f["claim"].get<std::string>();
-  std::vector<std::string> metrics;
-  for (const char* side : {"lower", "than", "column"})
-    if (f.contains(side)) {
-      const Json& c = f[side].is_array() ? f[side][1] : f[side];
-      if (c.is_string()) metrics.push_back(parse_column(c.get<std::string>()).metric);
-    }
+  const std::vector<std::string> metrics = compared_metrics(f);
   std::string compared;
   for (const std::string& m : metrics) compared += (compared.empty() ? "" : " and ") + m;
   if (!f.contains("timer") || !f["timer"].is_string() || f["timer"].get<std::string>().empty())
@@ -508,6 +515,27 @@ Suite parse_suite(const std::string& text, const std::string& path) {
   if (s.experiments.empty()) r.fail("experiments", "a suite needs at least one experiment");
   r.finish();
   check_unique_names(s);
+  return s;
+}
+
+Suite parse_recorded_suite(const std::string& text, const std::string& path) {
+  Json doc = parse_json_text(text, path);
+  if (doc.is_object() && doc.contains("experiments") && doc["experiments"].is_array())
+    for (Json& e : doc["experiments"]) {
+      if (!e.is_object() || !e.contains("findings") || !e["findings"].is_array()) continue;
+      for (Json& f : e["findings"]) {
+        if (!f.is_object() || f.contains("timer")) continue;
+        std::set<std::string> times, all;
+        for (const std::string& m : compared_metrics(f)) {
+          all.insert(m);
+          if (is_time_metric(m)) times.insert(m);
+        }
+        if (times.empty() && !all.empty()) f["timer"] = "none";
+        if (times.size() == 1 && all.size() == 1) f["timer"] = *times.begin();
+      }
+    }
+  Suite s = parse_suite(doc.dump(), path);
+  s.hash = fnv1a_hex(text);
   return s;
 }
 

@@ -79,6 +79,11 @@ Suite load_suite(const std::string& path);
 Suite smoke_suite(const Suite& suite);
 // `text` is the file's content; `path` names it in errors and anchors relative scene paths.
 Suite parse_suite(const std::string& text, const std::string& path);
+// A suite as a result folder recorded it (`deepvox report`): as parse_suite, but a claim recorded
+// before claims named their timers gets the one time metric its columns compare, or "none" where
+// they compare no time (a claim over several metrics keeps none and is refused as parse_suite
+// refuses it); the hash is the recorded text's.
+Suite parse_recorded_suite(const std::string& text, const std::string& path);
 
 // Scenes x strategies x the sweep's cartesian product, per experiment in file order; an
 // experiment with `aa_duplicates` then has a copy of each of its items.

@@ -283,6 +283,30 @@ TEST(ClaimTimers, TheSuiteLoaderWantsEveryClaimToNameTheTimerItsRowsCarry) {
       std::string::npos);
 }
 
+// A result folder records its suite as it ran: one recorded before claims named their timers is
+// read by `deepvox report` with each claim's timer taken from the one metric its columns
+// compare ("none" where they compare no time); the hash stays the recorded text's.
+TEST(ClaimTimers, ResultFoldersRecordedBeforeTimersStillReport) {
+  const std::string text = R"({"suite": "t", "experiments": [{"name": "a", "kind": "shadow",
+    "scene": "s.json", "strategy": "none", "findings": [
+      {"claim": "none faster", "lower": ["strategy=none", "generate_ms:median"],
+       "than": ["", "generate_ms:median"]},
+      {"claim": "fewer bytes", "lower": ["", "bytes"], "than": ["", "bytes"]},
+      {"claim": "grows", "trend": "increasing", "over": "res", "selector": "",
+       "column": "frame_ms:median"}]}]})";
+  EXPECT_THROW(parse_suite(text, "recorded.json"), InputError);
+  const Suite s = parse_recorded_suite(text, "recorded.json");
+  const Json& findings = s.experiments[0].findings;
+  EXPECT_EQ(findings[0]["timer"], "generate_ms");
+  EXPECT_EQ(findings[1]["timer"], "none");
+  EXPECT_EQ(findings[2]["timer"], "frame_ms");
+  const std::string named =
+      R"({"suite": "t", "experiments": [{"name": "a", "kind": "shadow", "scene": "s.json",
+    "strategy": "none", "findings": [{"claim": "none faster", "timer": "generate_ms",
+    "lower": ["strategy=none", "generate_ms:median"], "than": ["", "generate_ms:median"]}]}]})";
+  EXPECT_EQ(parse_recorded_suite(named, "named.json").hash, parse_suite(named, "named.json").hash);
+}
+
 TEST(PracticalBands, TheSuiteStatesThemPerMetric) {
   const auto load = [](const std::string& bands) {
     return parse_suite(R"({"suite": "t", "practical_bands": )" + bands +
