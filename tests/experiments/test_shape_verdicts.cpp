@@ -296,7 +296,7 @@ TEST(ClaimTimers, ResultFoldersRecordedBeforeTimersStillReport) {
        "column": "frame_ms:median"}]}]})";
   EXPECT_THROW(parse_suite(text, "recorded.json"), InputError);
   const Suite s = parse_recorded_suite(text, "recorded.json");
-  const Json& findings = s.experiments[0].findings;
+  const nlohmann::json& findings = s.experiments[0].findings;
   EXPECT_EQ(findings[0]["timer"], "generate_ms");
   EXPECT_EQ(findings[1]["timer"], "none");
   EXPECT_EQ(findings[2]["timer"], "frame_ms");
