@@ -36,23 +36,19 @@ bool term_matches(const std::string& term, const Row& r) {
   return false;
 }
 
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
 // For a time column "X_ms": the passes "X.<...>_ms" of the deepest level present (so
 // "generate.passes.write_ms" rather than their sum "generate.generation_ms"), each with the
 // difference of its means (first side minus second); the largest named, and the part of the
 // difference outside the passes (host work, allocation, synchronisation) when it is larger.
 std::string pass_breakdown(const std::string& lower, const std::string& than, const Column& column,
                            double difference, const std::map<int, std::vector<const Row*>>& items) {
-  if (!ends_with(column.metric, "_ms")) return "";
+  if (!is_time_metric(column.metric)) return "";
   const std::string stem = column.metric.substr(0, column.metric.size() - 3) + ".";
   std::set<std::string> passes;
   size_t depth = 0;
   for (const auto& [index, rows] : items)
     for (const Row* r : rows)
-      if (r->metric.rfind(stem, 0) == 0 && ends_with(r->metric, "_ms") &&
+      if (r->metric.rfind(stem, 0) == 0 && is_time_metric(r->metric) &&
           r->stat == (column.stat.empty() ? "median" : column.stat)) {
         const size_t d = size_t(std::count(r->metric.begin(), r->metric.end(), '.'));
         if (d > depth) {

@@ -195,9 +195,7 @@ void write_shape_table(std::ostream& md, const Json& t, const Json& map,
                         ? "–"
                         : table_text(paper, 4) + (difference ? "" : "x"),
                     ours, c.basis.empty() ? "-" : c.basis, verdict.text});
-    const bool time =
-        first.metric.size() > 3 && first.metric.compare(first.metric.size() - 3, 3, "_ms") == 0;
-    verdicts.push_back({what, verdict, c.first, c.second, time});
+    verdicts.push_back({what, verdict, c.first, c.second, is_time_metric(first.metric)});
   };
   const auto pairs = [&](const char* key, bool of_rows) {
     for (const Json& pair : shape.value(key, Json::array())) {

@@ -136,6 +136,10 @@ Column parse_column(const std::string& text) {
   return {text.substr(0, colon), text.substr(colon + 1)};
 }
 
+bool is_time_metric(const std::string& metric) {
+  return metric.size() > 3 && metric.compare(metric.size() - 3, 3, "_ms") == 0;
+}
+
 const Row* find_row(const std::vector<const Row*>& rows, const Column& c) {
   for (const std::string& stat :
        c.stat.empty() ? std::vector<std::string>{"value", "median"} : std::vector{c.stat})

@@ -36,6 +36,9 @@ struct Column {
   std::string metric, stat;
 };
 Column parse_column(const std::string& text);
+// Whether a metric is a time: timers and passes are named "X_ms" (timing.cpp, the stats' "*_ms"
+// figures), so "generate_ms" and "generate.passes.count_ms" are, "bytes" is not.
+bool is_time_metric(const std::string& metric);
 // The row of one item for a column, or nullptr.
 const Row* find_row(const std::vector<const Row*>& rows, const Column& c);
 

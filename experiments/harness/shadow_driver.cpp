@@ -23,6 +23,7 @@
 #include "experiments/harness/error_summary.h"
 #include "experiments/harness/image_metrics.h"
 #include "experiments/harness/probe_strata.h"
+#include "experiments/harness/rows.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/shadow_measure.h"
 #include "experiments/harness/timing.h"
@@ -70,10 +71,6 @@ ShadowSettings read_settings(const RunItem& item, const Scene& scene) {
   return s;
 }
 
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
 // Numeric stats leaves: "*_ms" figures and {pass, ms} arrays become pass times, the rest values.
 void collect_stats(const nlohmann::json& j, const std::string& path, PassTimes* times,
                    std::vector<std::pair<std::string, double>>* values) {
@@ -85,7 +82,7 @@ void collect_stats(const nlohmann::json& j, const std::string& path, PassTimes* 
       for (const auto& e : v)
         if (e.is_object() && e.contains("pass") && e.contains("ms") && times)
           times->add(name + "." + e["pass"].get<std::string>(), e["ms"].get<double>());
-    } else if (v.is_number() && ends_with(key, "_ms")) {
+    } else if (v.is_number() && is_time_metric(key)) {
       if (times) times->add(name.substr(0, name.size() - 3), v.get<double>());
     } else if (v.is_number() && values) {
       values->push_back({name, v.get<double>()});

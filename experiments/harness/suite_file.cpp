@@ -180,10 +180,6 @@ void check_finding_side(JsonReader& r, const Json& side, const std::string& key)
     r.fail(key, "expected [\"selector\", \"metric:stat\"]");
 }
 
-bool is_time_metric(const std::string& metric) {
-  return metric.size() > 3 && metric.compare(metric.size() - 3, 3, "_ms") == 0;
-}
-
 // The metrics of the columns a claim compares (its two sides, or a trend's column).
 std::vector<std::string> compared_metrics(const Json& f) {
   std::vector<std::string> metrics;
