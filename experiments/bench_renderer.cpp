@@ -48,6 +48,7 @@ void raster_render_case(benchmark::State& state, const FrameCase& c, Backend bac
   const TimedGeneration g = timed_generation(c.shadows, params, data, backend, scene.camera);
   timed_frame(backend, data, scene.camera, *g.method, scene.background);  // warm-up
   double raster_ms = 0.0, fragment_ms = 0.0;
+  OracleFrameStats oracle;  // the deferred oracle pass's parts, summed over the iterations
   int64_t entries = 0;
   start_kernel_counters();
   for (auto _ : state) {
@@ -56,10 +57,23 @@ void raster_render_case(benchmark::State& state, const FrameCase& c, Backend bac
     raster_ms += f.result.raster_ms;
     entries = f.result.raster.entries;
     fragment_ms += f.result.fragment_ms;
+    oracle.queries = f.result.render.oracle.queries;
+    oracle.count_ms += f.result.render.oracle.count_ms;
+    oracle.record_ms += f.result.render.oracle.record_ms;
+    oracle.answer_ms += f.result.render.oracle.answer_ms;
+    oracle.replay_ms += f.result.render.oracle.replay_ms;
   }
   add_kernel_counters(state);
-  state.counters["raster_ms"] = raster_ms / double(state.iterations());
-  state.counters["fragment_ms"] = fragment_ms / double(state.iterations());
+  const double iterations = double(state.iterations());
+  state.counters["raster_ms"] = raster_ms / iterations;
+  state.counters["fragment_ms"] = fragment_ms / iterations;
+  if (oracle.queries > 0) {
+    state.counters["oracle_queries"] = double(oracle.queries);
+    state.counters["oracle_count_ms"] = oracle.count_ms / iterations;
+    state.counters["oracle_record_ms"] = oracle.record_ms / iterations;
+    state.counters["oracle_answer_ms"] = oracle.answer_ms / iterations;
+    state.counters["oracle_replay_ms"] = oracle.replay_ms / iterations;
+  }
   if (backend == Backend::cuda) {
     static const double bytes_per_ms = measure_copy_bandwidth();
     const double floor_ms =

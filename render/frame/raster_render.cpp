@@ -1,16 +1,16 @@
 // Launch of the rasterizing renderer's passes (see raster_render.h).
 #include "render/frame/raster_render.h"
 
+#include <type_traits>
 #include <variant>
 
 #include "core/atomic.h"
 #include "cuda/buffer.h"
 #include "cuda/execute.h"
 #include "cuda/pass_timer.h"
-#include "engine/raster/fragment_walk.h"
-#include "engine/raster/raster_fragments.h"
 #include "render/frame/fragment_lanes.h"
-#include "render/frame/shade_payload.h"
+#include "render/frame/fragment_pass.h"
+#include "render/frame/oracle_passes.h"
 #include "strategies/shadow/shadow_device.h"
 
 namespace dv {
@@ -27,37 +27,9 @@ template <>
 inline constexpr int kFragmentMinBlocks<NoShadowSource> = 2;
 template <>
 inline constexpr int kFragmentMinBlocks<ShadowMapSource> = 2;
-
-template <class Source>
-void shade_pixels(Backend backend, const SceneView& s, const RasterProjection& projection,
-                  const TileListsView lists, const FragmentOrderView tile_order,
-                  const Source& source, const dvec3& background, const InsideSet* eye_media,
-                  View<float> rgb, RenderCounters* counters) {
-  const int width = projection.width, height = projection.height;
-  parallel_for_bounded<kFragmentMinBlocks<Source>>(
-      backend, "raster_fragment_pass", fragment_thread_count(tile_order.order.size),
-      DV_KERNEL_LAMBDA(int64_t t) {
-        int x, y;
-        LaneGroup lanes;
-        if (!pixel_of_fragment_thread(t, tile_order, width, height, x, y, lanes)) return;
-        if (!DV_IN_DEVICE_CODE && lanes.rank > 0) return;  // a CPU thread marches every share
-        const int64_t i = int64_t(y) * width + x;
-        const PixelRay ray = pixel_ray(projection, x, y);
-        const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
-        ShadePayload<Source> payload{s, source, ray.origin, ray.direction};
-        payload.lanes = lanes;
-        const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
-        const WalkStatus status =
-            walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
-        if (lanes.rank > 0) return;  // the group's lanes ended with the same pixel
-        const dvec3 c = payload.color + payload.transmittance * background;
-        rgb[3 * i + 0] = float(c.x);
-        rgb[3 * i + 1] = float(c.y);
-        rgb[3 * i + 2] = float(c.z);
-        count_pixel(counters, status.crossings, payload.samples,
-                    status.overflow || front.status.overflow, payload.cursor.flags);
-      });
-}
+// The deferred oracle's walks (render/frame/oracle_passes.h) carry no oracle: the budget
+// without shadows.
+inline constexpr int kOracleWalkMinBlocks = 2;
 
 }  // namespace
 
@@ -72,7 +44,8 @@ nlohmann::json RasterRenderResult::stats() const {
 }
 
 RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
-                                 ShadowMethod& shadows, const dvec3& background) {
+                                 ShadowMethod& shadows, const dvec3& background,
+                                 const OracleFrameOptions& oracle) {
   const Memory memory = memory_of(backend);
   if (scene.memory() != memory) throw Error("render_raster: scene data is in the wrong memory");
   const SceneView& view = scene.view();
@@ -100,10 +73,26 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   PassTimer fragment_timer(backend);
   const FragmentOrder tile_order =
       order_fragment_tiles(backend, view, projection, lists.view(), eye_media.data());
+  const FragmentPassInputs inputs{&view,      projection,       lists.view(), tile_order.view(),
+                                  background, eye_media.data(), rgb.view(),   counters.data()};
+  const int64_t threads = fragment_thread_count(tile_order.order.size());
   std::visit(
       [&](const auto& s) {
-        shade_pixels(backend, view, projection, lists.view(), tile_order.view(), s, background,
-                     eye_media.data(), rgb.view(), counters.data());
+        using Source = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<Source, ReferenceShadowSource>) {
+          if (oracle.deferred) {
+            result.render.deferred_oracle = true;
+            result.render.oracle = run_deferred_oracle(
+                backend, view, threads, oracle.queries_per_round,
+                [&](const char* name, int64_t first, int64_t count, const auto& walk) {
+                  shade_fragment_threads<kOracleWalkMinBlocks>(backend, name, inputs, first, count,
+                                                               walk);
+                });
+            return;
+          }
+        }
+        shade_fragment_threads<kFragmentMinBlocks<Source>>(backend, "raster_fragment_pass", inputs,
+                                                           0, threads, s);
       },
       source);
   result.fragment_ms = fragment_timer.stop();

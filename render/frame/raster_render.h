@@ -28,6 +28,7 @@ struct RasterRenderResult {
 };
 
 RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
-                                 ShadowMethod& shadows, const dvec3& background);
+                                 ShadowMethod& shadows, const dvec3& background,
+                                 const OracleFrameOptions& oracle = {});
 
 }  // namespace dv

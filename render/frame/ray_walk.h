@@ -9,6 +9,7 @@
 #include "engine/raster/fragment_walk.h"
 #include "render/frame/reference_render.h"
 #include "render/frame/shade_payload.h"
+#include "render/frame/walk_hooks.h"
 
 namespace dv {
 
@@ -24,10 +25,13 @@ DV_HD dvec3 walk_pixel(const SceneView& s, const CameraView& cam, const Source& 
   const dvec3 origin = cam.position - dir * t_eye;
   const double t_near = t_eye + cam.near_plane / glm::dot(dir, cam.forward);
   const double t_far = t_eye + max_value(box_exit_distance(box, cam.position, dir), 0.0);
+  const int64_t thread = int64_t(y) * cam.width + x;
   ShadePayload<Source> payload{s, shadows, origin, dir};
+  payload.cursor = first_cursor(shadows, thread);
   const BvhFragments fragments{&s, make_sheared_ray(origin, dir)};
   const WalkStatus status = walk_fragments(s, fragments, InsideSet{}, 0.0, t_near, t_far, payload);
-  if (counters)
+  finish_walk(shadows, payload.cursor, thread);
+  if (counters && writes_pixels<Source>())
     count_pixel(counters, status.crossings, payload.samples, status.overflow, payload.cursor.flags);
   return payload.color + payload.transmittance * background;
 }

@@ -2,23 +2,28 @@
 #include "render/frame/reference_render.h"
 
 #include <chrono>
+#include <type_traits>
 #include <variant>
 
 #include "cuda/buffer.h"
+#include "render/frame/oracle_passes.h"
 #include "render/frame/ray_walk.h"
 
 namespace dv {
 
 namespace {
 
+// Pixels [first, first + count) in row order.
 template <class Source>
-void render_pixels(Backend backend, const SceneView& view, const CameraView& cam,
-                   const Source& source, const dvec3& background, View<float> rgb,
-                   RenderCounters* counters) {
+void render_pixels(Backend backend, const char* name, const SceneView& view, const CameraView& cam,
+                   int64_t first, int64_t count, const Source& source, const dvec3& background,
+                   View<float> rgb, RenderCounters* counters) {
   parallel_for(
-      backend, "render_reference", int64_t(cam.width) * cam.height, DV_KERNEL_LAMBDA(int64_t i) {
+      backend, name, count, DV_KERNEL_LAMBDA(int64_t k) {
+        const int64_t i = first + k;
         const int x = int(i % cam.width), y = int(i / cam.width);
         const dvec3 c = walk_pixel(view, cam, source, x, y, background, counters);
+        if (!writes_pixels<Source>()) return;  // a walk that only gathers shadow queries
         rgb[3 * i + 0] = float(c.x);
         rgb[3 * i + 1] = float(c.y);
         rgb[3 * i + 2] = float(c.z);
@@ -29,19 +34,22 @@ void render_pixels(Backend backend, const SceneView& view, const CameraView& cam
 
 nlohmann::json RenderResult::stats() const {
   const double pixels = double(image.width) * image.height;
-  return {{"milliseconds", milliseconds},
-          {"width", image.width},
-          {"height", image.height},
-          {"hits", counters.hits},
-          {"hits_per_pixel_mean", pixels > 0 ? double(counters.hits) / pixels : 0.0},
-          {"hits_per_pixel_max", counters.max_hits},
-          {"volume_samples", counters.volume_samples},
-          {"overflow_pixels", counters.overflow_pixels},
-          {"oracle_flag_pixels", counters.oracle_flag_pixels}};
+  nlohmann::json j = {{"milliseconds", milliseconds},
+                      {"width", image.width},
+                      {"height", image.height},
+                      {"hits", counters.hits},
+                      {"hits_per_pixel_mean", pixels > 0 ? double(counters.hits) / pixels : 0.0},
+                      {"hits_per_pixel_max", counters.max_hits},
+                      {"volume_samples", counters.volume_samples},
+                      {"overflow_pixels", counters.overflow_pixels},
+                      {"oracle_flag_pixels", counters.oracle_flag_pixels}};
+  if (deferred_oracle) j["oracle_pass"] = oracle.stats();
+  return j;
 }
 
 RenderResult render_reference(Backend backend, const SceneData& scene, const Camera& camera,
-                              ShadowMethod& shadows, const dvec3& background) {
+                              ShadowMethod& shadows, const dvec3& background,
+                              const OracleFrameOptions& oracle) {
   const Memory memory = memory_of(backend);
   if (scene.memory() != memory) throw Error("render_reference: scene data is in the wrong memory");
   const CameraView cam = make_camera_view(camera);
@@ -50,13 +58,29 @@ RenderResult render_reference(Backend backend, const SceneData& scene, const Cam
   counters.fill_zero();
   const ShadowSourceVariant source = shadows.prepare(scene, backend, &camera);
   const auto start = std::chrono::steady_clock::now();
+  const SceneView& view = scene.view();
+  const int64_t pixels = int64_t(cam.width) * cam.height;
+  RenderResult result;
   std::visit(
       [&](const auto& s) {
-        render_pixels(backend, scene.view(), cam, s, background, rgb.view(), counters.data());
+        using Source = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<Source, ReferenceShadowSource>) {
+          if (oracle.deferred) {
+            result.deferred_oracle = true;
+            result.oracle = run_deferred_oracle(
+                backend, view, pixels, oracle.queries_per_round,
+                [&](const char* name, int64_t first, int64_t count, const auto& walk) {
+                  render_pixels(backend, name, view, cam, first, count, walk, background,
+                                rgb.view(), counters.data());
+                });
+            return;
+          }
+        }
+        render_pixels(backend, "render_reference", view, cam, 0, pixels, s, background, rgb.view(),
+                      counters.data());
       },
       source);
   if (backend == Backend::cuda) device_synchronize("render_reference");
-  RenderResult result;
   result.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.image = Image(cam.width, cam.height);

@@ -17,6 +17,7 @@
 #include "engine/raster/fragment_walk.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_view.h"
+#include "render/frame/oracle_frame.h"
 #include "strategies/shadow/shadow_method.h"
 
 namespace dv {
@@ -44,10 +45,15 @@ struct RenderResult {
   Image image;
   RenderCounters counters;
   double milliseconds = 0.0;
+  // The exact oracle's pass ran deferred (render/frame/oracle_frame.h): its queries, rounds,
+  // buffers and walks.
+  bool deferred_oracle = false;
+  OracleFrameStats oracle;
   nlohmann::json stats() const;
 };
 
 RenderResult render_reference(Backend backend, const SceneData& scene, const Camera& camera,
-                              ShadowMethod& shadows, const dvec3& background);
+                              ShadowMethod& shadows, const dvec3& background,
+                              const OracleFrameOptions& oracle = {});
 
 }  // namespace dv
