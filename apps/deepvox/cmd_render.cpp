@@ -13,6 +13,7 @@
 #include "core/log.h"
 #include "core/wall_phases.h"
 #include "cuda/kernel_timing.h"
+#include "cuda/pool_peak.h"
 #include "engine/raster/camera_rays.h"
 #include "experiments/harness/run_metadata.h"
 #include "render/frame/raster_render.h"
@@ -165,6 +166,7 @@ Runner add_render(CLI::App& app) {
       if (keep_stats) {  // rewrite after every frame: nothing computed is lost
         stats["shadows"]["stats"] = method->stats();
         if (kernel_timing_enabled()) stats["kernels"] = kernel_timings_json();
+        if (backend == Backend::cuda) stats["device_memory"] = device_pool_peak().stats();
         stats["wall_ms"] = wall_phases_json();
         std::ofstream out(opt->stats);
         if (!out) throw InputError(opt->stats, "cannot write stats file");
