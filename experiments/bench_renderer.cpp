@@ -140,6 +140,33 @@ const FrameCase kFrameGoals[] = {
   return true;
 }();
 
+// One frame per feature path, so that a change shows what each path costs and that a scene
+// without a feature does not pay for it: a grey untextured scene with neither media nor glass
+// (translucent-boxes), the same boxes in smoke (a volume), a red glass slab (transmission and
+// coloured shadows), tinted glass around a constant medium, and a textured glTF; each at
+// 720x480 without shadows, with a shadow map and with a dsm (compact, 1024^2).
+const char* const kFeatureScenes[] = {"translucent-boxes.json", "smoke-translucent-boxes.json",
+                                      "glass-red-slab.json", "glass-tinted-medium.json",
+                                      "../assets/gltf/textured-torus.gltf"};
+const char* const kFeatureShadows[] = {"none", "shadowmap", "dsm"};
+
+[[maybe_unused]] const bool kFeaturePathsRegistered = [] {
+  for (const char* scene_file : kFeatureScenes) {
+    const std::string file = scene_file;
+    const size_t slash = file.find_last_of('/') + 1;  // 0 when there is none
+    const std::string scene = file.substr(slash, file.find('.', slash) - slash);
+    for (const char* shadows : kFeatureShadows) {
+      const std::string name = "feature/" + scene + "/" + shadows + "/720x480/cuda";
+      benchmark::RegisterBenchmark(name.c_str(), raster_render_case,
+                                   FrameCase{scene_file, shadows, "", 720, 480}, Backend::cuda)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(20);
+    }
+  }
+  return true;
+}();
+
 BENCHMARK_CAPTURE(raster_render, fig56_none_cuda, "knecht-fig56.json", "none", Backend::cuda)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
