@@ -240,9 +240,7 @@ std::array<StratumError, kStrata> stratum_errors(const StratifiedProbes& probes,
   for (Stratum s : kAllStrata) {
     std::vector<double>& e = errors[size_t(s)];
     std::sort(e.begin(), e.end());
-    const double n = double(e.size());
-    const double rank = std::ceil(0.95 * n + 1.645 * std::sqrt(0.0475 * n));
-    const double upper = e.empty() ? 0.0 : e[size_t(std::clamp(rank, 1.0, n)) - 1];
+    const double upper = e.empty() ? 0.0 : quantile_bound(e, 0.95, 1.645);
     const ErrorSummary summary = summarize_errors(std::move(e));
     out[size_t(s)] = {int(summary.count), summary.p95, summary.max, probes.few(s), upper};
   }

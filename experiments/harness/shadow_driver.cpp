@@ -98,9 +98,13 @@ void emit_errors(RowSink& rows, const std::string& metric, std::vector<double> e
   if (e.count == 0) return;
   rows.add(metric, "max", e.max, "T");
   rows.add(metric, "mean", e.mean, "T");
+  rows.add(metric, "mean_lo", e.mean_lo, "T");
+  rows.add(metric, "mean_hi", e.mean_hi, "T");
   rows.add(metric, "p50", e.p50, "T");
   rows.add(metric, "p90", e.p90, "T");
   rows.add(metric, "p95", e.p95, "T");
+  rows.add(metric, "p95_lo", e.p95_lo, "T");
+  rows.add(metric, "p95_hi", e.p95_hi, "T");
   rows.add(metric, "p99", e.p99, "T");
 }
 
