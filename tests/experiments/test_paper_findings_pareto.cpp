@@ -479,7 +479,9 @@ TEST_F(PaperFindings, ScaleSmokeRunsOnTheCpuWithTheOracleAsItsOwnZero) {
   // oracle measured against itself is exactly 0 on every scene, and a method that drops shadows
   // ("none") is not.
   std::map<std::string, int> visible_rows, copy_rows;
+  std::map<std::pair<int, std::string>, double> visible;  // (item, stat) -> value
   for (const Row& row : read_rows_csv(r.folder + "/rows.csv")) {
+    if (row.metric == "probe_error_visible") visible[{row.item, row.stat}] = row.value;
     if (row.metric == "probe_error_visible" && row.stat == "max") {
       const bool aa_copy = row.params.find("aa=copy") != std::string::npos;
       ++(aa_copy ? copy_rows : visible_rows)[row.experiment];
@@ -493,6 +495,20 @@ TEST_F(PaperFindings, ScaleSmokeRunsOnTheCpuWithTheOracleAsItsOwnZero) {
   }
   for (const char* e : {"casters", "pixels", "lights-spot", "lights-omni", "volume", "dsm-res"})
     EXPECT_GT(visible_rows[e], 0) << e;
+  // Every item's mean and p95 come with their 95 % intervals over the points, around them.
+  int intervals = 0;
+  for (const auto& [key, mean] : visible) {
+    if (key.second != "mean") continue;
+    const int item = key.first;
+    const auto stat = [&](const char* name) { return visible[std::make_pair(item, name)]; };
+    ASSERT_TRUE(visible.count(std::make_pair(item, "p95_hi"))) << item;
+    EXPECT_LE(stat("mean_lo"), mean) << item;
+    EXPECT_GE(stat("mean_hi"), mean) << item;
+    EXPECT_LE(stat("p95_lo"), stat("p95")) << item;
+    EXPECT_GE(stat("p95_hi"), stat("p95")) << item;
+    ++intervals;
+  }
+  EXPECT_GE(intervals, 12);
   EXPECT_EQ(visible_rows["casters"], 6);  // two scenes x (none, dsm, reference)
   EXPECT_EQ(copy_rows["casters"], 6);     // and their A/A copies
   // With matplotlib, the three-point dsm-res line (smoke: 64^2, 128^2, 256^2) gets both fits
