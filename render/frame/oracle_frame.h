@@ -10,9 +10,10 @@
 //              shading only multiplies by them);
 //   2. record: after a scan of the counts, each thread writes its queries (point, light) in the
 //              order its walk asks them;
-//   3. answer: one thread per query runs exact_transmittance, the queries grouped by light and,
-//              within a light, in pixel and sample order, so that a warp's shadow rays leave
-//              one light for neighbouring points;
+//   3. answer: one thread per query runs exact_transmittance, the queries sorted by light and,
+//              within a light, by a cost estimate (the shadow ray's length in bricks that are
+//              not empty), heaviest first, equal costs in pixel and sample order, so that a
+//              warp's shadow rays leave one light and walk about as many volume cells;
 //   4. replay: each thread walks its pixel again and reads its answers back in order.
 // Every pixel sees the answers the direct pass computes, in the same order, so the image, the
 // counters and the oracle flags are the same bits. Queries are kept in rounds of at most

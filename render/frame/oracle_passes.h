@@ -79,7 +79,8 @@ struct OracleAnswerReader {
 std::vector<std::pair<int64_t, int64_t>> plan_oracle_rounds(const std::vector<int64_t>& starts,
                                                             int64_t threads, int64_t per_round);
 
-// The exact answers to queries[0, n) (pass 3), grouped by light when the scene has several.
+// The exact answers to queries[0, n) (pass 3), taken in the order of (light, cost estimate),
+// heaviest first, equal keys in pixel and sample order.
 void answer_oracle_queries(Backend backend, const SceneView& scene, View<const OracleQuery> queries,
                            View<OracleAnswer> answers, int64_t n);
 
@@ -115,7 +116,7 @@ OracleFrameStats run_deferred_oracle(Backend backend, const SceneView& scene, in
   Buffer<OracleQuery> queries(memory, most, "oracle queries");
   Buffer<OracleAnswer> answers(memory, most, "oracle answers");
   stats.buffer_bytes = int64_t(starts.bytes() + queries.bytes() + answers.bytes()) +
-                       (scene.lights.size > 1 ? 12 * most : 0);  // the ordering by light
+                       12 * most;  // the answer pass's keys and order
 
   const View<const int64_t> scanned = starts.const_view();
   for (const auto& [first, end] : rounds) {
