@@ -18,11 +18,11 @@ int key_bits_for(int64_t lights) {
 }
 
 // The answer pass's register budget (parallel_for_bounded): its chains of dependent
-// double-precision operations stall on their latency, which more resident warps hide; two
-// blocks of 256 threads per SM (128 registers, no spills) answered knecht-fig56's queries in
-// 18.8 ms against 23.4 with the occupancy calculator's 164 registers, on an H100
-// (results/perf/2026-12-06-deferred-oracle).
-constexpr int kAnswerMinBlocks = 2;
+// double-precision operations stall on their latency, which more resident warps hide. Four
+// blocks of 256 threads per SM (64 registers) answered knecht-fig56's queries in 12.75 ms, three
+// (85) in 13.47, two (128) in 16.01 and the occupancy calculator's launch (164 registers) in
+// 20.97; knecht-32-lights 379 / 407 / 484 / 619 ms (H100, results/perf/2026-12-06-deferred-oracle).
+constexpr int kAnswerMinBlocks = 4;
 
 // The sort key's cost bits: the samples a march would take along the query's shadow ray in
 // bricks that are not empty (occupied_brick_length over each volume's step), at most 2^16 - 1.
