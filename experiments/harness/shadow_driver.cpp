@@ -8,7 +8,8 @@
 // per class by name); image error against the reference render, over the image and per
 // view-depth bin (nearest quarter of the surface pixels first), and PNGs (the
 // render and its difference) for the report's image strip; with `strata_points`, the stratified
-// error advise judges (strata_error: per stratum and the worst judged). `frame_ms` (median
+// error advise judges (strata_error: per stratum and the worst judged); on CUDA the item's peak
+// device memory (device_memory: the pool's peak from the item's start). `frame_ms` (median
 // generation plus median render) is the one time a Pareto front of error against time takes. The
 // timed generation and frame are shadow_measure.h's, which bench_dsm and bench_renderer call too.
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <string>
 #include <utility>
 
+#include "cuda/pool_peak.h"
 #include "experiments/harness/driver.h"
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/error_summary.h"
@@ -140,6 +142,8 @@ class ShadowDriver : public Driver {
     camera.width = s.width;
     camera.height = s.height;
     const StrategyParams params = StrategyParams::parse(item.param_items());
+    // The item's device footprint: the pool's peak from here (the cached scene data included).
+    if (ctx.backend == Backend::cuda) reset_device_pool_peak();
 
     // A fresh method per generation and timed frames, each after a warm-up.
     TimedRepeats timed = timed_repeats(item.strategy, params, data, ctx.backend, camera,
@@ -173,6 +177,11 @@ class ShadowDriver : public Driver {
     rows.add("render_flagged_pixels", "value",
              double(last.render.counters.overflow_pixels + last.render.counters.oracle_flag_pixels),
              "count");
+    if (ctx.backend == Backend::cuda) {
+      const DevicePoolPeak peak = device_pool_peak();
+      rows.add("device_memory", "peak_used", double(peak.used_bytes), "bytes");
+      rows.add("device_memory", "peak_reserved", double(peak.reserved_bytes), "bytes");
+    }
 
     probe_errors(item, ctx, s, method, rows);
     strata_errors(item, ctx, s, camera, method, rows);
