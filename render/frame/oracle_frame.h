@@ -45,6 +45,7 @@ struct OracleFrameStats {
   double record_ms = 0.0;    // walk 2 (all rounds)
   double answer_ms = 0.0;    // the exact queries, with their ordering by light (all rounds)
   double replay_ms = 0.0;    // walk 4 (all rounds)
+  bool deferred() const { return rounds > 0; }  // a deferred pass ran (it takes >= 1 round)
   nlohmann::json stats() const;
 };
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "engine/raster/shadow_receiver.h"
 #include "engine/scene/scene_view.h"
 #include "render/frame/oracle_frame.h"
+#include "strategies/shadow/shadow_device.h"
 
 namespace dv {
 
@@ -138,6 +140,22 @@ OracleFrameStats run_deferred_oracle(Backend backend, const SceneView& scene, in
     stats.replay_ms += replay_timer.stop();
   }
   return stats;
+}
+
+// A renderer's frame with shadow source `s`: deferred when `s` is the exact oracle and `options`
+// ask for it, then true with its figures in `stats`; false for every other source, which the
+// renderer shades in its one pass.
+template <class Source, class LaunchWalk>
+bool run_if_deferred_oracle(Backend backend, const Source& s, int64_t threads,
+                            const OracleFrameOptions& options, OracleFrameStats& stats,
+                            LaunchWalk&& launch) {
+  if constexpr (std::is_same_v<Source, ReferenceShadowSource>) {
+    if (!options.deferred) return false;
+    stats = run_deferred_oracle(backend, s.scene, threads, options.queries_per_round, launch);
+    return true;
+  } else {
+    return false;
+  }
 }
 
 }  // namespace dv

@@ -79,18 +79,12 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   std::visit(
       [&](const auto& s) {
         using Source = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<Source, ReferenceShadowSource>) {
-          if (oracle.deferred) {
-            result.render.deferred_oracle = true;
-            result.render.oracle = run_deferred_oracle(
-                backend, view, threads, oracle.queries_per_round,
-                [&](const char* name, int64_t first, int64_t count, const auto& walk) {
-                  shade_fragment_threads<kOracleWalkMinBlocks>(backend, name, inputs, first, count,
-                                                               walk);
-                });
-            return;
-          }
-        }
+        const auto walk_threads = [&](const char* name, int64_t first, int64_t count,
+                                      const auto& walk) {
+          shade_fragment_threads<kOracleWalkMinBlocks>(backend, name, inputs, first, count, walk);
+        };
+        if (run_if_deferred_oracle(backend, s, threads, oracle, result.render.oracle, walk_threads))
+          return;
         shade_fragment_threads<kFragmentMinBlocks<Source>>(backend, "raster_fragment_pass", inputs,
                                                            0, threads, s);
       },

@@ -2,7 +2,6 @@
 #include "render/frame/reference_render.h"
 
 #include <chrono>
-#include <type_traits>
 #include <variant>
 
 #include "cuda/buffer.h"
@@ -43,7 +42,7 @@ nlohmann::json RenderResult::stats() const {
                       {"volume_samples", counters.volume_samples},
                       {"overflow_pixels", counters.overflow_pixels},
                       {"oracle_flag_pixels", counters.oracle_flag_pixels}};
-  if (deferred_oracle) j["oracle_pass"] = oracle.stats();
+  if (oracle.deferred()) j["oracle_pass"] = oracle.stats();
   return j;
 }
 
@@ -63,19 +62,12 @@ RenderResult render_reference(Backend backend, const SceneData& scene, const Cam
   RenderResult result;
   std::visit(
       [&](const auto& s) {
-        using Source = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<Source, ReferenceShadowSource>) {
-          if (oracle.deferred) {
-            result.deferred_oracle = true;
-            result.oracle = run_deferred_oracle(
-                backend, view, pixels, oracle.queries_per_round,
-                [&](const char* name, int64_t first, int64_t count, const auto& walk) {
-                  render_pixels(backend, name, view, cam, first, count, walk, background,
-                                rgb.view(), counters.data());
-                });
-            return;
-          }
-        }
+        const auto walk_pixels = [&](const char* name, int64_t first, int64_t count,
+                                     const auto& walk) {
+          render_pixels(backend, name, view, cam, first, count, walk, background, rgb.view(),
+                        counters.data());
+        };
+        if (run_if_deferred_oracle(backend, s, pixels, oracle, result.oracle, walk_pixels)) return;
         render_pixels(backend, "render_reference", view, cam, 0, pixels, s, background, rgb.view(),
                       counters.data());
       },

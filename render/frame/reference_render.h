@@ -45,9 +45,8 @@ struct RenderResult {
   Image image;
   RenderCounters counters;
   double milliseconds = 0.0;
-  // The exact oracle's pass ran deferred (render/frame/oracle_frame.h): its queries, rounds,
-  // buffers and walks.
-  bool deferred_oracle = false;
+  // The exact oracle's deferred pass (render/frame/oracle_frame.h), when it ran: its queries,
+  // rounds, buffers and walks.
   OracleFrameStats oracle;
   nlohmann::json stats() const;
 };

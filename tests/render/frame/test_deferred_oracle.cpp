@@ -27,8 +27,8 @@ std::string scene_path(const std::string& name) {
 }
 
 void expect_same_bits(const RenderResult& direct, const RenderResult& deferred) {
-  ASSERT_FALSE(direct.deferred_oracle);
-  ASSERT_TRUE(deferred.deferred_oracle);
+  ASSERT_FALSE(direct.oracle.deferred());
+  ASSERT_TRUE(deferred.oracle.deferred());
   ASSERT_EQ(direct.image.rgb.size(), deferred.image.rgb.size());
   size_t differing = 0;
   for (size_t i = 0; i < direct.image.rgb.size(); ++i)
