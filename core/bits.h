@@ -1,5 +1,6 @@
-// Bit counting for packed bit masks (voxel columns, occupancy slices) on both sides: the
-// hardware population count in device code, std::popcount on the host; float bit patterns (for
+// Bit counting for packed bit masks (voxel columns, occupancy slices, light lists) on both sides:
+// the hardware population count and lowest set bit in device code, std::popcount and
+// std::countr_zero on the host; float bit patterns (for
 // atomic maxima of non-negative floats); and the 32 x 32 bit transpose that turns 32 words of
 // 32 slices into 32 masks of one slice (binvox writing).
 #pragma once
@@ -16,6 +17,15 @@ DV_HD inline int bit_count(uint32_t v) {
   return __popc(v);
 #else
   return std::popcount(v);
+#endif
+}
+
+// Index of the lowest set bit of v (v != 0).
+DV_HD inline int lowest_bit(uint32_t v) {
+#if DV_IN_DEVICE_CODE
+  return __ffs(v) - 1;
+#else
+  return std::countr_zero(v);
 #endif
 }
 

@@ -11,8 +11,8 @@ each file name is the axis's value (what the suite's line plots put on x):
   knecht-pixels-N.json      N pixels: the camera at 480x320 .. 3600x2400, all 3:2 (the aspect
                             of knecht-fig56's 720x480), so the view is the same and only the
                             pixel density grows
-  knecht-spot-faces-N.json  N spot lights (1, 2, 4, .. 64; a spot is one map face)
-  knecht-omni-faces-N.json  N / 6 omni lights (1, 2, 4, .. 64; an omni light is six map faces)
+  knecht-spot-faces-N.json  N spot lights (1, 2, 4, .. 128; a spot is one map face)
+  knecht-omni-faces-N.json  N / 6 omni lights (1, 2, 4, .. 128; an omni light is six map faces)
                             Lights stand on two rings around the scene, alternating between
                             them, spots aimed at the scene's centre; the total intensity of each
                             kind is that of knecht-fig56's one spot (spots) or a fixed 8 (omnis),
@@ -113,7 +113,7 @@ def main():
         count, scene = pixels(w, w * 2 // 3)
         write("knecht-pixels-%d.json" % count, scene)
     for kind in ("spot", "omni"):
-        for n in (1, 2, 4, 8, 16, 32, 64):
+        for n in (1, 2, 4, 8, 16, 32, 64, 128):
             count, scene = lights(n, kind)
             write("knecht-%s-faces-%d.json" % (kind, count), scene)
     for n in (64, 96, 128, 192, 256, 384, 512):

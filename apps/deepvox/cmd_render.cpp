@@ -4,6 +4,7 @@
 // shading) or EXR (linear) out, per-frame pass timings and counters in a stats JSON.
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <optional>
 
 #include "apps/common/error_budget.h"
@@ -11,6 +12,7 @@
 #include "apps/common/staging_options.h"
 #include "apps/deepvox/commands.h"
 #include "core/log.h"
+#include "core/number_text.h"
 #include "core/wall_phases.h"
 #include "cuda/kernel_timing.h"
 #include "cuda/pool_peak.h"
@@ -36,6 +38,21 @@ std::string frame_path(const std::string& path, int frame, int frames) {
   return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
+// --explain: which lights the pixels evaluated.
+void explain_light_culling(const RenderResult& r, int64_t lights, int frame) {
+  const double pixels = double(r.image.width) * r.image.height;
+  std::cout << "frame " << frame << ": light culling ";
+  if (r.light_culling.enabled)
+    std::cout << "per " << kLightTilePixels << "x" << kLightTilePixels << "-pixel tile, cut-off "
+              << exact_text(r.light_culling.cutoff);
+  else
+    std::cout << "off (every pixel evaluates every light)";
+  std::cout << ": " << fixed_text(pixels > 0 ? double(r.counters.listed_lights) / pixels : 0.0, 2)
+            << " of " << lights << " lights per pixel on average, at most "
+            << r.counters.max_listed_lights << "\n"
+            << std::flush;
+}
+
 }  // namespace
 
 Runner add_render(CLI::App& app) {
@@ -48,6 +65,7 @@ Runner add_render(CLI::App& app) {
     double orbit = 0.0;
     std::optional<double> exposure;  // unset: the scene's (default_exposure_ev)
     StagingOptions staging;
+    LightCulling culling;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd =
@@ -91,6 +109,16 @@ Runner add_render(CLI::App& app) {
                   "dolly factor, pan right and up in target distances")
       ->delimiter(',')
       ->expected(5);
+  cmd->add_option("--light-cutoff", opt->culling.cutoff,
+                  "light culling per 16x16-pixel tile: drop a light where its unshadowed "
+                  "irradiance (intensity x brightest colour channel / distance^2) is below this; "
+                  "0: drop only lights that add nothing there (outside a spot cone or glTF "
+                  "range), which leaves the image unchanged")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_flag(
+      "--no-light-culling", [opt](std::int64_t) { opt->culling.enabled = false; },
+      "every pixel evaluates every light (no per-tile light lists)");
   add_staging_options(cmd, opt->staging);
   return [opt] {
     check_image_path(opt->out);  // before any work: an unwritable output would lose the render
@@ -133,11 +161,12 @@ Runner add_render(CLI::App& app) {
       nlohmann::json frame;
       RenderResult r;
       if (opt->renderer == "raster") {
-        RasterRenderResult rr = render_raster(backend, data, cam, *method, scene.background);
+        RasterRenderResult rr =
+            render_raster(backend, data, cam, *method, scene.background, {}, opt->culling);
         frame = rr.stats();
         r = std::move(rr.render);
       } else {
-        r = render_reference(backend, data, cam, *method, scene.background);
+        r = render_reference(backend, data, cam, *method, scene.background, {}, opt->culling);
         frame = r.stats();
         frame["renderer"] = "raytrace";
       }
@@ -151,6 +180,7 @@ Runner add_render(CLI::App& app) {
       frame["image"] = path;
       if (const nlohmann::json plan = method->plan(); !plan.is_null()) frame["plan"] = plan;
       explain_shadows(opt->shadows, *method, "frame " + std::to_string(f));
+      if (opt->shadows.explain) explain_light_culling(r, data.view().lights.size, f);
       if (keep_stats) stats["frames"].push_back(frame);
       log_info("render: frame " + std::to_string(f) + " " + std::to_string(r.image.width) + "x" +
                std::to_string(r.image.height) + " " + opt->renderer + " on " + to_string(backend) +

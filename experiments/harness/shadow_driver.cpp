@@ -8,7 +8,8 @@
 // per class by name); image error against the reference render, over the image and per
 // view-depth bin (nearest quarter of the surface pixels first), and PNGs (the
 // render and its difference) for the report's image strip; with `strata_points`, the stratified
-// error advise judges (strata_error: per stratum and the worst judged); on CUDA the item's peak
+// error advise judges (strata_error: per stratum and the worst judged); the lights the frame's
+// pixels evaluated after light culling (lights_per_pixel mean and max); on CUDA the item's peak
 // device memory (device_memory: the pool's peak from the item's start). `frame_ms` (median
 // generation plus median render) is the one time a Pareto front of error against time takes. The
 // timed generation and frame are shadow_measure.h's, which bench_dsm and bench_renderer call too.
@@ -177,6 +178,10 @@ class ShadowDriver : public Driver {
     rows.add("render_flagged_pixels", "value",
              double(last.render.counters.overflow_pixels + last.render.counters.oracle_flag_pixels),
              "count");
+    const double pixels = double(s.width) * s.height;
+    rows.add("lights_per_pixel", "mean", double(last.render.counters.listed_lights) / pixels,
+             "count");
+    rows.add("lights_per_pixel", "max", double(last.render.counters.max_listed_lights), "count");
     if (ctx.backend == Backend::cuda) {
       const DevicePoolPeak peak = device_pool_peak();
       rows.add("device_memory", "peak_used", double(peak.used_bytes), "bytes");

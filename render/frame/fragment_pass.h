@@ -28,6 +28,7 @@ struct FragmentPassInputs {
   const InsideSet* eye_media;
   View<float> rgb;
   RenderCounters* counters;
+  LightTilesView lights;  // the lights of each pixel's tile (engine/raster/light_tiles.h)
 };
 
 // Threads [first, first + count) of the pass; first a multiple of 32, so that lane groups fill
@@ -43,6 +44,7 @@ void shade_fragment_threads(Backend backend, const char* name, const FragmentPas
   const InsideSet* eye_media = in.eye_media;
   const View<float> rgb = in.rgb;
   RenderCounters* counters = in.counters;
+  const LightTilesView lights = in.lights;
   const int width = projection.width, height = projection.height;
   parallel_for_bounded<kMinBlocks>(
       backend, name, count, DV_KERNEL_LAMBDA(int64_t i) {
@@ -57,6 +59,7 @@ void shade_fragment_threads(Backend backend, const char* name, const FragmentPas
         ShadePayload<Source> payload{s, source, ray.origin, ray.direction};
         payload.cursor = first_cursor(source, t);
         payload.lanes = lanes;
+        payload.light_mask = lights.mask_of_pixel(x, y);
         const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
         const WalkStatus status =
             walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
@@ -68,7 +71,8 @@ void shade_fragment_threads(Backend backend, const char* name, const FragmentPas
         rgb[3 * pixel + 1] = float(c.y);
         rgb[3 * pixel + 2] = float(c.z);
         count_pixel(counters, status.crossings, payload.samples,
-                    status.overflow || front.status.overflow, payload.cursor.flags);
+                    status.overflow || front.status.overflow, payload.cursor.flags,
+                    listed_lights(payload.light_mask, int(s.lights.size)));
       });
 }
 

@@ -45,7 +45,7 @@ nlohmann::json RasterRenderResult::stats() const {
 
 RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
                                  ShadowMethod& shadows, const dvec3& background,
-                                 const OracleFrameOptions& oracle) {
+                                 const OracleFrameOptions& oracle, const LightCulling& culling) {
   const Memory memory = memory_of(backend);
   if (scene.memory() != memory) throw Error("render_raster: scene data is in the wrong memory");
   const SceneView& view = scene.view();
@@ -71,10 +71,19 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   Buffer<RenderCounters> counters(memory, 1, "render counters");
   counters.fill_zero();
   PassTimer fragment_timer(backend);
+  const LightTiles light_tiles = build_light_tiles(backend, view, camera, culling);
+  result.render.light_culling = {light_tiles.masks.size() > 0, culling.cutoff};
   const FragmentOrder tile_order =
       order_fragment_tiles(backend, view, projection, lists.view(), eye_media.data());
-  const FragmentPassInputs inputs{&view,      projection,       lists.view(), tile_order.view(),
-                                  background, eye_media.data(), rgb.view(),   counters.data()};
+  const FragmentPassInputs inputs{&view,
+                                  projection,
+                                  lists.view(),
+                                  tile_order.view(),
+                                  background,
+                                  eye_media.data(),
+                                  rgb.view(),
+                                  counters.data(),
+                                  light_tiles.view()};
   const int64_t threads = fragment_thread_count(tile_order.order.size());
   std::visit(
       [&](const auto& s) {

@@ -27,8 +27,10 @@ struct RasterRenderResult {
   nlohmann::json stats() const;
 };
 
+// `culling`: the lights each pixel evaluates (engine/raster/light_tiles.h).
 RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
                                  ShadowMethod& shadows, const dvec3& background,
-                                 const OracleFrameOptions& oracle = {});
+                                 const OracleFrameOptions& oracle = {},
+                                 const LightCulling& culling = {});
 
 }  // namespace dv

@@ -15,7 +15,8 @@ namespace dv {
 
 template <class Source>
 DV_HD dvec3 walk_pixel(const SceneView& s, const CameraView& cam, const Source& shadows, int x,
-                       int y, const dvec3& background, RenderCounters* counters) {
+                       int y, const uint32_t* light_mask, const dvec3& background,
+                       RenderCounters* counters) {
   const dvec3 dir = camera_ray_direction(cam, x, y);
   // Start outside the scene so the media containing the eye are found by their crossings.
   const Aabb box = padded_bounds(s);
@@ -28,11 +29,13 @@ DV_HD dvec3 walk_pixel(const SceneView& s, const CameraView& cam, const Source& 
   const int64_t thread = int64_t(y) * cam.width + x;
   ShadePayload<Source> payload{s, shadows, origin, dir};
   payload.cursor = first_cursor(shadows, thread);
+  payload.light_mask = light_mask;
   const BvhFragments fragments{&s, make_sheared_ray(origin, dir)};
   const WalkStatus status = walk_fragments(s, fragments, InsideSet{}, 0.0, t_near, t_far, payload);
   finish_walk(shadows, payload.cursor, thread);
   if (counters && writes_pixels<Source>())
-    count_pixel(counters, status.crossings, payload.samples, status.overflow, payload.cursor.flags);
+    count_pixel(counters, status.crossings, payload.samples, status.overflow, payload.cursor.flags,
+                listed_lights(light_mask, int(s.lights.size)));
   return payload.color + payload.transmittance * background;
 }
 

@@ -15,6 +15,7 @@
 #include "core/image.h"
 #include "cuda/execute.h"
 #include "engine/raster/fragment_walk.h"
+#include "engine/raster/light_tiles.h"
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_view.h"
 #include "render/frame/oracle_frame.h"
@@ -28,17 +29,23 @@ struct RenderCounters {
   unsigned long long max_hits = 0;         // most crossings of one pixel
   unsigned long long overflow_pixels = 0;  // pixels that hit kMaxHitsPerPixel or kMaxInsideObjects
   unsigned long long oracle_flag_pixels = 0;  // pixels whose shadow queries raised oracle flags
+  unsigned long long listed_lights = 0;       // lights each pixel shades with, summed
+  unsigned long long max_listed_lights = 0;   // most lights one pixel shades with
 };
 
-// Adds one pixel's walk to the counters; any thread of either backend may call it.
+// Adds one pixel's walk to the counters; any thread of either backend may call it. `lights`:
+// how many lights the pixel's tile lists (engine/raster/light_tiles.h).
 DV_HD inline void count_pixel(RenderCounters* c, unsigned long long crossings,
-                              unsigned long long samples, bool overflow, uint32_t shadow_flags) {
+                              unsigned long long samples, bool overflow, uint32_t shadow_flags,
+                              unsigned long long lights) {
   // Every pixel adds to the same few counters: combined per warp before the atomics.
   atomic_add_combined(&c->hits, crossings);
   atomic_add_combined(&c->volume_samples, samples);
   atomic_max_combined(&c->max_hits, crossings);
   atomic_add_combined(&c->overflow_pixels, overflow ? 1ull : 0ull);
   atomic_add_combined(&c->oracle_flag_pixels, shadow_flags ? 1ull : 0ull);
+  atomic_add_combined(&c->listed_lights, lights);
+  atomic_max_combined(&c->max_listed_lights, lights);
 }
 
 struct RenderResult {
@@ -48,11 +55,15 @@ struct RenderResult {
   // The exact oracle's deferred pass (render/frame/oracle_frame.h), when it ran: its queries,
   // rounds, buffers and walks.
   OracleFrameStats oracle;
+  // The light culling that ran: enabled when the pixels shaded their tiles' lists.
+  LightCulling light_culling{false, 0.0};
   nlohmann::json stats() const;
 };
 
+// `culling`: the lights each pixel evaluates (engine/raster/light_tiles.h).
 RenderResult render_reference(Backend backend, const SceneData& scene, const Camera& camera,
                               ShadowMethod& shadows, const dvec3& background,
-                              const OracleFrameOptions& oracle = {});
+                              const OracleFrameOptions& oracle = {},
+                              const LightCulling& culling = {});
 
 }  // namespace dv

@@ -31,9 +31,10 @@ struct ShadePayload {
   dvec3 color{0.0};
   dvec3 transmittance{1.0};
   unsigned long long samples = 0;
-  dvec3 segment_sigma_rgb{0.0};    // the constant media's extinction in the current segment
-  LaneGroup lanes{};               // lanes that split this pixel's volume steps between them
-  dvec3 transmittance_scale{1.0};  // while marching a share: the transmittance before it
+  dvec3 segment_sigma_rgb{0.0};          // the constant media's extinction in the current segment
+  LaneGroup lanes{};                     // lanes that split this pixel's volume steps between them
+  dvec3 transmittance_scale{1.0};        // while marching a share: the transmittance before it
+  const uint32_t* light_mask = nullptr;  // the pixel's tile's lights (light_tiles.h); null: all
 
   DV_HD static bool saturated(const dvec3& t) {
     return max_value(t.x, max_value(t.y, t.z)) <= kSaturatedTransmittance;
@@ -66,13 +67,13 @@ struct ShadePayload {
     const ShadowReceiver at{point, n};
     const dvec3 shading = shading_normal(s, h.triangle, point, n);
     if (look.alpha > 0.0) {
-      const dvec3 c = shade_phong(s, shadows, cursor, o, look.color, at, shading, -dir);
+      const dvec3 c = shade_phong(s, shadows, cursor, light_mask, o, look.color, at, shading, -dir);
       color += transmittance * look.alpha * c;
     }
     const double cos_to_normal = glm::dot(n, dir);
     if (look.transmission > 0.0) {
       const dvec3 highlight =
-          shade_phong(s, shadows, cursor, o, look.color, at, shading, -dir, true);
+          shade_phong(s, shadows, cursor, light_mask, o, look.color, at, shading, -dir, true);
       const double reflected = fresnel_schlick(o.ior, cos_to_normal) * o.ambient;
       color += transmittance * look.transmission * (highlight + dvec3(reflected));
     }
@@ -181,8 +182,8 @@ struct ShadePayload {
       n = len > 1e-12 ? -n / len : dvec3(0.0);
       if (glm::dot(n, dir) > 0.0) n = -n;
       const ShadowReceiver at{x};  // a medium point: no surface bias
-      const dvec3 c =
-          shade_phong(s, shadows, cursor, o, weighted_color / sigma_volume, at, n, -dir);
+      const dvec3 c = shade_phong(s, shadows, cursor, light_mask, o, weighted_color / sigma_volume,
+                                  at, n, -dir);
       color += transmittance * alpha * (sigma_volume / sigma) * c;
     }
     transmittance *= 1.0 - alpha;
