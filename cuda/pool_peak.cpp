@@ -1,4 +1,4 @@
-// The default memory pool's high-water marks (see pool_peak.h).
+// The default memory pool's high-water marks and its trimming (see pool_peak.h).
 #include "cuda/pool_peak.h"
 
 #if defined(DEEPVOX_WITH_CUDA)
@@ -60,12 +60,18 @@ void reset_device_pool_peak() {
     cudaGetLastError();
 }
 
+void trim_device_pool() {
+  const cudaMemPool_t pool = default_pool();
+  if (pool && cudaMemPoolTrimTo(pool, 0) != cudaSuccess) cudaGetLastError();
+}
+
 #else
 
 DevicePoolPeak device_pool_peak() {
   return {};
 }
 void reset_device_pool_peak() {}
+void trim_device_pool() {}
 
 #endif
 

@@ -85,6 +85,7 @@ Runner add_dsm(CLI::App& app) {
     const SceneData data(scene, memory_of(backend));
     mark_wall_phase("scene data built");
     opt->settings.storage = "compact";
+    opt->settings.keep_records = !opt->heatmap.empty();  // the heatmap's layers per texel
     DeepShadowMaps maps(opt->settings);
     maps.generate(data, backend);
     mark_wall_phase("maps generated");

@@ -256,8 +256,13 @@ void ViewerState::build_heatmap() {
     if (method_->name() != "dsm") message_ = "heat map: only the dsm method has layers per texel";
     return;
   }
-  heatmap_ = layer_heatmap(stored_layers(*maps), int(maps->layout().faces.size()),
-                           maps->resolution(), face_labels(maps->layout()));
+  try {
+    heatmap_ = layer_heatmap(stored_layers(*maps), int(maps->layout().faces.size()),
+                             maps->resolution(), face_labels(maps->layout()));
+  } catch (const Error& e) {  // maps generated in sets of faces keep no per-texel records
+    heatmap_ = Image();
+    message_ = std::string("heat map: ") + e.what();
+  }
 }
 
 const Image* ViewerState::heatmap() const {

@@ -7,7 +7,9 @@
 // output does not depend on what its sink takes (engine/dsm/visibility_compressor.h), so a replayed
 // texel gets the very nodes and record that a second walk at the same eps would give.
 //
-// Layout: chunks of kReplayChunkNodes nodes. Texel t's first chunk is chunk t; a deeper texel
+// Layout: chunks of kReplayChunkNodes nodes. The replay covers the texels from first_texel on (a
+// generation's, or one set of its faces'), texel t at slot t.index - first_texel: its record in
+// `kept` and its first chunk at that slot; a deeper texel
 // claims more from its stripe and links them (`next`). The stripes split the further chunks, each
 // with its own counter on its own 64-byte line, a texel's stripe by its generation block
 // (neighbouring blocks in different stripes): one counter made the CPU threads take turns on its
@@ -109,9 +111,11 @@ struct NodeReplay {
   View<int32_t> lost;    // per texel: the generator threads of the lost texels, as many as counted
   View<unsigned long long> counters;  // kReplayCounters
   int32_t stripe_chunks = 0;
+  int64_t first_texel = 0;  // the texel at slot 0
 
   DV_HD bool active() const { return kept.size > 0; }
-  DV_HD bool is_lost(const DsmTexel& t) const { return (kept[t.index].flags & kKeptLost) != 0; }
+  DV_HD int64_t slot(const DsmTexel& t) const { return t.index - first_texel; }
+  DV_HD bool is_lost(const DsmTexel& t) const { return (kept[slot(t)].flags & kKeptLost) != 0; }
   // How many texels the first pass lost (their threads: lost[0, lost_count())).
   DV_HD unsigned long long lost_count() const { return counters[kReplayLostCounter]; }
 
@@ -126,7 +130,7 @@ struct NodeReplay {
     s.stripe_claims = &counters[int64_t(stripe) * kReplayCounterStride];
     s.stripe_first = int32_t(kept.size) + stripe * stripe_chunks;
     s.stripe_chunks = stripe_chunks;
-    s.chunk = int32_t(t.index);
+    s.chunk = int32_t(slot(t));
     return s;
   }
 
@@ -141,7 +145,7 @@ struct NodeReplay {
       const unsigned long long k = atomic_add(&counters[kReplayLostCounter], 1ull);
       lost[int64_t(k)] = int32_t(thread);
     }
-    kept[t.index] = {r.record.nodes, r.record.error, r.final_visibility, flags};
+    kept[slot(t)] = {r.record.nodes, r.record.error, r.final_visibility, flags};
   }
 
   // Write pass: texel t's function into `sink`, as g.generate(t, eps, sink) gives it, eps being
@@ -156,9 +160,9 @@ struct NodeReplay {
     if constexpr (kWalk) {
       return g.generate(t, eps, sink);
     } else {
-      const KeptTexel k = kept[t.index];
+      const KeptTexel k = kept[slot(t)];
       TrackingSink<Sink> tracked{sink};
-      int64_t chunk = t.index;
+      int64_t chunk = slot(t);
       for (int n = 0; n < k.nodes; ++n) {
         const int slot = n % kReplayChunkNodes;
         if (n > 0 && slot == 0) chunk = next[chunk];

@@ -21,7 +21,7 @@ namespace {
 void write_avsm_nodes(const DsmGenerationContext& c, int capacity, View<DsmNode> nodes) {
   const DsmGenerator g = c.generator;
   const float sample_eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
+  const DsmRecordRange records = c.texel_records();
   parallel_for(
       c.backend, "dsm_avsm_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
         DsmTexel t;

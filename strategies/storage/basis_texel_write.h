@@ -20,7 +20,7 @@ void write_basis_texels(const DsmGenerationContext& c, NodeReplay replay, const 
                         const Sink& prototype, int stride, View<float> data) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
+  const DsmRecordRange records = c.texel_records();
   const Sink settings = prototype;
   for_replay_texels<kWalk>(
       c, replay, kernel, DV_KERNEL_LAMBDA(int64_t, const DsmTexel& t) {

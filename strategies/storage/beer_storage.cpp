@@ -18,7 +18,7 @@ namespace {
 void write_beer_texels(const DsmGenerationContext& c, View<BeerTexel> texels) {
   const DsmGenerator g = c.generator;
   const float sample_eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
+  const DsmRecordRange records = c.texel_records();
   parallel_for(
       c.backend, "dsm_beer_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {
         DsmTexel t;

@@ -26,7 +26,7 @@ void write_blocks(const DsmGenerationContext& c, NodeReplay replay, const Blocke
                   View<int32_t> counts) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
+  const DsmRecordRange records = c.texel_records();
   for_replay_texels<kWalk>(
       c, replay, "dsm_blocked_write", DV_KERNEL_LAMBDA(int64_t, const DsmTexel& t) {
         BlockedSink sink = prototype;

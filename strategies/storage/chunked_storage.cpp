@@ -29,7 +29,7 @@ template <bool kWalk>
 void write_chunks(const DsmGenerationContext& c, NodeReplay replay, const ChunkPool& pool) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
+  const DsmRecordRange records = c.texel_records();
   for_replay_texels<kWalk>(
       c, replay, "dsm_chunked_write", DV_KERNEL_LAMBDA(int64_t i, const DsmTexel& t) {
         const ChunkedSink sink{pool, g.block_of_thread(i), t.index};

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "cuda/ensure_buffer.h"
 #include "cuda/pass_timer.h"
+#include "cuda/pool_peak.h"
 #include "engine/dsm/dsm_colour.h"
 
 namespace dv {
@@ -175,11 +175,11 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
     if (settings_.precompressed) passes_.push_back({"table", table_ms});
   }
   const DsmGenerator& g = generation_->generator();
-  ensure_buffer(records_, memory_of(backend), g.texel_count(), "dsm texel records");
-  const DsmGenerationContext context{backend, g, settings_.eps, records_.view(), &passes_};
+  records_.start(backend, g.texel_count(), settings_.keep_records);
+  const DsmGenerationContext context{backend,  g,        settings_.eps,
+                                     records_, &passes_, settings_.face_set_bytes};
   storage_->generate(context);
-  host_records_stale_ = true;
-  figures_ = dsm_figures(*storage_, backend, records_.const_view());
+  figures_ = dsm_figures(*storage_, records_.finish());
   colour_texels_ = Buffer<DsmColourTexel>();
   if (scene_tints_light(scene)) {
     PassTimer timer(backend);
@@ -203,15 +203,8 @@ void DeepShadowMaps::generate(const SceneData& scene, Backend backend, const Cam
                       settings_.slope_bias,
                       settings_.bilinear,
                       colour_texels_.const_view()};
+  if (backend == Backend::cuda) trim_device_pool();
   ++generations_;
-}
-
-const std::vector<DsmTexelRecord>& DeepShadowMaps::records() const {
-  if (host_records_stale_) {
-    host_records_ = records_.to_vector();
-    host_records_stale_ = false;
-  }
-  return host_records_;
 }
 
 double DeepShadowMaps::generation_milliseconds() const {

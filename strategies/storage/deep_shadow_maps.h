@@ -1,7 +1,8 @@
 // Deep shadow maps of every light of a scene, end to end: generation (engine/dsm/dsm_generation.h)
 // into a storage strategy chosen by name (strategies/storage/), figures, and the kernel-side source
 // the renderer and probe query (strategies/storage/dsm_device.h). The `dsm` shadow method wraps
-// it; `deepvox dsm` (export) and the tests use it directly.
+// it; `deepvox dsm` (export) and the tests use it directly. The device memory pool is trimmed
+// after each generation, so the scratch it needed is not held beside the maps.
 #pragma once
 
 #include <memory>
@@ -34,6 +35,10 @@ struct DsmSettings {
   double slope_bias = 3.0;
   ClusterSettings clusters;  // max_clusters > 1: clustered maps (light_clusters.h)
   int light = -1;            // >= 0: maps of this light only, whose source answers it as light 0
+  // records() after a generation in several sets of faces too (a host copy of each set, made
+  // as it is generated); without it only a generation in one set answers records().
+  bool keep_records = false;
+  int64_t face_set_bytes = kFaceSetBytes;  // what one set of faces may take (dsm_storage.h)
 
   // From parameters resolved against dsm_param_table() (every key present), and the same keys
   // written back: own_params() the table's keys, params() with the storage strategy that
@@ -76,9 +81,10 @@ class DeepShadowMaps {
   const LightMapLayout& layout() const { return generation_->layout(); }
   const std::vector<DsmPass>& passes() const { return passes_; }
   double generation_milliseconds() const;  // all passes, rasterization included
-  // The per-texel records on the host (copied from the backend on the first call after a
-  // generation; figures() needs no copy).
-  const std::vector<DsmTexelRecord>& records() const;
+  // The per-texel records on the host (DsmRecords::host: copied from the backend on the first
+  // call after a generation in one set; after one in several sets, only with
+  // settings().keep_records). figures() needs no copy.
+  const std::vector<DsmTexelRecord>& records() const { return records_.host(); }
   const nlohmann::json& figures() const { return figures_; }
   int64_t fragments() const { return generation_->fragments(); }
   int generations() const { return generations_; }
@@ -87,10 +93,8 @@ class DeepShadowMaps {
   DsmSettings settings_;
   std::unique_ptr<DsmStorage> storage_;
   std::unique_ptr<DsmGeneration> generation_;
-  Buffer<DsmTexelRecord> records_;
+  DsmRecords records_;
   Buffer<DsmColourTexel> colour_texels_;  // the colour side channel; empty for grey scenes
-  mutable std::vector<DsmTexelRecord> host_records_;  // records() fills it when stale
-  mutable bool host_records_stale_ = true;
   std::vector<DsmPass> passes_;
   nlohmann::json figures_;
   DsmSource source_{};

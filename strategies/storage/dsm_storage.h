@@ -5,7 +5,7 @@
 // push node, end), with an optional counting pass before; its generation time includes these
 // writes, which is where the strategies differ. It then answers lookups through a DsmReader
 // (strategies/storage/dsm_reader.h). Figures common to all (nodes, layers, overflow) come from
-// the per-texel records; each strategy adds its own.
+// the per-texel records (strategies/storage/dsm_records.h); each strategy adds its own.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +20,7 @@
 #include "cuda/pass_timer.h"
 #include "engine/dsm/dsm_generator.h"
 #include "strategies/storage/dsm_reader.h"
+#include "strategies/storage/dsm_records.h"
 
 namespace dv {
 
@@ -28,22 +29,43 @@ struct DsmPass {
   double milliseconds = 0.0;
 };
 
-// What a storage's generate() works with. `records` has one entry per texel and is written by
-// the storage's passes (through DsmGenerator::generate's results).
+// What the replay scratch and records of one set of faces may take, for a storage that
+// generates its faces in sets (compact): a small part of the maps' own bytes at 512^2 and up,
+// and still enough texels at once to fill the device (12 faces of 512^2, 3 of 1024^2).
+inline constexpr int64_t kFaceSetBytes = int64_t(256) << 20;
+
+// What a storage's generate() works with. The storage's passes write each texel's record
+// (DsmGenerator::generate's results) into texel_records(). A storage that generates in sets of
+// faces runs its passes over contexts of its own whose generator has a set's faces, its first
+// texel at first_texel.
 struct DsmGenerationContext {
   Backend backend;
   const DsmGenerator& generator;
   float eps;
-  View<DsmTexelRecord> records;
+  DsmRecords& records;
   std::vector<DsmPass>* passes;
+  int64_t face_set_bytes = kFaceSetBytes;
+  int64_t first_texel = 0;  // the index of the generator's first texel
+
+  // The records of the generator's texels (DsmRecords::range).
+  DsmRecordRange texel_records() const {
+    return records.range(first_texel, generator.texel_count());
+  }
 };
 
-// Runs f() and appends its time (CUDA events on the GPU) as pass `name`.
+// Runs f() and adds its time (CUDA events on the GPU) to pass `name`: the generation's pass of
+// that name (a storage that generates in sets of faces runs its passes once a set), or a new one.
 template <class F>
 void timed_pass(const DsmGenerationContext& c, const char* name, F&& f) {
   PassTimer timer(c.backend);
   f();
-  c.passes->push_back({name, timer.stop()});
+  const double milliseconds = timer.stop();
+  for (DsmPass& p : *c.passes)
+    if (p.name == name) {
+      p.milliseconds += milliseconds;
+      return;
+    }
+  c.passes->push_back({name, milliseconds});
 }
 
 // Every texel's nodes in host memory, packed: texel t's are nodes[offsets[t] .. offsets[t + 1]).
@@ -77,12 +99,10 @@ class DsmStorage {
 
 Registry<DsmStorage>& storage_registry();
 
-// Figures shared by all strategies, summed over the per-texel records where they live (one pass
-// of atomics on `backend`, a few counters read back: no copy of the records): bytes allocated,
-// bytes holding nodes, nodes, mean and max layers per texel, overflowed texels (with those a
-// fixed-node storage approximated) and the largest error they reached, recompressed texels,
-// walk overflows.
-nlohmann::json dsm_figures(const DsmStorage& storage, Backend backend,
-                           View<const DsmTexelRecord> records);
+// Figures shared by all strategies, from the sums over the per-texel records (DsmRecords: no
+// copy of the records): bytes allocated, bytes holding nodes, nodes, mean and max layers per
+// texel, overflowed texels (with those a fixed-node storage approximated) and the largest error
+// they reached, recompressed texels, walk overflows.
+nlohmann::json dsm_figures(const DsmStorage& storage, const DsmRecordSums& sums);
 
 }  // namespace dv

@@ -9,6 +9,17 @@
 namespace dv {
 
 NodeReplay NodeReplayScratch::begin(const DsmGenerationContext& c) {
+  walked_ = 0;
+  bytes_ = 0;
+  return claim(c);
+}
+
+NodeReplay NodeReplayScratch::next(const DsmGenerationContext& c) {
+  read_claims();
+  return claim(c);
+}
+
+NodeReplay NodeReplayScratch::claim(const DsmGenerationContext& c) {
   const int64_t texels = c.generator.texel_count();
   // Chunk indices and the lost texels' threads are 32-bit: beyond that the replay stays inactive
   // and every texel is walked twice, as without it.
@@ -20,40 +31,58 @@ NodeReplay NodeReplayScratch::begin(const DsmGenerationContext& c) {
   const int64_t share = std::min(wanted, (most_chunks - texels) / kReplayStripes);
   const int64_t chunks = replay_chunks(texels, share);
   const Memory memory = memory_of(c.backend);
-  const int64_t bytes = chunks * (kReplayChunkNodes * int64_t(sizeof(DsmNode)) + 4) +
-                        texels * int64_t(sizeof(KeptTexel) + 4) +
-                        kReplayCounters * int64_t(sizeof(unsigned long long));
-  if (bytes > free_memory_bytes(memory) / 2) return inactive(texels);  // room for the storage
-  nodes_ = Buffer<DsmNode>(memory, chunks * kReplayChunkNodes, "dsm node replay chunks");
-  next_ = Buffer<int32_t>(memory, chunks, "dsm node replay chunk links");
-  kept_ = Buffer<KeptTexel>(memory, texels, "dsm node replay texels");
-  lost_ = Buffer<int32_t>(memory, texels, "dsm node replay lost texels");
-  counters_ = Buffer<unsigned long long>(memory, kReplayCounters, "dsm node replay counters");
+  if (nodes_.size() < chunks * kReplayChunkNodes || kept_.size() < texels ||
+      nodes_.memory() != memory) {
+    release();
+    const int64_t bytes = chunks * (kReplayChunkNodes * int64_t(sizeof(DsmNode)) + 4) +
+                          texels * int64_t(sizeof(KeptTexel) + 4) +
+                          kReplayCounters * int64_t(sizeof(unsigned long long));
+    if (bytes > free_memory_bytes(memory) / 2) return inactive(texels);  // room for the storage
+    nodes_ = Buffer<DsmNode>(memory, chunks * kReplayChunkNodes, "dsm node replay chunks");
+    next_ = Buffer<int32_t>(memory, chunks, "dsm node replay chunk links");
+    kept_ = Buffer<KeptTexel>(memory, texels, "dsm node replay texels");
+    lost_ = Buffer<int32_t>(memory, texels, "dsm node replay lost texels");
+    counters_ = Buffer<unsigned long long>(memory, kReplayCounters, "dsm node replay counters");
+    bytes_ = std::max<int64_t>(
+        bytes_, nodes_.bytes() + next_.bytes() + kept_.bytes() + lost_.bytes() + counters_.bytes());
+  }
   counters_.fill_zero();
-  bytes_ = nodes_.bytes() + next_.bytes() + kept_.bytes() + lost_.bytes() + counters_.bytes();
-  replay_ = {nodes_.view(), next_.view(),     kept_.view(),
-             lost_.view(),  counters_.view(), int32_t(share)};
+  replay_ = {{nodes_.data(), chunks * kReplayChunkNodes},
+             {next_.data(), chunks},
+             {kept_.data(), texels},
+             {lost_.data(), texels},
+             counters_.view(),
+             int32_t(share),
+             c.first_texel};
   return replay_;
 }
 
 NodeReplay NodeReplayScratch::inactive(int64_t texels) {
+  release();
   largest_stripe_ = -1;
-  walked_ = texels;
-  bytes_ = 0;
+  walked_ += texels;
   return replay_ = {};
 }
 
-void NodeReplayScratch::end() {
+void NodeReplayScratch::read_claims() {
   if (counters_.size() == 0) return;
   const ReplayClaims claims = replay_claims(counters_.to_vector());
   largest_stripe_ = claims.largest_stripe;
-  walked_ = claims.walked;
+  walked_ += claims.walked;
+}
+
+void NodeReplayScratch::end() {
+  read_claims();
+  release();
+  replay_ = {};
+}
+
+void NodeReplayScratch::release() {
   nodes_ = Buffer<DsmNode>();
   next_ = Buffer<int32_t>();
   kept_ = Buffer<KeptTexel>();
   lost_ = Buffer<int32_t>();
   counters_ = Buffer<unsigned long long>();
-  replay_ = {};
 }
 
 nlohmann::json NodeReplayScratch::figures() const {

@@ -31,7 +31,7 @@ void write_layers(const DsmGenerationContext& c, int layers, bool final, View<Ds
                   View<int32_t> counts, int32_t* deepest) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
+  const DsmRecordRange records = c.texel_records();
   const int64_t texels = g.texel_count();
   parallel_for(
       c.backend, "dsm_texture3d_write", g.thread_count(), DV_KERNEL_LAMBDA(int64_t i) {

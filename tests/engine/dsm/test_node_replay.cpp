@@ -64,7 +64,7 @@ void write_texels(const DsmGenerationContext& c, NodeReplay replay, int capacity
                   View<DsmNode> out) {
   const DsmGenerator g = c.generator;
   const float eps = c.eps;
-  const View<DsmTexelRecord> records = c.records;
+  const DsmRecordRange records = c.texel_records();
   for_replay_texels<kWalk>(
       c, replay, "test_replay_write", DV_KERNEL_LAMBDA(int64_t, const DsmTexel& t) {
         const CompactSink sink{out.data + t.index * kSlotNodes, capacity};
@@ -78,12 +78,14 @@ TexelOutputs write_texels(Backend backend, const DsmGenerator& generator, NodeRe
                           float eps, int capacity) {
   const int64_t texels = generator.texel_count();
   Buffer<DsmNode> nodes(memory_of(backend), texels * kSlotNodes, "test replay nodes");
-  Buffer<DsmTexelRecord> records(memory_of(backend), texels, "test replay records");
-  const DsmGenerationContext c{backend, generator, eps, records.view(), nullptr};
+  DsmRecords records;
+  records.start(backend, texels, false);
+  const DsmGenerationContext c{backend, generator, eps, records, nullptr};
   run_replay_write(replay,
                    [&]<bool kWalk>() { write_texels<kWalk>(c, replay, capacity, nodes.view()); });
   if (backend == Backend::cuda) device_synchronize("test_replay_write");
-  return {nodes.to_vector(), records.to_vector()};
+  records.finish();
+  return {nodes.to_vector(), records.host()};
 }
 
 struct FirstPass {
