@@ -46,7 +46,8 @@ void explain_light_culling(const RenderResult& r, int64_t lights, int frame) {
     std::cout << "per " << kLightTilePixels << "x" << kLightTilePixels << "-pixel tile, cut-off "
               << exact_text(r.light_culling.cutoff);
   else
-    std::cout << "off (every pixel evaluates every light)";
+    std::cout << "without tile lists (one light and cut-off 0, or --no-light-culling: every "
+                 "pixel evaluates every light)";
   std::cout << ": " << fixed_text(pixels > 0 ? double(r.counters.listed_lights) / pixels : 0.0, 2)
             << " of " << lights << " lights per pixel on average, at most "
             << r.counters.max_listed_lights << "\n"

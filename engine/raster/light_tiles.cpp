@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "cuda/execute.h"
@@ -110,6 +111,25 @@ LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Came
         masks[i] = listed;
       });
   return tiles;
+}
+
+ListedLights count_listed_lights(const LightTiles& tiles, int width, int height, int lights) {
+  const unsigned long long pixels = (unsigned long long)(width) * (unsigned long long)(height);
+  if (tiles.masks.size() == 0)
+    return {pixels * (unsigned long long)(lights), pixels ? (unsigned long long)(lights) : 0ull};
+  const std::vector<uint32_t> masks = tiles.masks.to_vector();
+  ListedLights out;
+  for (int ty = 0; ty < tiles.tiles_y; ++ty)
+    for (int tx = 0; tx < tiles.tiles_x; ++tx) {
+      unsigned long long listed = 0;
+      const size_t first = (size_t(ty) * tiles.tiles_x + tx) * tiles.words;
+      for (int w = 0; w < tiles.words; ++w) listed += bit_count(masks[first + w]);
+      const int w = min_value(kLightTilePixels, width - tx * kLightTilePixels);
+      const int h = min_value(kLightTilePixels, height - ty * kLightTilePixels);
+      out.sum += listed * (unsigned long long)(w) * (unsigned long long)(h);
+      out.max = max_value(out.max, listed);
+    }
+  return out;
 }
 
 }  // namespace dv

@@ -67,6 +67,32 @@ DV_HD inline bool light_may_reach_ball(const LightView& l, double reach, const d
   return to_cone <= r;
 }
 
+// The lights a mask lists, in ascending order, one per next(); every light of `lights` when
+// the mask is nullptr (then it is a plain counter: a null mask known when compiling costs
+// nothing).
+struct ListedLightCursor {
+  const uint32_t* mask;
+  int lights;
+  int first = 0;  // the current word's first light (with a mask), or the next light (without)
+  uint32_t bits = mask != nullptr && lights > 0 ? mask[0] : 0u;
+
+  DV_HD bool next(int& light) {
+    if (mask == nullptr) {
+      if (first >= lights) return false;
+      light = first++;
+      return true;
+    }
+    while (bits == 0u) {
+      first += 32;
+      if (first >= lights) return false;
+      bits = mask[first / 32];
+    }
+    light = first + lowest_bit(bits);
+    bits &= bits - 1u;
+    return true;
+  }
+};
+
 // The masks of one frame's tiles (empty: every pixel evaluates every light).
 struct LightTilesView {
   View<const uint32_t> masks;  // tile (ty * tiles_x + tx), then words of 32 lights each
@@ -81,14 +107,6 @@ struct LightTilesView {
   }
 };
 
-// How many of `lights` lights a mask lists (all of them when mask is nullptr).
-DV_HD inline int listed_lights(const uint32_t* mask, int lights) {
-  if (mask == nullptr) return lights;
-  int n = 0;
-  for (int w = 0; w * 32 < lights; ++w) n += bit_count(mask[w]);
-  return n;
-}
-
 struct LightTiles {
   Buffer<uint32_t> masks;
   int tiles_x = 0;
@@ -96,6 +114,14 @@ struct LightTiles {
   int words = 0;
   LightTilesView view() const { return {masks.const_view(), tiles_x, words}; }
 };
+
+// Lights per pixel of a frame width x height: their sum over the pixels and their most (every
+// pixel evaluates all `lights` when `tiles` holds no masks). Reads the masks back to the host.
+struct ListedLights {
+  unsigned long long sum = 0;
+  unsigned long long max = 0;
+};
+ListedLights count_listed_lights(const LightTiles& tiles, int width, int height, int lights);
 
 // The tiles' masks of the scene's lights for `camera` (its width, height, near plane), in the
 // backend's memory; empty when culling is off, or with one light (or none) and cut-off 0.

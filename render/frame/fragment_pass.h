@@ -31,11 +31,10 @@ struct FragmentPassInputs {
   LightTilesView lights;  // the lights of each pixel's tile (engine/raster/light_tiles.h)
 };
 
-// Threads [first, first + count) of the pass; first a multiple of 32, so that lane groups fill
-// the same warps as in a launch of all threads.
-template <int kMinBlocks, class Source>
-void shade_fragment_threads(Backend backend, const char* name, const FragmentPassInputs& in,
-                            int64_t first, int64_t count, const Source& source) {
+// shade_fragment_threads with (kTiledLights) or without tile light lists.
+template <int kMinBlocks, bool kTiledLights, class Source>
+void shade_fragment_threads_as(Backend backend, const char* name, const FragmentPassInputs& in,
+                               int64_t first, int64_t count, const Source& source) {
   const SceneView& s = *in.scene;
   const RasterProjection projection = in.projection;
   const TileListsView lists = in.lists;
@@ -56,10 +55,11 @@ void shade_fragment_threads(Backend backend, const char* name, const FragmentPas
         const int64_t pixel = int64_t(y) * width + x;
         const PixelRay ray = pixel_ray(projection, x, y);
         const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
-        ShadePayload<Source> payload{s, source, ray.origin, ray.direction};
+        ShadePayload<Source, kTiledLights> payload{s, source, ray.origin, ray.direction};
         payload.cursor = first_cursor(source, t);
         payload.lanes = lanes;
-        payload.light_mask = lights.mask_of_pixel(x, y);
+        const uint32_t* tile_lights = lights.mask_of_pixel(x, y);  // unused without lists
+        if constexpr (kTiledLights) payload.light_mask = tile_lights;
         const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
         const WalkStatus status =
             walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
@@ -71,9 +71,20 @@ void shade_fragment_threads(Backend backend, const char* name, const FragmentPas
         rgb[3 * pixel + 1] = float(c.y);
         rgb[3 * pixel + 2] = float(c.z);
         count_pixel(counters, status.crossings, payload.samples,
-                    status.overflow || front.status.overflow, payload.cursor.flags,
-                    listed_lights(payload.light_mask, int(s.lights.size)));
+                    status.overflow || front.status.overflow, payload.cursor.flags);
       });
+}
+
+// Threads [first, first + count) of the pass; first a multiple of 32, so that lane groups fill
+// the same warps as in a launch of all threads. Without tile light lists (one light, or culling
+// off) the pass runs a kernel compiled without them, the code it ran before culling existed.
+template <int kMinBlocks, class Source>
+void shade_fragment_threads(Backend backend, const char* name, const FragmentPassInputs& in,
+                            int64_t first, int64_t count, const Source& source) {
+  if (in.lights.masks.size == 0)
+    shade_fragment_threads_as<kMinBlocks, false>(backend, name, in, first, count, source);
+  else
+    shade_fragment_threads_as<kMinBlocks, true>(backend, name, in, first, count, source);
 }
 
 }  // namespace dv

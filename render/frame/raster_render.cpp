@@ -104,6 +104,10 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   result.render.image.rgb = rgb.to_vector();
   if (backend == Backend::cuda) result.device_rgb = std::move(rgb);
   result.render.counters = counters.to_vector()[0];
+  const ListedLights listed =
+      count_listed_lights(light_tiles, projection.width, projection.height, int(view.lights.size));
+  result.render.counters.listed_lights = listed.sum;
+  result.render.counters.max_listed_lights = listed.max;
   result.volume_tiles = tile_order.volume_tiles();
   return result;
 }

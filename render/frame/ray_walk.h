@@ -34,8 +34,7 @@ DV_HD dvec3 walk_pixel(const SceneView& s, const CameraView& cam, const Source& 
   const WalkStatus status = walk_fragments(s, fragments, InsideSet{}, 0.0, t_near, t_far, payload);
   finish_walk(shadows, payload.cursor, thread);
   if (counters && writes_pixels<Source>())
-    count_pixel(counters, status.crossings, payload.samples, status.overflow, payload.cursor.flags,
-                listed_lights(light_mask, int(s.lights.size)));
+    count_pixel(counters, status.crossings, payload.samples, status.overflow, payload.cursor.flags);
   return payload.color + payload.transmittance * background;
 }
 

@@ -89,6 +89,10 @@ RenderResult render_reference(Backend backend, const SceneData& scene, const Cam
   result.image = Image(cam.width, cam.height);
   result.image.rgb = rgb.to_vector();
   result.counters = counters.to_vector()[0];
+  const ListedLights listed =
+      count_listed_lights(light_tiles, cam.width, cam.height, int(view.lights.size));
+  result.counters.listed_lights = listed.sum;
+  result.counters.max_listed_lights = listed.max;
   return result;
 }
 

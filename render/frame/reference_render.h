@@ -29,23 +29,20 @@ struct RenderCounters {
   unsigned long long max_hits = 0;         // most crossings of one pixel
   unsigned long long overflow_pixels = 0;  // pixels that hit kMaxHitsPerPixel or kMaxInsideObjects
   unsigned long long oracle_flag_pixels = 0;  // pixels whose shadow queries raised oracle flags
-  unsigned long long listed_lights = 0;       // lights each pixel shades with, summed
-  unsigned long long max_listed_lights = 0;   // most lights one pixel shades with
+  // Filled on the host from the light masks (count_listed_lights), not by count_pixel:
+  unsigned long long listed_lights = 0;      // lights each pixel shades with, summed
+  unsigned long long max_listed_lights = 0;  // most lights one pixel shades with
 };
 
-// Adds one pixel's walk to the counters; any thread of either backend may call it. `lights`:
-// how many lights the pixel's tile lists (engine/raster/light_tiles.h).
+// Adds one pixel's walk to the counters; any thread of either backend may call it.
 DV_HD inline void count_pixel(RenderCounters* c, unsigned long long crossings,
-                              unsigned long long samples, bool overflow, uint32_t shadow_flags,
-                              unsigned long long lights) {
+                              unsigned long long samples, bool overflow, uint32_t shadow_flags) {
   // Every pixel adds to the same few counters: combined per warp before the atomics.
   atomic_add_combined(&c->hits, crossings);
   atomic_add_combined(&c->volume_samples, samples);
   atomic_max_combined(&c->max_hits, crossings);
   atomic_add_combined(&c->overflow_pixels, overflow ? 1ull : 0ull);
   atomic_add_combined(&c->oracle_flag_pixels, shadow_flags ? 1ull : 0ull);
-  atomic_add_combined(&c->listed_lights, lights);
-  atomic_max_combined(&c->max_listed_lights, lights);
 }
 
 struct RenderResult {

@@ -21,7 +21,9 @@ namespace dv {
 // Opacity at which a ray stops: what is behind contributes less than this fraction.
 inline constexpr double kSaturatedTransmittance = 1e-6;
 
-template <class Source>
+// kTiledLights: whether pixels shade their tile's light list (light_mask); a payload without
+// one compiles to the plain loop over every light.
+template <class Source, bool kTiledLights = true>
 struct ShadePayload {
   const SceneView& s;
   const Source& shadows;
@@ -41,6 +43,13 @@ struct ShadePayload {
   }
 
   DV_HD bool done() const { return saturated(transmittance * transmittance_scale); }
+
+  DV_HD const uint32_t* listed_lights() const {
+    if constexpr (kTiledLights)
+      return light_mask;
+    else
+      return nullptr;
+  }
 
   // A translucent surface: its Phong colour over what lies behind, weighted by its opacity;
   // its transmissive part adds highlights and reflects, by the Fresnel reflectance F at the
@@ -67,13 +76,14 @@ struct ShadePayload {
     const ShadowReceiver at{point, n};
     const dvec3 shading = shading_normal(s, h.triangle, point, n);
     if (look.alpha > 0.0) {
-      const dvec3 c = shade_phong(s, shadows, cursor, light_mask, o, look.color, at, shading, -dir);
+      const dvec3 c =
+          shade_phong(s, shadows, cursor, listed_lights(), o, look.color, at, shading, -dir);
       color += transmittance * look.alpha * c;
     }
     const double cos_to_normal = glm::dot(n, dir);
     if (look.transmission > 0.0) {
       const dvec3 highlight =
-          shade_phong(s, shadows, cursor, light_mask, o, look.color, at, shading, -dir, true);
+          shade_phong(s, shadows, cursor, listed_lights(), o, look.color, at, shading, -dir, true);
       const double reflected = fresnel_schlick(o.ior, cos_to_normal) * o.ambient;
       color += transmittance * look.transmission * (highlight + dvec3(reflected));
     }
@@ -182,8 +192,8 @@ struct ShadePayload {
       n = len > 1e-12 ? -n / len : dvec3(0.0);
       if (glm::dot(n, dir) > 0.0) n = -n;
       const ShadowReceiver at{x};  // a medium point: no surface bias
-      const dvec3 c = shade_phong(s, shadows, cursor, light_mask, o, weighted_color / sigma_volume,
-                                  at, n, -dir);
+      const dvec3 c = shade_phong(s, shadows, cursor, listed_lights(), o,
+                                  weighted_color / sigma_volume, at, n, -dir);
       color += transmittance * alpha * (sigma_volume / sigma) * c;
     }
     transmittance *= 1.0 - alpha;

@@ -70,30 +70,25 @@ DV_HD dvec3 shade_phong(const SceneView& s, const Source& shadows, typename Sour
   const dvec3& p = at.point;
   dvec3 out = highlight_only ? dvec3(0.0) : o.ambient * color;
   const bool oriented = glm::dot(n, n) > 0.0;
-  const int lights = int(s.lights.size);
-  for (int first = 0; first < lights; first += 32) {
-    uint32_t listed = light_mask ? light_mask[first / 32] : bits_below(~0u, lights - first);
-    while (listed != 0u) {
-      const int li = first + lowest_bit(listed);
-      listed &= listed - 1u;
-      const LightView& l = s.lights[li];
-      const LightArrival a = light_arrival(l, p);
-      if (a.intensity <= 0.0) continue;
-      const double n_dot_l = oriented ? glm::dot(n, a.to_light) : 1.0;
-      if (n_dot_l <= 0.0) continue;
-      const dvec3 t = shadows.transmittance_rgb(cursor, at, li);
-      if (max_value(t.x, max_value(t.y, t.z)) <= 0.0) continue;
-      double spec = 0.0;
-      if (oriented && o.specular > 0.0) {
-        const dvec3 r = 2.0 * n_dot_l * n - a.to_light;
-        const double r_dot_v = glm::dot(r, to_eye);
-        if (r_dot_v > 0.0) spec = o.specular * pow(r_dot_v, o.shininess);
-      }
-      if (highlight_only)
-        out += l.color * (a.intensity * t) * spec;
-      else
-        out += l.color * (a.intensity * t) * (o.diffuse * n_dot_l * color + dvec3(spec));
+  ListedLightCursor lights{light_mask, int(s.lights.size)};
+  for (int li = 0; lights.next(li);) {
+    const LightView& l = s.lights[li];
+    const LightArrival a = light_arrival(l, p);
+    if (a.intensity <= 0.0) continue;
+    const double n_dot_l = oriented ? glm::dot(n, a.to_light) : 1.0;
+    if (n_dot_l <= 0.0) continue;
+    const dvec3 t = shadows.transmittance_rgb(cursor, at, li);
+    if (max_value(t.x, max_value(t.y, t.z)) <= 0.0) continue;
+    double spec = 0.0;
+    if (oriented && o.specular > 0.0) {
+      const dvec3 r = 2.0 * n_dot_l * n - a.to_light;
+      const double r_dot_v = glm::dot(r, to_eye);
+      if (r_dot_v > 0.0) spec = o.specular * pow(r_dot_v, o.shininess);
     }
+    if (highlight_only)
+      out += l.color * (a.intensity * t) * spec;
+    else
+      out += l.color * (a.intensity * t) * (o.diffuse * n_dot_l * color + dvec3(spec));
   }
   return out;
 }
