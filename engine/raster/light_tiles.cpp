@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "cuda/execute.h"
+#include "engine/oracle/transmittance.h"
 #include "engine/raster/camera_rays.h"
 
 namespace dv {
@@ -23,16 +24,16 @@ struct DepthRange {
 };
 
 DepthRange scene_depths(const SceneView& s, const CameraView& cam) {
-  const double pad = 1e-6 * s.diagonal + 1e-9;
-  const dvec3 lo = s.bounds.lo - dvec3(pad), hi = s.bounds.hi + dvec3(pad);
+  const Aabb box = padded_bounds(s);
   double z_lo = 1e300, z_hi = -1e300;
   for (int k = 0; k < 8; ++k) {
-    const dvec3 corner(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+    const dvec3 corner(k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y,
+                       k & 4 ? box.hi.z : box.lo.z);
     const double z = glm::dot(corner - cam.position, cam.forward);
     z_lo = min_value(z_lo, z);
     z_hi = max_value(z_hi, z);
   }
-  return {max_value(z_lo, max_value(cam.near_plane, pad)), z_hi};
+  return {max_value(z_lo, max_value(cam.near_plane, 1e-6 * s.diagonal + 1e-9)), z_hi};
 }
 
 }  // namespace
@@ -57,8 +58,8 @@ LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Came
   const int tiles_x = tiles.tiles_x, words = tiles.words;
   const double cutoff = culling.cutoff;
   const double slack = 1e-9 * (scene.diagonal + glm::length(cam.position)) + 1e-12;
-  const double pad = 1e-6 * scene.diagonal + 1e-9;
-  const dvec3 scene_lo = scene.bounds.lo - dvec3(pad), scene_hi = scene.bounds.hi + dvec3(pad);
+  const Aabb scene_box = padded_bounds(scene);
+  const dvec3 scene_lo = scene_box.lo, scene_hi = scene_box.hi;
   parallel_for(
       backend, "light_tiles", count, DV_KERNEL_LAMBDA(int64_t i) {
         const int64_t tile = i / words;
