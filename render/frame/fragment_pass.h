@@ -9,6 +9,7 @@
 
 #include "cuda/buffer.h"
 #include "cuda/execute.h"
+#include "cuda/execute_with_tables.h"
 #include "engine/raster/fragment_walk.h"
 #include "engine/raster/raster_fragments.h"
 #include "render/frame/fragment_lanes.h"
@@ -31,48 +32,113 @@ struct FragmentPassInputs {
   LightTilesView lights;  // the lights of each pixel's tile (engine/raster/light_tiles.h)
 };
 
-// shade_fragment_threads with (kTiledLights) or without tile light lists.
+// What one thread of the pass does: gather its pixel's fragments, walk them shading with
+// `source` and the scene's lights `lights` (where they are or a block's copy), write the pixel.
+template <class Source, bool kTiledLights>
+struct FragmentThread {
+  SceneView s;
+  RasterProjection projection;
+  TileListsView lists;
+  FragmentOrderView tile_order;
+  dvec3 background;
+  const InsideSet* eye_media;
+  View<float> rgb;
+  RenderCounters* counters;
+  LightTilesView light_tiles;
+  int64_t first;
+
+  DV_HD void operator()(int64_t i, const Source& source, View<const LightView> lights) const {
+    const int64_t t = first + i;
+    const int width = projection.width, height = projection.height;
+    int x, y;
+    LaneGroup lanes;
+    if (!pixel_of_fragment_thread(t, tile_order, width, height, x, y, lanes)) return;
+    if (!DV_IN_DEVICE_CODE && lanes.rank > 0) return;  // a CPU thread marches every share
+    const int64_t pixel = int64_t(y) * width + x;
+    const PixelRay ray = pixel_ray(projection, x, y);
+    const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
+    ShadePayload<Source, kTiledLights> payload{s, source, ray.origin, ray.direction};
+    if constexpr (kTiledLights) payload.lights.table = lights;
+    payload.cursor = first_cursor(source, t);
+    payload.lanes = lanes;
+    const uint32_t* tile_lights = light_tiles.mask_of_pixel(x, y);  // unused without lists
+    if constexpr (kTiledLights) payload.light_mask = tile_lights;
+    const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
+    const WalkStatus status =
+        walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
+    finish_walk(source, payload.cursor, t);
+    if (lanes.rank > 0) return;            // the group's lanes ended with the same pixel
+    if (!writes_pixels<Source>()) return;  // a walk that only gathers shadow queries
+    const dvec3 c = payload.color + payload.transmittance * background;
+    rgb[3 * pixel + 0] = float(c.x);
+    rgb[3 * pixel + 1] = float(c.y);
+    rgb[3 * pixel + 2] = float(c.z);
+    count_pixel(counters, status.crossings, payload.samples,
+                status.overflow || front.status.overflow, payload.cursor.flags);
+  }
+};
+
+// Shadow sources with per-light and per-face headers (shadow maps, deep shadow maps).
+template <class Source>
+concept HasFaceHeaders = requires(Source& source) {
+  source.lights;
+  source.light_faces;
+  source.faces;
+};
+
+// Where a source's headers lie in a block's copy of a launch's shared tables (-1: not there).
+struct FaceHeaderOffsets {
+  int32_t lights = -1;
+  int32_t light_faces = -1;
+  int32_t faces = -1;
+
+  // The source reading its headers from the block's copy `copy` where they were placed (a
+  // copy of it); a source without such headers itself.
+  template <class Source>
+  DV_HD decltype(auto) reading(const unsigned char* copy, const Source& source) const {
+    if constexpr (HasFaceHeaders<Source>) {
+      Source placed = source;
+      placed.lights = placed_view(source.lights, lights, copy);
+      placed.light_faces = placed_view(source.light_faces, light_faces, copy);
+      placed.faces = placed_view(source.faces, faces, copy);
+      return placed;
+    } else {
+      return (source);
+    }
+  }
+};
+
+// shade_fragment_threads with (kTiledLights) or without tile light lists. With lists (several
+// lights) a block first copies the lights and the source's light and face headers into its
+// shared memory, in that order as far as they fit (cuda/shared_tables.h): every pixel reads them
+// once per listed light.
 template <int kMinBlocks, bool kTiledLights, class Source>
 void shade_fragment_threads_as(Backend backend, const char* name, const FragmentPassInputs& in,
                                int64_t first, int64_t count, const Source& source) {
-  const SceneView& s = *in.scene;
-  const RasterProjection projection = in.projection;
-  const TileListsView lists = in.lists;
-  const FragmentOrderView tile_order = in.tile_order;
-  const dvec3 background = in.background;
-  const InsideSet* eye_media = in.eye_media;
-  const View<float> rgb = in.rgb;
-  RenderCounters* counters = in.counters;
-  const LightTilesView lights = in.lights;
-  const int width = projection.width, height = projection.height;
-  parallel_for_bounded<kMinBlocks>(
-      backend, name, count, DV_KERNEL_LAMBDA(int64_t i) {
-        const int64_t t = first + i;
-        int x, y;
-        LaneGroup lanes;
-        if (!pixel_of_fragment_thread(t, tile_order, width, height, x, y, lanes)) return;
-        if (!DV_IN_DEVICE_CODE && lanes.rank > 0) return;  // a CPU thread marches every share
-        const int64_t pixel = int64_t(y) * width + x;
-        const PixelRay ray = pixel_ray(projection, x, y);
-        const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
-        ShadePayload<Source, kTiledLights> payload{s, source, ray.origin, ray.direction};
-        payload.cursor = first_cursor(source, t);
-        payload.lanes = lanes;
-        const uint32_t* tile_lights = lights.mask_of_pixel(x, y);  // unused without lists
-        if constexpr (kTiledLights) payload.light_mask = tile_lights;
-        const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
-        const WalkStatus status =
-            walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
-        finish_walk(source, payload.cursor, t);
-        if (lanes.rank > 0) return;            // the group's lanes ended with the same pixel
-        if (!writes_pixels<Source>()) return;  // a walk that only gathers shadow queries
-        const dvec3 c = payload.color + payload.transmittance * background;
-        rgb[3 * pixel + 0] = float(c.x);
-        rgb[3 * pixel + 1] = float(c.y);
-        rgb[3 * pixel + 2] = float(c.z);
-        count_pixel(counters, status.crossings, payload.samples,
-                    status.overflow || front.status.overflow, payload.cursor.flags);
-      });
+  const FragmentThread<Source, kTiledLights> thread{
+      *in.scene,    in.projection, in.lists,    in.tile_order, in.background,
+      in.eye_media, in.rgb,        in.counters, in.lights,     first};
+  if constexpr (!kTiledLights) {
+    parallel_for_bounded<kMinBlocks>(
+        backend, name, count, DV_KERNEL_LAMBDA(int64_t i) { thread(i, source, thread.s.lights); });
+  } else {
+    SharedTables tables;
+    const int scene_lights = tables.add(in.scene->lights);
+    int headers[3] = {-1, -1, -1};
+    if constexpr (HasFaceHeaders<Source>) {
+      headers[0] = tables.add(source.lights);
+      headers[1] = tables.add(source.light_faces);
+      headers[2] = tables.add(source.faces);
+    }
+    tables.place(shared_table_budget<kMinBlocks>(backend));
+    const int32_t lights_at = tables.placed_offset(scene_lights);
+    const FaceHeaderOffsets at{tables.placed_offset(headers[0]), tables.placed_offset(headers[1]),
+                               tables.placed_offset(headers[2])};
+    parallel_for_with_tables<kMinBlocks>(
+        backend, name, count, tables, DV_KERNEL_LAMBDA(int64_t i, const unsigned char* copy) {
+          thread(i, at.reading(copy, source), placed_view(thread.s.lights, lights_at, copy));
+        });
+  }
 }
 
 // Threads [first, first + count) of the pass; first a multiple of 32, so that lane groups fill

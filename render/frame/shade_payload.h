@@ -21,6 +21,26 @@ namespace dv {
 // Opacity at which a ray stops: what is behind contributes less than this fraction.
 inline constexpr double kSaturatedTransmittance = 1e-6;
 
+// The lights a payload shades with: with tile light lists a view of its own (the scene's
+// lights, or a block's copy of them in shared memory), without them the scene's.
+template <bool kTiledLights>
+struct ShadingLights {
+  View<const LightView> table;
+  DV_HD View<const LightView> of(const SceneView&) const { return table; }
+};
+template <>
+struct ShadingLights<false> {
+  DV_HD View<const LightView> of(const SceneView& s) const { return s.lights; }
+};
+
+template <bool kTiledLights>
+DV_HD ShadingLights<kTiledLights> scene_shading_lights(const SceneView& s) {
+  if constexpr (kTiledLights)
+    return {s.lights};
+  else
+    return {};
+}
+
 // kTiledLights: whether pixels shade their tile's light list (light_mask); a payload without
 // one compiles to the plain loop over every light.
 template <class Source, bool kTiledLights = true>
@@ -29,6 +49,7 @@ struct ShadePayload {
   const Source& shadows;
   dvec3 origin;
   dvec3 dir;
+  ShadingLights<kTiledLights> lights = scene_shading_lights<kTiledLights>(s);
   typename Source::Cursor cursor{};
   dvec3 color{0.0};
   dvec3 transmittance{1.0};
@@ -76,14 +97,14 @@ struct ShadePayload {
     const ShadowReceiver at{point, n};
     const dvec3 shading = shading_normal(s, h.triangle, point, n);
     if (look.alpha > 0.0) {
-      const dvec3 c =
-          shade_phong(s, shadows, cursor, listed_lights(), o, look.color, at, shading, -dir);
+      const dvec3 c = shade_phong(lights.of(s), shadows, cursor, listed_lights(), o, look.color, at,
+                                  shading, -dir);
       color += transmittance * look.alpha * c;
     }
     const double cos_to_normal = glm::dot(n, dir);
     if (look.transmission > 0.0) {
-      const dvec3 highlight =
-          shade_phong(s, shadows, cursor, listed_lights(), o, look.color, at, shading, -dir, true);
+      const dvec3 highlight = shade_phong<kTiledLights>(
+          lights.of(s), shadows, cursor, listed_lights(), o, look.color, at, shading, -dir, true);
       const double reflected = fresnel_schlick(o.ior, cos_to_normal) * o.ambient;
       color += transmittance * look.transmission * (highlight + dvec3(reflected));
     }
@@ -192,7 +213,7 @@ struct ShadePayload {
       n = len > 1e-12 ? -n / len : dvec3(0.0);
       if (glm::dot(n, dir) > 0.0) n = -n;
       const ShadowReceiver at{x};  // a medium point: no surface bias
-      const dvec3 c = shade_phong(s, shadows, cursor, listed_lights(), o,
+      const dvec3 c = shade_phong(lights.of(s), shadows, cursor, listed_lights(), o,
                                   weighted_color / sigma_volume, at, n, -dir);
       color += transmittance * alpha * (sigma_volume / sigma) * c;
     }
