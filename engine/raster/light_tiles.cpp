@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bits.h"
 #include "core/error.h"
 #include "cuda/execute.h"
 #include "engine/oracle/transmittance.h"
@@ -45,7 +46,7 @@ LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Came
                 std::to_string(culling.cutoff));
   LightTiles tiles;
   const int lights = int(scene.lights.size);
-  if (!culling.enabled || lights == 0 || (lights == 1 && culling.cutoff == 0.0)) return tiles;
+  if (lights == 0 || (lights == 1 && (culling.cutoff == 0.0 || !culling.enabled))) return tiles;
   tiles.tiles_x = (camera.width + kLightTilePixels - 1) / kLightTilePixels;
   tiles.tiles_y = (camera.height + kLightTilePixels - 1) / kLightTilePixels;
   tiles.words = (lights + 31) / 32;
@@ -57,6 +58,7 @@ LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Came
   const View<const LightView> light_views = scene.lights;
   const int tiles_x = tiles.tiles_x, words = tiles.words;
   const double cutoff = culling.cutoff;
+  const bool cull = culling.enabled;
   const double slack = 1e-9 * (scene.diagonal + glm::length(cam.position)) + 1e-12;
   const Aabb scene_box = padded_bounds(scene);
   const dvec3 scene_lo = scene_box.lo, scene_hi = scene_box.hi;
@@ -64,6 +66,10 @@ LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Came
       backend, "light_tiles", count, DV_KERNEL_LAMBDA(int64_t i) {
         const int64_t tile = i / words;
         const int word = int(i % words);
+        if (!cull) {  // every light
+          masks[i] = bits_below(~0u, int(light_views.size) - 32 * word);
+          return;
+        }
         uint32_t listed = 0;
         if (depths.lo <= depths.hi) {
           const int x0 = int(tile % tiles_x) * kLightTilePixels;

@@ -14,13 +14,14 @@
 // sums the same terms in the same order as without culling: the image is the same to the bit.
 // With c > 0 a dropped light changes a pixel by less than c * (diffuse + specular) of the
 // materials it lights (colours <= 1, the composite weights along a ray summing to <= 1).
-// Lights stay in ascending index order within a mask. A scene with one light and c = 0 gets no
-// masks: its pixels evaluate that light as before.
+// Lights stay in ascending index order within a mask. A scene with one light and c = 0 (or
+// culling off) gets no masks: its pixels evaluate that light as before. With culling off and
+// several lights every tile lists every light, so that the pass runs the loop over listed
+// lights, the faster one for several lights (render/frame/shading.h).
 #pragma once
 
 #include <cstdint>
 
-#include "core/bits.h"
 #include "core/hd.h"
 #include "core/math.h"
 #include "cuda/buffer.h"
@@ -67,32 +68,6 @@ DV_HD inline bool light_may_reach_ball(const LightView& l, double reach, const d
   return to_cone <= r;
 }
 
-// The lights a mask lists, in ascending order, one per next(); every light of `lights` when
-// the mask is nullptr (then it is a plain counter: a null mask known when compiling costs
-// nothing).
-struct ListedLightCursor {
-  const uint32_t* mask;
-  int lights;
-  int first = 0;  // the current word's first light (with a mask), or the next light (without)
-  uint32_t bits = mask != nullptr && lights > 0 ? mask[0] : 0u;
-
-  DV_HD bool next(int& light) {
-    if (mask == nullptr) {
-      if (first >= lights) return false;
-      light = first++;
-      return true;
-    }
-    while (bits == 0u) {
-      first += 32;
-      if (first >= lights) return false;
-      bits = mask[first / 32];
-    }
-    light = first + lowest_bit(bits);
-    bits &= bits - 1u;
-    return true;
-  }
-};
-
 // The masks of one frame's tiles (empty: every pixel evaluates every light).
 struct LightTilesView {
   View<const uint32_t> masks;  // tile (ty * tiles_x + tx), then words of 32 lights each
@@ -124,7 +99,8 @@ struct ListedLights {
 ListedLights count_listed_lights(const LightTiles& tiles, int width, int height, int lights);
 
 // The tiles' masks of the scene's lights for `camera` (its width, height, near plane), in the
-// backend's memory; empty when culling is off, or with one light (or none) and cut-off 0.
+// backend's memory: every light in every tile when culling is off; empty with no light, or one
+// light and cut-off 0 or culling off.
 // Throws Error for a negative or non-finite cut-off.
 LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Camera& camera,
                              const LightCulling& culling);

@@ -52,7 +52,8 @@ struct RenderResult {
   // The exact oracle's deferred pass (render/frame/oracle_frame.h), when it ran: its queries,
   // rounds, buffers and walks.
   OracleFrameStats oracle;
-  // The light culling that ran: enabled when the pixels shaded their tiles' lists.
+  // The light culling that ran: enabled when the pixels shaded their tiles' culled lists (with
+  // culling off they shade lists of every light, not counted here).
   LightCulling light_culling{false, 0.0};
   nlohmann::json stats() const;
 };

@@ -97,8 +97,8 @@ struct ShadePayload {
     const ShadowReceiver at{point, n};
     const dvec3 shading = shading_normal(s, h.triangle, point, n);
     if (look.alpha > 0.0) {
-      const dvec3 c = shade_phong(lights.of(s), shadows, cursor, listed_lights(), o, look.color, at,
-                                  shading, -dir);
+      const dvec3 c = shade_phong<kTiledLights>(lights.of(s), shadows, cursor, listed_lights(), o,
+                                                look.color, at, shading, -dir);
       color += transmittance * look.alpha * c;
     }
     const double cos_to_normal = glm::dot(n, dir);
@@ -213,8 +213,8 @@ struct ShadePayload {
       n = len > 1e-12 ? -n / len : dvec3(0.0);
       if (glm::dot(n, dir) > 0.0) n = -n;
       const ShadowReceiver at{x};  // a medium point: no surface bias
-      const dvec3 c = shade_phong(lights.of(s), shadows, cursor, listed_lights(), o,
-                                  weighted_color / sigma_volume, at, n, -dir);
+      const dvec3 c = shade_phong<kTiledLights>(lights.of(s), shadows, cursor, listed_lights(), o,
+                                                weighted_color / sigma_volume, at, n, -dir);
       color += transmittance * alpha * (sigma_volume / sigma) * c;
     }
     transmittance *= 1.0 - alpha;

@@ -61,8 +61,13 @@ DV_HD inline LightArrival light_arrival(const LightView& l, const dvec3& p) {
 // With `highlight_only` just the specular highlights (what a transmissive surface shows). The
 // lights are those of `lights` (the scene's, where they are or a block's copy) that light_mask
 // lists (its tile's, engine/raster/light_tiles.h), in ascending order, or every light when it
-// is nullptr.
-template <class Source>
+// is nullptr. kListed compiles the loop over a mask's words and their set bits, which a pass
+// with light lists runs; without, the plain loop over every light (light_mask must be null).
+// Each is the faster where it runs (results/perf/2026-12-06-shared-tables, an H200):
+// knecht-32-lights' shadow-map pass at 720x480 takes 12.2-12.9 ms with the word loop and
+// 30.4-31.9 ms with a loop that takes one light per step (a counter, or the mask's next bit),
+// while knecht-fig56's one-light passes are 2-4 % faster with the plain loop.
+template <bool kListed, class Source>
 DV_HD dvec3 shade_phong(View<const LightView> lights, const Source& shadows,
                         typename Source::Cursor& cursor, const uint32_t* light_mask,
                         const ObjectView& o, const dvec3& color, const ShadowReceiver& at,
@@ -71,30 +76,37 @@ DV_HD dvec3 shade_phong(View<const LightView> lights, const Source& shadows,
   const dvec3& p = at.point;
   dvec3 out = highlight_only ? dvec3(0.0) : o.ambient * color;
   const bool oriented = glm::dot(n, n) > 0.0;
-  const int count = int(lights.size);
-  for (int first = 0; first < count; first += 32) {
-    uint32_t listed = light_mask ? light_mask[first / 32] : bits_below(~0u, count - first);
-    while (listed != 0u) {
-      const int li = first + lowest_bit(listed);
-      listed &= listed - 1u;
-      const LightView& l = lights[li];
-      const LightArrival a = light_arrival(l, p);
-      if (a.intensity <= 0.0) continue;
-      const double n_dot_l = oriented ? glm::dot(n, a.to_light) : 1.0;
-      if (n_dot_l <= 0.0) continue;
-      const dvec3 t = shadows.transmittance_rgb(cursor, at, li);
-      if (max_value(t.x, max_value(t.y, t.z)) <= 0.0) continue;
-      double spec = 0.0;
-      if (oriented && o.specular > 0.0) {
-        const dvec3 r = 2.0 * n_dot_l * n - a.to_light;
-        const double r_dot_v = glm::dot(r, to_eye);
-        if (r_dot_v > 0.0) spec = o.specular * pow(r_dot_v, o.shininess);
-      }
-      if (highlight_only)
-        out += l.color * (a.intensity * t) * spec;
-      else
-        out += l.color * (a.intensity * t) * (o.diffuse * n_dot_l * color + dvec3(spec));
+  const auto add_light = [&](int li) {
+    const LightView& l = lights[li];
+    const LightArrival a = light_arrival(l, p);
+    if (a.intensity <= 0.0) return;
+    const double n_dot_l = oriented ? glm::dot(n, a.to_light) : 1.0;
+    if (n_dot_l <= 0.0) return;
+    const dvec3 t = shadows.transmittance_rgb(cursor, at, li);
+    if (max_value(t.x, max_value(t.y, t.z)) <= 0.0) return;
+    double spec = 0.0;
+    if (oriented && o.specular > 0.0) {
+      const dvec3 r = 2.0 * n_dot_l * n - a.to_light;
+      const double r_dot_v = glm::dot(r, to_eye);
+      if (r_dot_v > 0.0) spec = o.specular * pow(r_dot_v, o.shininess);
     }
+    if (highlight_only)
+      out += l.color * (a.intensity * t) * spec;
+    else
+      out += l.color * (a.intensity * t) * (o.diffuse * n_dot_l * color + dvec3(spec));
+  };
+  const int count = int(lights.size);
+  if constexpr (kListed) {
+    for (int first = 0; first < count; first += 32) {
+      uint32_t listed = light_mask ? light_mask[first / 32] : bits_below(~0u, count - first);
+      while (listed != 0u) {
+        const int li = first + lowest_bit(listed);
+        listed &= listed - 1u;
+        add_light(li);
+      }
+    }
+  } else {
+    for (int li = 0; li < count; ++li) add_light(li);
   }
   return out;
 }

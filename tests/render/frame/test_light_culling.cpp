@@ -1,7 +1,8 @@
 // Light culling per screen tile (engine/raster/light_tiles.h): the ball test never drops a light
 // that adds to a point of the ball; with cut-off 0 a culled frame has the bits of an unculled
 // one (raster and ray-walk renderers, CPU and CUDA) while its pixels evaluate fewer lights; with
-// a cut-off the change stays within the stated bound and more lights are dropped.
+// a cut-off the change stays within the stated bound and more lights are dropped; the camera
+// pass's two light loops (plain, and over listed lights) give a one-light frame the same bits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -150,6 +151,44 @@ void check_cutoff(Backend backend) {
   EXPECT_LE(worst, bound);
   EXPECT_GT(worst, 0.0) << "the cut-off drops lights that add something";
   EXPECT_LT(listed_mean(f.culled), listed_mean(exact)) << "omni lights drop beyond their reach";
+}
+
+// A one-light frame runs the camera pass's plain loop over every light (no masks); a cut-off so
+// small that the light stays listed everywhere gives it masks, and so the loop over listed
+// lights (render/frame/shading.h). Both loops must give the same bits.
+void check_one_light_loops(Backend backend, const std::string& shadows) {
+  SCOPED_TRACE(shadows);
+  Scene scene = load_scene(test::source_dir() + "/experiments/scenes/knecht-fig56.json");
+  ASSERT_EQ(scene.lights.size(), 1u);
+  scene.camera.width = 240;
+  scene.camera.height = 160;
+  const SceneData data(scene, backend == Backend::cuda ? Memory::device : Memory::host);
+  auto method = shadow_registry().create(
+      shadows, StrategyParams::parse(shadows == "none" ? std::vector<std::string>{}
+                                                       : std::vector<std::string>{"res=256"}));
+  const Frames f = render_both(backend, true, scene, data, *method, 1e-300);
+  const RenderResult plain =
+      render_raster(backend, data, scene.camera, *method, scene.background, {}, {true, 0.0}).render;
+  ASSERT_EQ(f.culled.image.rgb.size(), plain.image.rgb.size());
+  EXPECT_EQ(f.culled.counters.max_listed_lights, 1u);
+  EXPECT_GT(listed_mean(f.culled), 0.5) << "the light is listed wherever something is shaded";
+  size_t differing = 0;
+  for (size_t i = 0; i < plain.image.rgb.size(); ++i)
+    differing += f.culled.image.rgb[i] != plain.image.rgb[i] ||
+                 f.unculled.image.rgb[i] != plain.image.rgb[i];
+  EXPECT_EQ(differing, 0u) << "of " << plain.image.rgb.size() << " channel values";
+}
+
+TEST(LightCulling, CpuPlainAndListedLoopsAgree) {
+  for (const std::string shadows : {"none", "shadowmap", "dsm"})
+    check_one_light_loops(Backend::cpu, shadows);
+}
+
+TEST(LightCulling, CudaPlainAndListedLoopsAgree) {
+  std::string why;
+  if (!cuda_device_available(&why)) GTEST_SKIP() << "needs a GPU: " << why;
+  for (const std::string shadows : {"none", "shadowmap", "dsm"})
+    check_one_light_loops(Backend::cuda, shadows);
 }
 
 TEST(LightCulling, CpuExactCullingKeepsTheBits) {
