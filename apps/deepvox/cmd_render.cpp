@@ -46,8 +46,8 @@ void explain_light_culling(const RenderResult& r, int64_t lights, int frame) {
     std::cout << "per " << kLightTilePixels << "x" << kLightTilePixels << "-pixel tile, cut-off "
               << exact_text(r.light_culling.cutoff);
   else
-    std::cout << "without tile lists (one light and cut-off 0, or --no-light-culling: every "
-                 "pixel evaluates every light)";
+    std::cout << "off (one light and cut-off 0, or --no-light-culling: every pixel evaluates "
+                 "every light)";
   std::cout << ": " << fixed_text(pixels > 0 ? double(r.counters.listed_lights) / pixels : 0.0, 2)
             << " of " << lights << " lights per pixel on average, at most "
             << r.counters.max_listed_lights << "\n"
@@ -119,7 +119,7 @@ Runner add_render(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag(
       "--no-light-culling", [opt](std::int64_t) { opt->culling.enabled = false; },
-      "every pixel evaluates every light (no per-tile light lists)");
+      "every pixel evaluates every light (every tile lists every light)");
   add_staging_options(cmd, opt->staging);
   return [opt] {
     check_image_path(opt->out);  // before any work: an unwritable output would lose the render
