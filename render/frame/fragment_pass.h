@@ -36,44 +36,37 @@ struct FragmentPassInputs {
 // `source` and the scene's lights `lights` (where they are or a block's copy), write the pixel.
 template <class Source, bool kTiledLights>
 struct FragmentThread {
-  SceneView s;
-  RasterProjection projection;
-  TileListsView lists;
-  FragmentOrderView tile_order;
-  dvec3 background;
-  const InsideSet* eye_media;
-  View<float> rgb;
-  RenderCounters* counters;
-  LightTilesView light_tiles;
+  SceneView s;  // a copy of *in.scene: in.scene points into host memory
+  FragmentPassInputs in;
   int64_t first;
 
   DV_HD void operator()(int64_t i, const Source& source, View<const LightView> lights) const {
     const int64_t t = first + i;
-    const int width = projection.width, height = projection.height;
+    const int width = in.projection.width, height = in.projection.height;
     int x, y;
     LaneGroup lanes;
-    if (!pixel_of_fragment_thread(t, tile_order, width, height, x, y, lanes)) return;
+    if (!pixel_of_fragment_thread(t, in.tile_order, width, height, x, y, lanes)) return;
     if (!DV_IN_DEVICE_CODE && lanes.rank > 0) return;  // a CPU thread marches every share
     const int64_t pixel = int64_t(y) * width + x;
-    const PixelRay ray = pixel_ray(projection, x, y);
-    const NearPlaneStart front = start_at_near_plane(s, projection, ray, *eye_media);
+    const PixelRay ray = pixel_ray(in.projection, x, y);
+    const NearPlaneStart front = start_at_near_plane(s, in.projection, ray, *in.eye_media);
     ShadePayload<Source, kTiledLights> payload{s, source, ray.origin, ray.direction};
     if constexpr (kTiledLights) payload.lights.table = lights;
     payload.cursor = first_cursor(source, t);
     payload.lanes = lanes;
-    const uint32_t* tile_lights = light_tiles.mask_of_pixel(x, y);  // unused without lists
+    const uint32_t* tile_lights = in.lights.mask_of_pixel(x, y);  // unused without lists
     if constexpr (kTiledLights) payload.light_mask = tile_lights;
-    const RasterFragments fragments{&s, lists, x, y, ray.origin, ray.direction};
+    const RasterFragments fragments{&s, in.lists, x, y, ray.origin, ray.direction};
     const WalkStatus status =
         walk_fragments(s, fragments, front.status.inside, front.t, front.t, 1e300, payload);
     finish_walk(source, payload.cursor, t);
     if (lanes.rank > 0) return;            // the group's lanes ended with the same pixel
     if (!writes_pixels<Source>()) return;  // a walk that only gathers shadow queries
-    const dvec3 c = payload.color + payload.transmittance * background;
-    rgb[3 * pixel + 0] = float(c.x);
-    rgb[3 * pixel + 1] = float(c.y);
-    rgb[3 * pixel + 2] = float(c.z);
-    count_pixel(counters, status.crossings, payload.samples,
+    const dvec3 c = payload.color + payload.transmittance * in.background;
+    in.rgb[3 * pixel + 0] = float(c.x);
+    in.rgb[3 * pixel + 1] = float(c.y);
+    in.rgb[3 * pixel + 2] = float(c.z);
+    count_pixel(in.counters, status.crossings, payload.samples,
                 status.overflow || front.status.overflow, payload.cursor.flags);
   }
 };
@@ -115,9 +108,7 @@ struct FaceHeaderOffsets {
 template <int kMinBlocks, bool kTiledLights, class Source>
 void shade_fragment_threads_as(Backend backend, const char* name, const FragmentPassInputs& in,
                                int64_t first, int64_t count, const Source& source) {
-  const FragmentThread<Source, kTiledLights> thread{
-      *in.scene,    in.projection, in.lists,    in.tile_order, in.background,
-      in.eye_media, in.rgb,        in.counters, in.lights,     first};
+  const FragmentThread<Source, kTiledLights> thread{*in.scene, in, first};
   if constexpr (!kTiledLights) {
     parallel_for_bounded<kMinBlocks>(
         backend, name, count, DV_KERNEL_LAMBDA(int64_t i) { thread(i, source, thread.s.lights); });
