@@ -35,6 +35,7 @@ struct FrameCase {
   const char* params = "";
   int width = 0, height = 0;
   double goal_ms = 0.0;
+  LooksKernel looks_kernel = LooksKernel::fitted;
 };
 
 void raster_render_case(benchmark::State& state, const FrameCase& c, Backend backend) {
@@ -46,13 +47,14 @@ void raster_render_case(benchmark::State& state, const FrameCase& c, Backend bac
   const SceneData data(scene, memory_of(backend));
   const StrategyParams params = *c.params ? StrategyParams::parse({c.params}) : StrategyParams{};
   const TimedGeneration g = timed_generation(c.shadows, params, data, backend, scene.camera);
-  timed_frame(backend, data, scene.camera, *g.method, scene.background);  // warm-up
+  timed_frame(backend, data, scene.camera, *g.method, scene.background, c.looks_kernel);  // warm-up
   double raster_ms = 0.0, fragment_ms = 0.0;
   OracleFrameStats oracle;  // the deferred oracle pass's parts, summed over the iterations
   int64_t entries = 0;
   start_kernel_counters();
   for (auto _ : state) {
-    const TimedFrame f = timed_frame(backend, data, scene.camera, *g.method, scene.background);
+    const TimedFrame f =
+        timed_frame(backend, data, scene.camera, *g.method, scene.background, c.looks_kernel);
     state.SetIterationTime(f.milliseconds / 1e3);
     raster_ms += f.result.raster_ms;
     entries = f.result.raster.entries;
@@ -164,6 +166,28 @@ const char* const kFeatureShadows[] = {"none", "shadowmap", "dsm"};
           ->Iterations(20);
     }
   }
+  return true;
+}();
+
+// What the camera pass's kernel for plain surface looks saves (render/frame/shade_payload.h): grey
+// scenes (every surface untextured, without glass, not emitting) with that kernel (fitted) and with
+// the general one every other scene runs, in one binary; 720x480 without shadows, with a shadow map
+// and with a dsm (compact, 1024^2).
+[[maybe_unused]] const bool kLooksKernelsRegistered = [] {
+  for (const char* scene_file : {"knecht-fig56.json", "translucent-boxes.json"})
+    for (const char* shadows : kFeatureShadows)
+      for (const LooksKernel kernel : {LooksKernel::fitted, LooksKernel::general}) {
+        const std::string file = scene_file;
+        const std::string name = "looks/" + file.substr(0, file.find('.')) + "/" + shadows + "/" +
+                                 (kernel == LooksKernel::fitted ? "fitted" : "general") +
+                                 "/720x480/cuda";
+        FrameCase c{scene_file, shadows, "", 720, 480};
+        c.looks_kernel = kernel;
+        benchmark::RegisterBenchmark(name.c_str(), raster_render_case, c, Backend::cuda)
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(20);
+      }
   return true;
 }();
 

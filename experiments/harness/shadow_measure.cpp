@@ -22,9 +22,9 @@ TimedGeneration timed_generation(const std::string& strategy, const StrategyPara
 }
 
 TimedFrame timed_frame(Backend backend, const SceneData& data, const Camera& camera,
-                       ShadowMethod& method, const dvec3& background) {
+                       ShadowMethod& method, const dvec3& background, LooksKernel looks_kernel) {
   TimedFrame f;
-  f.result = render_raster(backend, data, camera, method, background);
+  f.result = render_raster(backend, data, camera, method, background, {}, {}, looks_kernel);
   f.milliseconds = f.result.raster_ms + f.result.fragment_ms;
   return f;
 }

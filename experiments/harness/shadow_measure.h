@@ -40,7 +40,8 @@ struct TimedFrame {
 // One frame of the raster renderer with `method`'s shadows (prepared already, or by the
 // renderer on its first frame).
 TimedFrame timed_frame(Backend backend, const SceneData& data, const Camera& camera,
-                       ShadowMethod& method, const dvec3& background);
+                       ShadowMethod& method, const dvec3& background,
+                       LooksKernel looks_kernel = LooksKernel::fitted);
 
 // One warm-up and `repeat` timed repetitions of a fresh generation, then one warm-up and
 // `repeat` timed frames with the last generation's method.

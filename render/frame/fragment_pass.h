@@ -30,11 +30,12 @@ struct FragmentPassInputs {
   View<float> rgb;
   RenderCounters* counters;
   LightTilesView lights;  // the lights of each pixel's tile (engine/raster/light_tiles.h)
+  SurfaceLooks looks;     // plain: every object of the scene has a plain look (shade_payload.h)
 };
 
 // What one thread of the pass does: gather its pixel's fragments, walk them shading with
 // `source` and the scene's lights `lights` (where they are or a block's copy), write the pixel.
-template <class Source, bool kTiledLights>
+template <class Source, bool kTiledLights, SurfaceLooks kLooks>
 struct FragmentThread {
   SceneView s;  // a copy of *in.scene: in.scene points into host memory
   FragmentPassInputs in;
@@ -50,7 +51,7 @@ struct FragmentThread {
     const int64_t pixel = int64_t(y) * width + x;
     const PixelRay ray = pixel_ray(in.projection, x, y);
     const NearPlaneStart front = start_at_near_plane(s, in.projection, ray, *in.eye_media);
-    ShadePayload<Source, kTiledLights> payload{s, source, ray.origin, ray.direction};
+    ShadePayload<Source, kTiledLights, kLooks> payload{s, source, ray.origin, ray.direction};
     if constexpr (kTiledLights) payload.lights.table = lights;
     payload.cursor = first_cursor(source, t);
     payload.lanes = lanes;
@@ -101,14 +102,14 @@ struct FaceHeaderOffsets {
   }
 };
 
-// shade_fragment_threads with (kTiledLights) or without tile light lists. With lists (several
-// lights) a block first copies the lights and the source's light and face headers into its
-// shared memory, in that order as far as they fit (cuda/shared_tables.h): every pixel reads them
-// once per listed light.
-template <int kMinBlocks, bool kTiledLights, class Source>
+// shade_fragment_threads with (kTiledLights) or without tile light lists, for surfaces of looks
+// kLooks. With lists (several lights) a block first copies the lights and the source's light and
+// face headers into its shared memory, in that order as far as they fit (cuda/shared_tables.h):
+// every pixel reads them once per listed light.
+template <int kMinBlocks, bool kTiledLights, SurfaceLooks kLooks, class Source>
 void shade_fragment_threads_as(Backend backend, const char* name, const FragmentPassInputs& in,
                                int64_t first, int64_t count, const Source& source) {
-  const FragmentThread<Source, kTiledLights> thread{*in.scene, in, first};
+  const FragmentThread<Source, kTiledLights, kLooks> thread{*in.scene, in, first};
   if constexpr (!kTiledLights) {
     parallel_for_bounded<kMinBlocks>(
         backend, name, count, DV_KERNEL_LAMBDA(int64_t i) { thread(i, source, thread.s.lights); });
@@ -134,14 +135,27 @@ void shade_fragment_threads_as(Backend backend, const char* name, const Fragment
 
 // Threads [first, first + count) of the pass; first a multiple of 32, so that lane groups fill
 // the same warps as in a launch of all threads. Without tile light lists (one light, or culling
-// off) the pass runs a kernel compiled without them, the code it ran before culling existed.
-template <int kMinBlocks, class Source>
-void shade_fragment_threads(Backend backend, const char* name, const FragmentPassInputs& in,
+// off) the pass runs a kernel compiled without them, the code it ran before culling existed; and
+// with kPlainLooksKernel, on a scene whose surfaces are all plain (in.looks), one compiled for
+// plain looks only (then it returns true). Passes with lists and the oracle's walks keep the
+// general payload.
+template <int kMinBlocks, bool kPlainLooksKernel, class Source>
+bool shade_fragment_threads(Backend backend, const char* name, const FragmentPassInputs& in,
                             int64_t first, int64_t count, const Source& source) {
-  if (in.lights.masks.size == 0)
-    shade_fragment_threads_as<kMinBlocks, false>(backend, name, in, first, count, source);
-  else
-    shade_fragment_threads_as<kMinBlocks, true>(backend, name, in, first, count, source);
+  constexpr SurfaceLooks any = SurfaceLooks::any;
+  if (in.lights.masks.size != 0) {
+    shade_fragment_threads_as<kMinBlocks, true, any>(backend, name, in, first, count, source);
+    return false;
+  }
+  if constexpr (kPlainLooksKernel) {
+    if (in.looks == SurfaceLooks::plain) {
+      shade_fragment_threads_as<kMinBlocks, false, SurfaceLooks::plain>(backend, name, in, first,
+                                                                        count, source);
+      return true;
+    }
+  }
+  shade_fragment_threads_as<kMinBlocks, false, any>(backend, name, in, first, count, source);
+  return false;
 }
 
 }  // namespace dv

@@ -31,6 +31,12 @@ inline constexpr int kFragmentMinBlocks<ShadowMapSource> = 2;
 // without shadows.
 inline constexpr int kOracleWalkMinBlocks = 2;
 
+SurfaceLooks surface_looks_of(const SceneData& scene) {
+  for (const ObjectView& o : scene.host_objects())
+    if (!plain_look(o)) return SurfaceLooks::any;
+  return SurfaceLooks::plain;
+}
+
 }  // namespace
 
 nlohmann::json RasterRenderResult::stats() const {
@@ -39,13 +45,15 @@ nlohmann::json RasterRenderResult::stats() const {
   j["raster_ms"] = raster_ms;
   j["fragment_ms"] = fragment_ms;
   j["volume_tiles"] = volume_tiles;
+  j["plain_looks_pass"] = plain_looks_pass;
   j["raster"] = raster;
   return j;
 }
 
 RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
                                  ShadowMethod& shadows, const dvec3& background,
-                                 const OracleFrameOptions& oracle, const LightCulling& culling) {
+                                 const OracleFrameOptions& oracle, const LightCulling& culling,
+                                 LooksKernel looks_kernel) {
   const Memory memory = memory_of(backend);
   if (scene.memory() != memory) throw Error("render_raster: scene data is in the wrong memory");
   const SceneView& view = scene.view();
@@ -75,27 +83,30 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   result.render.light_culling = {culling.enabled && light_tiles.masks.size() > 0, culling.cutoff};
   const FragmentOrder tile_order =
       order_fragment_tiles(backend, view, projection, lists.view(), eye_media.data());
-  const FragmentPassInputs inputs{&view,
-                                  projection,
-                                  lists.view(),
-                                  tile_order.view(),
-                                  background,
-                                  eye_media.data(),
-                                  rgb.view(),
-                                  counters.data(),
-                                  light_tiles.view()};
+  const FragmentPassInputs inputs{
+      &view,
+      projection,
+      lists.view(),
+      tile_order.view(),
+      background,
+      eye_media.data(),
+      rgb.view(),
+      counters.data(),
+      light_tiles.view(),
+      looks_kernel == LooksKernel::fitted ? surface_looks_of(scene) : SurfaceLooks::any};
   const int64_t threads = fragment_thread_count(tile_order.order.size());
   std::visit(
       [&](const auto& s) {
         using Source = std::decay_t<decltype(s)>;
         const auto walk_threads = [&](const char* name, int64_t first, int64_t count,
                                       const auto& walk) {
-          shade_fragment_threads<kOracleWalkMinBlocks>(backend, name, inputs, first, count, walk);
+          shade_fragment_threads<kOracleWalkMinBlocks, false>(backend, name, inputs, first, count,
+                                                              walk);
         };
         if (run_if_deferred_oracle(backend, s, threads, oracle, result.render.oracle, walk_threads))
           return;
-        shade_fragment_threads<kFragmentMinBlocks<Source>>(backend, "raster_fragment_pass", inputs,
-                                                           0, threads, s);
+        result.plain_looks_pass = shade_fragment_threads<kFragmentMinBlocks<Source>, true>(
+            backend, "raster_fragment_pass", inputs, 0, threads, s);
       },
       source);
   result.fragment_ms = fragment_timer.stop();

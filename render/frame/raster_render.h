@@ -21,16 +21,25 @@ struct RasterRenderResult {
   double raster_ms = 0.0;    // binning into tile lists
   double fragment_ms = 0.0;  // tile order, per-pixel gather, sort, walk and shading
   int64_t volume_tiles = 0;  // tiles whose pixels split their volume steps between lanes
+  // Whether the camera pass ran its kernel for plain surface looks (every object untextured,
+  // without glass and not emitting: render/frame/shade_payload.h); oracle frames and passes with
+  // light lists never do.
+  bool plain_looks_pass = false;
   // CUDA: the image still in device memory (linear rgb, as render.image.rgb), for display
   // without a host round trip (the viewer's CUDA-GL interop); empty on the CPU.
   Buffer<float> device_rgb;
   nlohmann::json stats() const;
 };
 
+// Which camera-pass kernel a scene whose surfaces are all plain runs: the one compiled for plain
+// looks (fitted), or the general one every other scene runs (general: for A/B and tests).
+enum class LooksKernel { fitted, general };
+
 // `culling`: the lights each pixel evaluates (engine/raster/light_tiles.h).
 RasterRenderResult render_raster(Backend backend, const SceneData& scene, const Camera& camera,
                                  ShadowMethod& shadows, const dvec3& background,
                                  const OracleFrameOptions& oracle = {},
-                                 const LightCulling& culling = {});
+                                 const LightCulling& culling = {},
+                                 LooksKernel looks_kernel = LooksKernel::fitted);
 
 }  // namespace dv

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include "core/hd.h"
 #include "core/lane_group.h"
@@ -41,9 +42,22 @@ DV_HD ShadingLights<kTiledLights> scene_shading_lights(const SceneView& s) {
     return {};
 }
 
+// The surface looks a payload is compiled for: every kind (base-colour and emissive textures,
+// glass, emission), or only plain ones (plain_look), for which it compiles without the texture,
+// glass and emission code (one Phong evaluation per surface crossing instead of two) and gives
+// the bits of the general payload. A pass picks it at launch when every object of the scene is
+// plain (results/perf/2026-12-06-plain-looks).
+enum class SurfaceLooks : uint8_t { any, plain };
+
+// Untextured, without transmission and not emitting: a grey scene's surfaces.
+DV_HD inline bool plain_look(const ObjectView& o) {
+  return o.texture < 0 && o.emissive_texture < 0 && o.transmission <= 0.0 && o.emission.x == 0.0 &&
+         o.emission.y == 0.0 && o.emission.z == 0.0;
+}
+
 // kTiledLights: whether pixels shade their tile's light list (light_mask); a payload without
-// one compiles to the plain loop over every light.
-template <class Source, bool kTiledLights = true>
+// one compiles to the plain loop over every light. kLooks: the surfaces it can meet.
+template <class Source, bool kTiledLights = true, SurfaceLooks kLooks = SurfaceLooks::any>
 struct ShadePayload {
   const SceneView& s;
   const Source& shadows;
@@ -81,14 +95,17 @@ struct ShadePayload {
   // point is the crossing moved onto its triangle (a rasterized crossing can lie just outside
   // it, on the plane's extension behind a neighbour, and would shadow itself), and its shadow
   // receiver carries the geometric normal; shading uses the interpolated vertex normal, and a
-  // textured surface its texel's colour and coverage (engine/scene/texture_sampling.h).
+  // textured surface its texel's colour and coverage (engine/scene/texture_sampling.h). A
+  // plain surface (kLooks) only adds its Phong colour and lets through 1 - alpha.
   DV_HD void surface(const RayHit& h, int32_t object) {
     const ObjectView& o = s.objects[object];
     if (o.alpha <= 0.0 && o.transmission <= 0.0) return;
     const u32vec3 tri = s.triangles[h.triangle];
     const dvec3 p0 = s.vertices[tri.x], p1 = s.vertices[tri.y], p2 = s.vertices[tri.z];
     const dvec3 point = nearest_point_on_triangle(origin + dir * h.t, p0, p1, p2);
-    const SurfaceLook look = surface_look(s, o, h.triangle, point);
+    const SurfaceLook look = kLooks == SurfaceLooks::plain
+                                 ? SurfaceLook{o.alpha, o.transmission, o.color}
+                                 : surface_look(s, o, h.triangle, point);
     if (look.alpha <= 0.0 && look.transmission <= 0.0) return;
     dvec3 n = glm::cross(p1 - p0, p2 - p0);
     const double len = glm::length(n);
@@ -100,6 +117,10 @@ struct ShadePayload {
       const dvec3 c = shade_phong<kTiledLights>(lights.of(s), shadows, cursor, listed_lights(), o,
                                                 look.color, at, shading, -dir);
       color += transmittance * look.alpha * c;
+    }
+    if constexpr (kLooks == SurfaceLooks::plain) {
+      transmittance *= 1.0 - (look.alpha + look.transmission);
+      return;
     }
     const double cos_to_normal = glm::dot(n, dir);
     if (look.transmission > 0.0) {
