@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "apps/deepvox/commands.h"
+#include "experiments/harness/recorded_runs.h"
 #include "experiments/harness/report.h"
 
 namespace dv::cli {

@@ -13,8 +13,11 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "core/number_text.h"
+#include "experiments/harness/aa_controls.h"
+#include "experiments/harness/recorded_runs.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/suite_file.h"
+#include "experiments/harness/timing.h"
 #include "render/load/scene_loader.h"
 #include "strategies/shadow/effect_planner.h"
 
@@ -199,38 +202,53 @@ std::map<std::string, std::string> params_of(const std::string& text) {
 
 ErrorModel calibrate_error_model(const std::string& run_dir) {
   const std::string rows_path = (fs::path(run_dir) / "rows.csv").string();
-  const std::vector<Row> rows = read_rows_csv(rows_path);
   ErrorModel model;
   model.source = {{"run", fs::path(run_dir).filename().string()}};
-  if (const fs::path meta = fs::path(run_dir) / "meta.json"; fs::is_regular_file(meta)) {
-    const nlohmann::json m = parse_json_file(meta.string());
-    if (m.contains("run")) {
-      const nlohmann::json& run = m["run"];
+  nlohmann::json meta;
+  if (const fs::path file = fs::path(run_dir) / "meta.json"; fs::is_regular_file(file)) {
+    meta = parse_json_file(file.string());
+    if (meta.contains("run")) {
+      const nlohmann::json& run = meta["run"];
       for (const char* key : {"git_sha", "backend", "device", "command_line"})
         if (run.contains(key)) model.source[key] = run[key];
     }
   }
-  // Per scene, per item: the figures the model keeps.
-  std::map<std::string, std::map<int, CalibratedConfig>> items;
-  std::map<std::string, std::map<int, int>> have;  // bit 1: p95, 2: frame_ms, 4: bytes
-  const bool stratified = std::any_of(rows.begin(), rows.end(), [](const Row& row) {
-    return row.metric + ":" + row.stat == kStrataMetric;
-  });
-  model.metric = stratified ? kStrataMetric : kVisibleMetric;
-  for (const Row& row : rows) {
-    if (row.kind != "shadow" || row.strategy != "dsm") continue;
-    CalibratedConfig& c = items[row.scene][row.item];
-    c.shadows.name = "auto";
-    c.shadows.params = params_of(row.params);
-    if (row.metric + ":" + row.stat == model.metric) {
-      c.p95 = row.value;
-      have[row.scene][row.item] |= 1;
-    } else if (row.metric == "frame_ms" && row.stat == "value") {
-      c.frame_ms = row.value;
-      have[row.scene][row.item] |= 2;
-    } else if (row.metric == "bytes" && row.stat == "value") {
-      c.bytes = row.value;
-      have[row.scene][row.item] |= 4;
+  // The folder and the further runs its runs.json names (a replicate protocol's rounds): errors
+  // and bytes from the folder's rows, each configuration's frame time the median over the runs.
+  std::vector<fs::path> runs = {fs::path(run_dir)};
+  if (meta.is_object())
+    for (const fs::path& other :
+         recorded_runs(run_dir, meta.value("suite", ""), meta.value("suite_hash", "")))
+      runs.push_back(other);
+  model.source["runs"] = runs.size();
+  // Per scene, per configuration (its params): the figures the model keeps. A/A copies (the
+  // same configuration measured twice in a run) are left out.
+  std::map<std::string, std::map<std::string, CalibratedConfig>> items;
+  std::map<std::string, std::map<std::string, std::vector<double>>> frame_ms;
+  std::map<std::string, std::map<std::string, int>> have;  // bit 1: p95, 2: bytes
+  for (size_t r = 0; r < runs.size(); ++r) {
+    const std::vector<Row> rows = read_rows_csv((runs[r] / "rows.csv").string());
+    if (r == 0)
+      model.metric =
+          std::any_of(rows.begin(), rows.end(),
+                      [](const Row& row) { return row.metric + ":" + row.stat == kStrataMetric; })
+              ? kStrataMetric
+              : kVisibleMetric;
+    for (const Row& row : rows) {
+      if (row.kind != "shadow" || row.strategy != "dsm" || is_aa_copy(row.params)) continue;
+      if (row.metric == "frame_ms" && row.stat == "value")
+        frame_ms[row.scene][row.params].push_back(row.value);
+      if (r > 0) continue;
+      CalibratedConfig& c = items[row.scene][row.params];
+      c.shadows.name = "auto";
+      c.shadows.params = params_of(row.params);
+      if (row.metric + ":" + row.stat == model.metric) {
+        c.p95 = row.value;
+        have[row.scene][row.params] |= 1;
+      } else if (row.metric == "bytes" && row.stat == "value") {
+        c.bytes = row.value;
+        have[row.scene][row.params] |= 2;
+      }
     }
   }
   if (items.empty())
@@ -241,8 +259,12 @@ ErrorModel calibrate_error_model(const std::string& run_dir) {
     const std::string resolved = resolve_data_file(scene_path, rows_path);
     const Scene scene = load_scene(resolved);
     s.lights = light_stats(SceneData(scene, Memory::host));
-    for (auto& [item, config] : configs)
-      if (have[scene_path][item] == 7) s.configs.push_back(std::move(config));
+    for (auto& [params, config] : configs) {
+      std::vector<double>& times = frame_ms[scene_path][params];
+      if (have[scene_path][params] != 3 || times.empty()) continue;
+      config.frame_ms = spread_of(times).median;
+      s.configs.push_back(std::move(config));
+    }
     model.scenes.push_back(std::move(s));
   }
   return model;

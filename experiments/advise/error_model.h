@@ -75,8 +75,9 @@ std::string default_error_model_path();
 
 // The model from a suite run folder (rows.csv, meta.json): the dsm items' error (the stratified
 // strata_error:judged where the run has it, run with the setting strata_points; else the
-// camera-visible p95), frame time and bytes per scene; the scenes are loaded (resolved as the
-// suite resolved them) for their light statistics.
+// camera-visible p95) and bytes per scene, and their frame time, the median over the folder and
+// the further runs its runs.json names (A/A copies left out); the scenes are loaded (resolved as
+// the suite resolved them) for their light statistics.
 ErrorModel calibrate_error_model(const std::string& run_dir);
 
 struct LightPrediction {

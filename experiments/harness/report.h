@@ -7,16 +7,11 @@
 #pragma once
 
 #include <string>
-#include <vector>
 
 namespace dv {
 
 // Writes DIR/report.md (and DIR/plots/*.png when possible); InputError when DIR is no result
 // folder. The findings' intervals pool DIR with the independent runs DIR/runs.json names.
 void build_report(const std::string& dir);
-
-// Writes DIR/runs.json naming `others` (result folders of the same suite file, independent
-// process runs) for the findings' intervals; InputError naming a folder that is not one.
-void record_runs(const std::string& dir, const std::vector<std::string>& others);
 
 }  // namespace dv

@@ -25,6 +25,7 @@
 #include "experiments/harness/interrupt.h"
 #include "experiments/harness/merge.h"
 #include "experiments/harness/progress.h"
+#include "experiments/harness/recorded_runs.h"
 #include "experiments/harness/report.h"
 #include "experiments/harness/run_folder.h"
 #include "experiments/harness/run_journal.h"

@@ -6,17 +6,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "experiments/advise/advise.h"
 #include "experiments/advise/error_model.h"
+#include "experiments/harness/rows.h"
 #include "experiments/harness/scene_cache.h"
 #include "experiments/harness/suite_file.h"
 #include "strategies/shadow/shadow_method.h"
 #include "tests/experiments/harness_test.h"
+#include "tests/support/scratch_dir.h"
 
 namespace dv {
 namespace {
@@ -355,6 +361,58 @@ TEST_F(AdviseFiles, SmallCpuAdviceMeetsItsBoundAtFreshPoints) {
       EXPECT_EQ(advice.chosen_ms(t.index), t.median_ms);
     }
   }
+}
+
+// A replicate protocol's rounds: the model takes each configuration's error and bytes from the
+// folder, its frame time as the median over the folder and the runs its runs.json names, and
+// leaves out the A/A copies (the same configuration measured again, params "aa=copy").
+TEST(ErrorModel, CalibrationPoolsTheRecordedRunsAndLeavesOutAaCopies) {
+  const std::filesystem::path root = test::scratch_dir("test_advise_tmp");
+  const std::string scene = test::source_dir() + "/experiments/scenes/knecht-quick.json";
+  const auto rows_of = [&](double coarse_ms, double copy_ms) {
+    std::vector<Row> rows;
+    const auto add = [&](int item, const std::string& params, const std::string& metric,
+                         const std::string& stat, double value) {
+      Row r;
+      r.suite = "accuracy", r.item = item, r.experiment = "methods", r.kind = "shadow";
+      r.scene = scene, r.strategy = "dsm", r.params = params;
+      r.metric = metric, r.stat = stat, r.value = value;
+      rows.push_back(r);
+    };
+    const std::string coarse = "eps=0.05 res=256 storage=compact";
+    const std::string fine = "eps=0.05 res=512 storage=compact";
+    for (const auto& [item, params, ms, p95] :
+         {std::tuple{0, coarse, coarse_ms, 0.04}, std::tuple{1, fine, 5.0, 0.01},
+          std::tuple{2, coarse + " aa=copy", copy_ms, 0.04}}) {
+      add(item, params, "strata_error", "judged", p95);
+      add(item, params, "frame_ms", "value", ms);
+      add(item, params, "bytes", "value", 1000.0 * (item + 1));
+    }
+    return rows;
+  };
+  const double coarse_ms[] = {2.0, 4.0, 3.0};
+  for (int run = 0; run < 3; ++run) {
+    const std::filesystem::path dir = root / ("run" + std::to_string(run));
+    std::filesystem::create_directories(dir);
+    write_rows_csv((dir / "rows.csv").string(), rows_of(coarse_ms[run], 40.0));
+    std::ofstream(dir / "meta.json") << R"({"suite": "accuracy", "suite_hash": "h", "done": 3})";
+  }
+  std::ofstream(root / "run0" / "runs.json") << R"({"runs": ["../run1", "../run2"]})";
+  const ErrorModel model = calibrate_error_model((root / "run0").string());
+  EXPECT_EQ(model.source["runs"], 3);
+  ASSERT_EQ(model.scenes.size(), 1u);
+  ASSERT_EQ(model.scenes[0].configs.size(), 2u) << "the A/A copy is no configuration";
+  for (const CalibratedConfig& c : model.scenes[0].configs) {
+    EXPECT_EQ(c.shadows.params.count("aa"), 0u);
+    const bool coarse = c.shadows.params.at("res") == "256";
+    EXPECT_DOUBLE_EQ(c.frame_ms, coarse ? 3.0 : 5.0) << "the median over the three runs";
+    EXPECT_DOUBLE_EQ(c.p95, coarse ? 0.04 : 0.01);
+    EXPECT_DOUBLE_EQ(c.bytes, coarse ? 1000.0 : 2000.0);
+  }
+  std::ofstream(root / "run2" / "meta.json")
+      << R"({"suite": "seeds", "suite_hash": "x", "done": 3})";
+  EXPECT_THROW(calibrate_error_model((root / "run0").string()), InputError)
+      << "a recorded run of another suite file";
 }
 
 }  // namespace

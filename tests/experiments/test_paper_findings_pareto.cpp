@@ -19,6 +19,7 @@
 #include "core/json_reader.h"
 #include "experiments/harness/findings.h"
 #include "experiments/harness/pareto.h"
+#include "experiments/harness/recorded_runs.h"
 #include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"

@@ -20,6 +20,7 @@
 #include "experiments/harness/aa_controls.h"
 #include "experiments/harness/effect_interval.h"
 #include "experiments/harness/findings.h"
+#include "experiments/harness/recorded_runs.h"
 #include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
 #include "experiments/harness/runner.h"

@@ -1,0 +1,22 @@
+// The independent runs a result folder pools (its runs.json: further process runs of the same
+// suite file, paths relative to the folder), for the report's findings and the error model's
+// calibration.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace dv {
+
+// The folders DIR/runs.json names (none without it), each checked to be a run of the suite file
+// `suite` with hash `suite_hash`; InputError naming the file or a folder that is not one.
+std::vector<std::filesystem::path> recorded_runs(const std::filesystem::path& dir,
+                                                 const std::string& suite,
+                                                 const std::string& suite_hash);
+
+// Writes DIR/runs.json naming `others` (result folders of the same suite file, independent
+// process runs) for the findings' intervals; InputError naming a folder that is not one.
+void record_runs(const std::string& dir, const std::vector<std::string>& others);
+
+}  // namespace dv
