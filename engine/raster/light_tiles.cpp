@@ -50,6 +50,7 @@ LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Came
   tiles.tiles_x = (camera.width + kLightTilePixels - 1) / kLightTilePixels;
   tiles.tiles_y = (camera.height + kLightTilePixels - 1) / kLightTilePixels;
   tiles.words = (lights + 31) / 32;
+  tiles.every_light = !culling.enabled;
   const int64_t count = int64_t(tiles.tiles_x) * tiles.tiles_y * tiles.words;
   tiles.masks = Buffer<uint32_t>(memory_of(backend), count, "light tile masks");
   const CameraView cam = make_camera_view(camera);
@@ -122,7 +123,7 @@ LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Came
 
 ListedLights count_listed_lights(const LightTiles& tiles, int width, int height, int lights) {
   const unsigned long long pixels = (unsigned long long)(width) * (unsigned long long)(height);
-  if (tiles.masks.size() == 0)
+  if (tiles.masks.size() == 0 || tiles.every_light)
     return {pixels * (unsigned long long)(lights), pixels ? (unsigned long long)(lights) : 0ull};
   const std::vector<uint32_t> masks = tiles.masks.to_vector();
   ListedLights out;

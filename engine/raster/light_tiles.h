@@ -87,11 +87,13 @@ struct LightTiles {
   int tiles_x = 0;
   int tiles_y = 0;
   int words = 0;
+  bool every_light = false;  // culling off: every mask lists every light
   LightTilesView view() const { return {masks.const_view(), tiles_x, words}; }
 };
 
 // Lights per pixel of a frame width x height: their sum over the pixels and their most (every
-// pixel evaluates all `lights` when `tiles` holds no masks). Reads the masks back to the host.
+// pixel evaluates all `lights` when `tiles` holds no masks or lists every light). Reads the masks
+// back to the host only when culling made them.
 struct ListedLights {
   unsigned long long sum = 0;
   unsigned long long max = 0;
