@@ -44,9 +44,9 @@ DV_HD ShadingLights<kTiledLights> scene_shading_lights(const SceneView& s) {
 
 // The surface looks a payload is compiled for: every kind (base-colour and emissive textures,
 // glass, emission), or only plain ones (plain_look), for which it compiles without the texture,
-// glass and emission code (one Phong evaluation per surface crossing instead of two) and gives
-// the bits of the general payload. A pass picks it at launch when every object of the scene is
-// plain (results/perf/2026-12-06-plain-looks).
+// glass and emission code (its code holds one Phong evaluation per surface crossing, not two) and
+// gives the bits of the general payload. A pass picks it at launch when every object of the scene
+// is plain (results/perf/2026-12-06-plain-looks).
 enum class SurfaceLooks : uint8_t { any, plain };
 
 // Untextured, without transmission and not emitting: a grey scene's surfaces.
