@@ -40,6 +40,7 @@ try:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
 except ImportError:
     sys.exit(3)
 
@@ -692,6 +693,20 @@ def mark_oracle(ax, oracle, scene):
                 xytext=(-3, 3), textcoords="offset points", ha="right", va="bottom", fontsize=6)
 
 
+def shade_dominated(ax, oracle, scene):
+    """Grey from the exact oracle's frame time to the axis' end: an item there is slower than
+    the oracle, whose error is 0, so the oracle beats it in both."""
+    if scene not in oracle:
+        return False
+    left, right = ax.get_xlim()
+    t = oracle[scene][0]
+    if t >= right:
+        return False
+    ax.axvspan(max(t, left), right, color="0.5", alpha=0.15, linewidth=0, zorder=0)
+    ax.set_xlim(left, right)
+    return True
+
+
 def headline_plot(folder, exp, runs, all_runs, captions, markers):
     """Error against frame time on every scene: what accuracy costs, at a glance."""
     err = headline_error(runs)
@@ -701,6 +716,7 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
     oracle = oracle_times(all_runs)
     fig, axes = grid(len(scenes), width=4.0, height=3.0)
     used = set()
+    shaded = False
     for ax, scene in zip(axes, scenes):
         pts = [p for p in points_of(runs, scene, err, "frame_ms") if p["family"] != ORACLE]
         draw_items(ax, pts, markers)
@@ -711,6 +727,7 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
         mark_oracle(ax, oracle, scene)
         scale_by_spread(ax, pts + ([{"x": oracle[scene][0], "y": pts[0]["y"]}]
                                    if scene in oracle and pts else []))
+        shaded |= shade_dominated(ax, oracle, scene)
         ax.set_title(scene_name(scene), fontsize=8)
         ax.set_xlabel("frame time (ms, median; whiskers min-max)", fontsize=7)
         ax.set_ylabel(err, fontsize=7)
@@ -718,7 +735,9 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
         ax.grid(True, which="major", linewidth=0.3, alpha=0.5)
     family_legend(fig, used, markers, [
         Line2D([], [], color="black", linestyle="--", label="exact oracle (frame time)"),
-        Line2D([], [], color="black", linewidth=0.7, label="Pareto front")])
+        Line2D([], [], color="black", linewidth=0.7, label="Pareto front")] +
+        ([Patch(color="0.5", alpha=0.15, label="dominated by the exact oracle")]
+         if shaded else []))
     fig.suptitle("What accuracy costs: %s against frame time, per scene" % err, fontsize=9)
     save(fig, folder, "%s_headline.png" % exp["name"], captions, exp,
          "Headline: %s (smaller is better) against frame time (median generation + median "
@@ -726,7 +745,8 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
          "span over 5x. Colour: method family, marker: storage or strategy; whiskers: min-max "
          "over the repetitions (the sum of the passes' minima and maxima); black step: the "
          "Pareto front; dashed line: the exact oracle's frame time on that scene (its error is "
-         "0). Items with no frame time are left out." % (err, exp["name"]))
+         "0); grey beyond it: the region the oracle dominates (slower and less accurate than "
+         "the exact answer). Items with no frame time are left out." % (err, exp["name"]))
 
 
 def main(folder):

@@ -2,8 +2,9 @@
 """Tests of experiments/harness/plot_suite.py's strategy families on the CPU: the families,
 colours and markers come from a catalog in the form of `deepvox list --json` (here a synthetic
 one with a storage the script has never heard of), dsm is plotted as its storage (the registered
-default when the row leaves it out), and a strategy the catalog lacks is "other". Skipped when
-the interpreter has no matplotlib (the script needs it to load)."""
+default when the row leaves it out), and a strategy the catalog lacks is "other"; the headline
+shades the region the exact oracle dominates. Skipped when the interpreter has no matplotlib (the
+script needs it to load)."""
 import importlib.util
 import json
 import os
@@ -75,6 +76,29 @@ class PlotFamilies(unittest.TestCase):
                              capture_output=True, text=True, env=env)
         self.assertEqual(out.returncode, 4, out.stderr)
         self.assertIn("--catalog", out.stderr)
+
+
+
+@unittest.skipIf(importlib.util.find_spec("matplotlib") is None, "no matplotlib here")
+class OracleDominatedRegion(unittest.TestCase):
+    def test_the_region_beyond_the_oracles_time_is_shaded(self):
+        spec = importlib.util.spec_from_file_location("plot_suite", SCRIPT)
+        plot = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(plot)
+        fig, ax = plot.plt.subplots()
+        ax.set_xscale("log")
+        ax.set_xlim(0.5, 20.0)
+        oracle = {"a.json": (4.2, 4.0, 4.4), "far.json": (50.0, 50.0, 50.0)}
+        self.assertTrue(plot.shade_dominated(ax, oracle, "a.json"))
+        self.assertEqual(len(ax.patches), 1)
+        xs = [x for x, _ in ax.patches[0].get_xy()]
+        self.assertAlmostEqual(min(xs), 4.2)
+        self.assertAlmostEqual(max(xs), 20.0)
+        self.assertEqual(ax.get_xlim(), (0.5, 20.0))
+        self.assertFalse(plot.shade_dominated(ax, oracle, "far.json"), "beyond the axis")
+        self.assertFalse(plot.shade_dominated(ax, oracle, "none.json"), "no oracle item")
+        self.assertEqual(len(ax.patches), 1)
+        plot.plt.close(fig)
 
 
 if __name__ == "__main__":
