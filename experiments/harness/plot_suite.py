@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Plots of a suite result folder (deepvox report runs it), drawn from rows.csv into plots/ with
+"""Plots of a suite result folder (deepvox report runs it), drawn from rows.csv (with several runs
+rows_over_runs.csv, every value the median over the runs) into plots/ with
 a caption each in plots/plots.json (the report prints them in that order). Per experiment:
 
 - its "plots" of suite.json, plots/<experiment>_<nn>.png: {"type": "scatter"|"bar"|"line",
@@ -293,10 +294,19 @@ def without(rows, keys, runs):
     return " ".join(words)
 
 
+# What the whiskers span: one run's repetitions (rows.csv), or with several runs the lowest to the
+# highest run median (rows_over_runs.csv, which deepvox report writes then); main sets it.
+WHISKERS = {"rows": "rows.csv", "text": None}
+
+
 def save(fig, folder, name, captions, exp, caption, fits=None):
     fig.savefig(os.path.join(folder, "plots", name), bbox_inches="tight",
                 metadata={"Software": None})
     plt.close(fig)
+    if WHISKERS["text"]:
+        caption = caption.replace("min-max over the repetitions where rows.csv has them",
+                                  WHISKERS["text"])
+        caption = caption.replace("min-max over the repetitions", WHISKERS["text"])
     captions.append({"experiment": exp["name"], "file": name, "caption": caption})
     if fits:
         captions[-1]["fits"] = fits
@@ -729,7 +739,8 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
                                    if scene in oracle and pts else []))
         shaded |= shade_dominated(ax, oracle, scene)
         ax.set_title(scene_name(scene), fontsize=8)
-        ax.set_xlabel("frame time (ms, median; whiskers min-max)", fontsize=7)
+        ax.set_xlabel("frame time (ms, median; whiskers %s)"
+                      % ("run medians" if WHISKERS["text"] else "min-max"), fontsize=7)
         ax.set_ylabel(err, fontsize=7)
         ax.tick_params(which="both", labelsize=7)
         ax.grid(True, which="major", linewidth=0.3, alpha=0.5)
@@ -753,7 +764,12 @@ def main(folder):
     with open(os.path.join(folder, "suite.json")) as f:
         suite = json.load(f)
     items = {}
-    with open(os.path.join(folder, "rows.csv"), newline="") as f:
+    over_runs = os.path.join(folder, "rows_over_runs.csv")
+    if os.path.exists(over_runs):
+        WHISKERS["rows"] = "rows_over_runs.csv"
+        WHISKERS["text"] = ("the lowest to the highest run median over the runs "
+                            "(rows_over_runs.csv: each value the median over the runs)")
+    with open(os.path.join(folder, WHISKERS["rows"]), newline="") as f:
         for r in csv.DictReader(f):
             items.setdefault((r["experiment"], int(r["item"])), []).append(r)
     plots = os.path.join(folder, "plots")

@@ -1,10 +1,15 @@
 // The independent runs a result folder pools (recorded_runs.h).
 #include "experiments/harness/recorded_runs.h"
 
+#include <algorithm>
+#include <map>
+#include <tuple>
+
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/run_journal.h"
+#include "experiments/harness/timing.h"
 
 namespace dv {
 
@@ -53,6 +58,31 @@ void record_runs(const std::string& folder, const std::vector<std::string>& othe
     check_same_suite(dir / r.get<std::string>(), dir, meta.value("suite", ""),
                      meta.value("suite_hash", ""));
   write_file_atomically(dir / "runs.json", Json{{"runs", runs}}.dump(1) + "\n");
+}
+
+// The rows the tables and plots show: the first run's, each value the median over the runs of
+// that item's row with the same metric and statistic (a timing: the median of the runs'
+// medians; values that do not vary between runs stay), and with several runs a timing's min and
+// max the lowest and highest of the runs' medians (the run-to-run range) instead of one run's
+// repetitions. With one run its rows.
+std::vector<Row> rows_over_runs(const std::vector<RunState>& states) {
+  std::vector<Row> out = states[0].rows;
+  if (states.size() < 2) return out;
+  using Key = std::tuple<int, std::string, std::string>;
+  std::map<Key, std::vector<double>> values;
+  for (const RunState& run : states)
+    for (const Row& r : run.rows) values[{r.item, r.metric, r.stat}].push_back(r.value);
+  for (Row& r : out) {
+    const bool range = r.stat == "min" || r.stat == "max";
+    const auto medians = values.find({r.item, r.metric, "median"});
+    if (range && medians != values.end()) {
+      const auto [lo, hi] = std::minmax_element(medians->second.begin(), medians->second.end());
+      r.value = r.stat == "min" ? *lo : *hi;
+    } else if (!range) {
+      r.value = spread_of(values[{r.item, r.metric, r.stat}]).median;
+    }
+  }
+  return out;
 }
 
 }  // namespace dv

@@ -1,11 +1,14 @@
 // The independent runs a result folder pools (its runs.json: further process runs of the same
-// suite file, paths relative to the folder), for the report's findings and the error model's
-// calibration.
+// suite file, paths relative to the folder), for the report's findings, tables and plots and the
+// error model's calibration.
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "experiments/harness/rows.h"
+#include "experiments/harness/run_journal.h"
 
 namespace dv {
 
@@ -18,5 +21,12 @@ std::vector<std::filesystem::path> recorded_runs(const std::filesystem::path& di
 // Writes DIR/runs.json naming `others` (result folders of the same suite file, independent
 // process runs) for the findings' intervals; InputError naming a folder that is not one.
 void record_runs(const std::string& dir, const std::vector<std::string>& others);
+
+// The rows the tables and plots show: the first run's, each value the median over the runs of
+// that item's row with the same metric and statistic (a timing: the median of the runs'
+// medians; values that do not vary between runs stay), and with several runs a timing's min and
+// max the lowest and highest of the runs' medians (the run-to-run range) instead of one run's
+// repetitions. With one run its rows.
+std::vector<Row> rows_over_runs(const std::vector<RunState>& states);
 
 }  // namespace dv

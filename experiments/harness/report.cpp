@@ -428,10 +428,12 @@ void write_plots(std::ostream& md, const fs::path& dir, const std::string& exper
   md << "\n";
 }
 
+// `shown`: the rows the tables show (rows_over_runs); `runs`: each run's, for the findings.
 void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpec& e,
-                      const std::vector<RunView>& runs, const std::vector<RunView>& all_runs,
-                      const std::string& our_machine, const PracticalBands& practical_bands) {
-  const std::map<int, std::vector<const Row*>>& items = runs[0].items;
+                      const RunView& shown, const std::vector<RunView>& runs,
+                      const std::vector<RunView>& all_runs, const std::string& our_machine,
+                      const PracticalBands& practical_bands) {
+  const std::map<int, std::vector<const Row*>>& items = shown.items;
   md << "## " << e.name << " (" << e.kind << ")\n\n";
   if (!e.description.empty()) md << e.description << "\n\n";
   if (items.empty()) {
@@ -686,6 +688,16 @@ void build_report(const std::string& folder) {
     states.push_back(read_run_state(other));
   std::vector<std::vector<RunView>> by_experiment(suite.experiments.size(),
                                                   std::vector<RunView>(states.size()));
+  // What the tables and plots show (rows_over_runs), and the file the plot script reads.
+  const std::vector<Row> shown_rows = rows_over_runs(states);
+  std::vector<RunView> shown(suite.experiments.size());
+  for (const Row& r : shown_rows)
+    for (size_t e = 0; e < suite.experiments.size(); ++e)
+      if (suite.experiments[e].name == r.experiment) shown[e].items[r.item].push_back(&r);
+  const fs::path shown_file = dir / "rows_over_runs.csv";
+  std::error_code no_file;
+  fs::remove(shown_file, no_file);
+  if (states.size() > 1) write_rows_csv(shown_file.string(), shown_rows);
   std::vector<RunView> all_runs(states.size());
   for (size_t run = 0; run < states.size(); ++run)
     for (const Row& r : states[run].rows) {
@@ -721,6 +733,10 @@ void build_report(const std::string& folder) {
           "measurement)\n";
   md << "- timings: one warm-up, then " << cell(meta["repeat"])
      << " repetitions, median (min, max in rows.csv; every repetition in samples/)\n";
+  if (states.size() > 1)
+    md << "- tables and plots: over the " << states.size()
+       << " runs: each cell the median of the runs' values (a timing: of their medians), "
+          "whiskers the lowest to the highest run median (rows_over_runs.csv)\n";
   md << "- findings' intervals rest on " << states.size() << " independent process run"
      << (states.size() == 1 ? " (this folder)" : "s (this folder and those runs.json names)")
      << (states.size() < 2 ? "; a t-interval over runs needs at least 2, so timings and values "
@@ -744,8 +760,8 @@ void build_report(const std::string& folder) {
   md << "Command (command.txt; a merged folder lists its shards' too):\n\n```\n"
      << command.str() << "```\n\n";
   for (size_t e = 0; e < suite.experiments.size(); ++e)
-    write_experiment(md, dir, suite.experiments[e], by_experiment[e], all_runs, our_machine,
-                     suite.practical_bands);
+    write_experiment(md, dir, suite.experiments[e], shown[e], by_experiment[e], all_runs,
+                     our_machine, suite.practical_bands);
   try {
     write_file_atomically(dir / "report.md", md.str());
   } catch (const ResultWriteError& e) {

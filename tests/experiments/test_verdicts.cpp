@@ -505,7 +505,39 @@ TEST_F(OldFolders, ReportWithoutSamplesStillBuilds) {
   EXPECT_NE(line.find(" [-"), std::string::npos) << line;
   EXPECT_NE(line.find("| 3 runs x 1 value, 1 vs 1 items | none | confirmed |"), std::string::npos)
       << line;
+  // The tables and plots show every run: each value the median over the three runs, a timing's
+  // min and max the lowest and highest run median (rows_over_runs.csv, which the plots read).
+  EXPECT_NE(md.find("- tables and plots: over the 3 runs: each cell the median of the runs' "
+                    "values"),
+            std::string::npos)
+      << md;
+  const auto value_of = [](const std::vector<Row>& rows, int item, const std::string& metric,
+                           const std::string& stat) {
+    for (const Row& row : rows)
+      if (row.item == item && row.metric == metric && row.stat == stat) return row.value;
+    ADD_FAILURE() << "no row " << item << " " << metric << ":" << stat;
+    return 0.0;
+  };
+  const std::vector<Row> shown = read_rows_csv((dir / "rows_over_runs.csv").string());
+  std::vector<double> frames, generations;
+  for (const std::string& run : {dir.string(), r2.folder, r3.folder}) {
+    const std::vector<Row> rows = read_rows_csv((fs::path(run) / "rows.csv").string());
+    frames.push_back(value_of(rows, 1, "frame_ms", "value"));
+    generations.push_back(value_of(rows, 1, "generate_ms", "median"));
+  }
+  std::sort(frames.begin(), frames.end());
+  EXPECT_DOUBLE_EQ(value_of(shown, 1, "frame_ms", "value"), frames[1]);
+  EXPECT_DOUBLE_EQ(value_of(shown, 1, "generate_ms", "min"),
+                   *std::min_element(generations.begin(), generations.end()));
+  EXPECT_DOUBLE_EQ(value_of(shown, 1, "generate_ms", "max"),
+                   *std::max_element(generations.begin(), generations.end()));
+  EXPECT_DOUBLE_EQ(value_of(shown, 1, "bytes", "value"),
+                   value_of(read_rows_csv((dir / "rows.csv").string()), 1, "bytes", "value"));
   EXPECT_THROW(record_runs(dir.string(), {(dir_ / "nowhere").string()}), InputError);
+  // One run again: no such file.
+  std::ofstream(dir / "runs.json") << R"({"runs": []})";
+  report();
+  EXPECT_FALSE(fs::exists(dir / "rows_over_runs.csv"));
 }
 
 // A mapped paper table with a "shape": the paper's ratios beside ours with intervals, across the
