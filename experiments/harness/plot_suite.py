@@ -252,14 +252,16 @@ def without(rows, keys, runs):
 WHISKERS = {"rows": "rows.csv", "text": None}
 
 
+def whisker_text(where=""):
+    """What the captions say the whiskers span: one run's repetitions (`where`: where rows.csv
+    has them), or the run medians' range."""
+    return WHISKERS["text"] or "min-max over the repetitions" + where
+
+
 def save(fig, folder, name, captions, exp, caption, fits=None):
     fig.savefig(os.path.join(folder, "plots", name), bbox_inches="tight",
                 metadata={"Software": None})
     plt.close(fig)
-    if WHISKERS["text"]:
-        caption = caption.replace("min-max over the repetitions where rows.csv has them",
-                                  WHISKERS["text"])
-        caption = caption.replace("min-max over the repetitions", WHISKERS["text"])
     captions.append({"experiment": exp["name"], "file": name, "caption": caption})
     if fits:
         captions[-1]["fits"] = fits
@@ -321,7 +323,7 @@ def scatter_plot(folder, exp, runs, spec, name, captions):
     if along:
         caption += ("; a line and colour per configuration joins its values of %s (the number "
                     "beside each point)" % along[0])
-    caption += "; whiskers: min-max over the repetitions where rows.csv has them"
+    caption += "; whiskers: " + whisker_text(" where rows.csv has them")
     if spec.get("pareto"):
         caption += "; black step: the Pareto front (smaller is better in both)"
     save(fig, folder, name, captions, exp, caption + ".")
@@ -394,9 +396,9 @@ def bar_plot(folder, exp, runs, spec, name, captions):
         ax.set_title(title, fontsize=9)
         ax.tick_params(which="both", labelsize=7)
         save(fig, folder, name, captions, exp,
-             "%s: %s per item of `%s`%s; whiskers: min-max over the repetitions where rows.csv "
-             "has them." % (title, spec["y"], exp["name"],
-                            ", coloured by method family" if shadow else ""))
+             "%s: %s per item of `%s`%s; whiskers: %s." %
+             (title, spec["y"], exp["name"], ", coloured by method family" if shadow else "",
+              whisker_text(" where rows.csv has them")))
         return
 
     def coordinate(rows, key):
@@ -446,11 +448,10 @@ def bar_plot(folder, exp, runs, spec, name, captions):
     fig.suptitle(title, fontsize=9)
     save(fig, folder, name, captions, exp,
          "%s: %s of `%s`, a panel per strategy entry (%d, one scale), bars grouped by %s%s; "
-         "whiskers: "
-         "min-max over the repetitions where rows.csv has them%s." %
+         "whiskers: %s%s." %
          (title, spec["y"], exp["name"], len(panels), group_key,
           ", a colour per " + " and ".join(series_keys) if series_keys else "",
-          ", log scale" if spec.get("logx") else ""))
+          whisker_text(" where rows.csv has them"), ", log scale" if spec.get("logx") else ""))
 
 
 def unit_of(runs, spec):
@@ -501,8 +502,8 @@ def line_plot(folder, exp, runs, spec, name, captions):
     fig.suptitle(title, fontsize=9)
     save(fig, folder, name, captions, exp,
          "%s: %s against %s, a line and colour per configuration of `%s` (the same in every "
-         "panel; a panel lacks the configurations without that column); whiskers: min-max over "
-         "the repetitions.%s" % (title, ", ".join(ys), spec.get("xlabel", spec["x"]), exp["name"],
+         "panel; a panel lacks the configurations without that column); whiskers: %s.%s" %
+         (title, ", ".join(ys), spec.get("xlabel", spec["x"]), exp["name"], whisker_text(),
                                  " Fits over each line's points with both x and y positive (at "
                                  "least three): the exponent k of y = c x^k (least squares on "
                                  "log y against log x; written beside the line's last point) and "
@@ -599,11 +600,12 @@ def pareto_plots(folder, exp, runs, oracle, captions, markers):
                      "Pareto front %d of `%s` on `%s`: %s against %s (log axes where the values "
                      "span over 5x), %d items%s. "
                      "Colour: method family, marker: storage or strategy (legend); whiskers: "
-                     "min-max over the repetitions; black step and labels: the front (%d items no "
+                     "%s; black step and labels: the front (%d items no "
                      "other beats in both; the table above), labelled without the parameters that "
                      "most items of the strategy share (its base)%s." %
                      (n, exp["name"], scene_name(scene), err, cost, len(pts),
                       " (%d with no %s left out)" % (left_out, cost) if left_out else "",
+                      whisker_text(),
                       len(front), "; dashed: the exact oracle's frame time"
                       if cost == "frame_ms" and scene in oracle else ""))
 
@@ -706,11 +708,12 @@ def headline_plot(folder, exp, runs, all_runs, captions, markers):
     save(fig, folder, "%s_headline.png" % exp["name"], captions, exp,
          "Headline: %s (smaller is better) against frame time (median generation + median "
          "render, ms) for every item of `%s`, one panel per scene, log axes where the values "
-         "span over 5x. Colour: method family, marker: storage or strategy; whiskers: min-max "
-         "over the repetitions (the sum of the passes' minima and maxima); black step: the "
+         "span over 5x. Colour: method family, marker: storage or strategy; whiskers: %s "
+         "(the sum of the passes' minima and maxima); black step: the "
          "Pareto front; dashed line: the exact oracle's frame time on that scene (its error is "
          "0); grey beyond it: the region the oracle dominates (slower and less accurate than "
-         "the exact answer). Items with no frame time are left out." % (err, exp["name"]))
+         "the exact answer). Items with no frame time are left out." %
+         (err, exp["name"], whisker_text()))
 
 
 def main(folder):
