@@ -20,7 +20,7 @@ namespace {
 // InputError naming `other` when it is no run of the suite file `dir` ran.
 void check_same_suite(const fs::path& other, const fs::path& dir, const std::string& suite,
                       const std::string& suite_hash) {
-  const Json meta = read_run_state(other).meta;
+  const Json meta = read_run_meta(other);
   if (meta.value("suite", "") != suite || meta.value("suite_hash", "") != suite_hash)
     throw InputError(other.string(), "not a run of the same suite file as " + dir.string() +
                                          " (suite " + meta.value("suite", "") + ", hash " +
@@ -53,7 +53,7 @@ void record_runs(const std::string& folder, const std::vector<std::string>& othe
     if (!fs::is_directory(o)) throw InputError(o, "no such result folder");
     runs.push_back(fs::relative(fs::absolute(o), dir).string());
   }
-  const Json meta = read_run_state(dir).meta;
+  const Json meta = read_run_meta(dir);
   for (const Json& r : runs)
     check_same_suite(dir / r.get<std::string>(), dir, meta.value("suite", ""),
                      meta.value("suite_hash", ""));

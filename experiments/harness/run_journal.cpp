@@ -16,13 +16,6 @@ namespace {
 
 constexpr const char* kProgress = "progress.jsonl";
 
-Json parse_meta(const fs::path& dir) {
-  const fs::path path = dir / "meta.json";
-  if (!fs::is_regular_file(path))
-    throw InputError(dir.string(), "not a suite result folder (no meta.json)");
-  return parse_json_file(path.string());
-}
-
 // One marker line, or a null Json when the line is no whole marker.
 Json parse_marker(const std::string& line) {
   const Json m = Json::parse(line, nullptr, false);
@@ -97,10 +90,17 @@ void note_missing_flock(const fs::path& where, const std::string& no_locks) {
 
 }  // namespace
 
+Json read_run_meta(const fs::path& dir) {
+  const fs::path path = dir / "meta.json";
+  if (!fs::is_regular_file(path))
+    throw InputError(dir.string(), "not a suite result folder (no meta.json)");
+  return parse_json_file(path.string());
+}
+
 RunState read_run_state(const fs::path& dir) {
   RunState s;
   s.dir = dir;
-  s.meta = parse_meta(dir);
+  s.meta = read_run_meta(dir);
   s.journaled = fs::is_regular_file(dir / kProgress);
   if (s.journaled) {
     const LockHolder writer = writer_lock_holder(dir);
@@ -165,7 +165,7 @@ RunJournal RunJournal::create(const fs::path& out, const std::string& suite,
 }
 
 RunJournal RunJournal::reopen(const fs::path& dir, RunState& state) {
-  parse_meta(dir);
+  read_run_meta(dir);
   if (!fs::is_regular_file(dir / kProgress))
     throw InputError(
         dir.string(),

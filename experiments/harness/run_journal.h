@@ -43,6 +43,10 @@ struct RunState {
 // meta.json.
 RunState read_run_state(const std::filesystem::path& dir);
 
+// A result folder's meta.json alone (no rows read); InputError naming the folder when it has none
+// or it is malformed.
+Json read_run_meta(const std::filesystem::path& dir);
+
 // The newest journaled folder under OUT/<suite>/ of shard I/N (1/1: an unsharded run), whose
 // run did not finish when `unfinished_only`; empty when there is none.
 std::filesystem::path newest_run(const std::filesystem::path& out, const std::string& suite,
