@@ -123,7 +123,7 @@ LightTiles build_light_tiles(Backend backend, const SceneView& scene, const Came
 
 ListedLights count_listed_lights(const LightTiles& tiles, int width, int height, int lights) {
   const unsigned long long pixels = (unsigned long long)(width) * (unsigned long long)(height);
-  if (tiles.masks.size() == 0 || tiles.every_light)
+  if (!tiles.culled())
     return {pixels * (unsigned long long)(lights), pixels ? (unsigned long long)(lights) : 0ull};
   const std::vector<uint32_t> masks = tiles.masks.to_vector();
   ListedLights out;

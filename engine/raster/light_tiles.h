@@ -89,6 +89,8 @@ struct LightTiles {
   int words = 0;
   bool every_light = false;  // culling off: every mask lists every light
   LightTilesView view() const { return {masks.const_view(), tiles_x, words}; }
+  // Whether culling made the masks (not none, nor culling off's lists of every light).
+  bool culled() const { return masks.size() > 0 && !every_light; }
 };
 
 // Lights per pixel of a frame width x height: their sum over the pixels and their most (every

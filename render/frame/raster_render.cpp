@@ -80,7 +80,7 @@ RasterRenderResult render_raster(Backend backend, const SceneData& scene, const 
   counters.fill_zero();
   PassTimer fragment_timer(backend);
   const LightTiles light_tiles = build_light_tiles(backend, view, camera, culling);
-  result.render.light_culling = {culling.enabled && light_tiles.masks.size() > 0, culling.cutoff};
+  result.render.light_culling = {light_tiles.culled(), culling.cutoff};
   const FragmentOrder tile_order =
       order_fragment_tiles(backend, view, projection, lists.view(), eye_media.data());
   const FragmentPassInputs inputs{

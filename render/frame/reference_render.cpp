@@ -70,7 +70,7 @@ RenderResult render_reference(Backend backend, const SceneData& scene, const Cam
   const LightTilesView lights = light_tiles.view();
   const int64_t pixels = int64_t(cam.width) * cam.height;
   RenderResult result;
-  result.light_culling = {culling.enabled && light_tiles.masks.size() > 0, culling.cutoff};
+  result.light_culling = {light_tiles.culled(), culling.cutoff};
   std::visit(
       [&](const auto& s) {
         const auto walk_pixels = [&](const char* name, int64_t first, int64_t count,
