@@ -261,12 +261,13 @@ OpenedRun RunJournal::open_or_resume(const JournalRequest& r) {
 }
 
 void RunJournal::record(int item, int attempt, const std::vector<Row>& rows,
-                        const std::string& outcome, const Json& params) {
+                        const std::string& outcome, const Json& params, double seconds) {
   const std::string text = rows_csv_text(rows);
   rows_.append(text);
   rows_end_ += int64_t(text.size());
   const Json marker = {{"item", item},          {"attempt", attempt}, {"rows", rows.size()},
-                       {"rows_end", rows_end_}, {"outcome", outcome}, {"params", params}};
+                       {"rows_end", rows_end_}, {"outcome", outcome}, {"seconds", seconds},
+                       {"params", params}};
   progress_.append(marker.dump() + "\n");
 }
 

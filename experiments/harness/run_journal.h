@@ -113,10 +113,11 @@ class RunJournal {
   static std::string resumed_suite_file(const std::filesystem::path& dir);
 
   const std::filesystem::path& dir() const { return dir_; }
-  // Appends one item's rows, then its completion marker, each synced; ResultWriteError when
-  // the disk is full or the folder unwritable (the folder stays resumable).
+  // Appends one item's rows, then its completion marker (with the item's wall-clock `seconds`),
+  // each synced; ResultWriteError when the disk is full or the folder unwritable (the folder
+  // stays resumable).
   void record(int item, int attempt, const std::vector<Row>& rows, const std::string& outcome,
-              const Json& params);
+              const Json& params, double seconds);
   // meta.json, written atomically.
   void write_meta(const Json& meta) const;
   // Appends a line to command.txt (atomically rewritten).

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -254,6 +255,7 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
     for (const RunItem& item : p.items) {
       if (interrupt_requested()) break;
       progress.start(outcome.done, item.describe());
+      const auto item_start = std::chrono::steady_clock::now();
       std::vector<Row> rows;
       RowSink sink(p.suite.name, item, rows);
       Json echoed = {{"item", item.index},       {"experiment", item.experiment_name},
@@ -273,7 +275,10 @@ SuiteOutcome run_suite(const SuiteOptions& o) {
         write_file_atomically(dir / "samples" / (std::to_string(item.index) + ".json"),
                               sink.samples().dump() + "\n");
       }
-      p.journal.record(item.index, p.attempt, rows, result, echoed);  // synced: survives a kill
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - item_start).count();
+      // Synced: survives a kill.
+      p.journal.record(item.index, p.attempt, rows, result, echoed, seconds);
       params.push_back(std::move(echoed));
       ++outcome.done;
       ++outcome.ran_now;

@@ -109,6 +109,18 @@ TEST_F(Runner, TinySuiteWritesEveryFileAndTheOracleMatchesItself) {
   EXPECT_TRUE(meta["run"]["machine"].contains("nvidia_driver"));  // "unknown" without a GPU
   EXPECT_TRUE(meta["run"]["machine"].contains("os"));
   EXPECT_EQ(meta["interrupted"], false);
+  // Every completion marker says how long its item took, and the items took the run's time.
+  std::ifstream progress(folder / "progress.jsonl");
+  double item_seconds = 0.0;
+  int markers = 0;
+  for (std::string line; std::getline(progress, line); ++markers) {
+    const Json marker = Json::parse(line);
+    ASSERT_TRUE(marker.contains("seconds")) << line;
+    EXPECT_GT(marker["seconds"].get<double>(), 0.0) << line;
+    item_seconds += marker["seconds"].get<double>();
+  }
+  EXPECT_EQ(markers, 8);
+  EXPECT_LE(item_seconds, meta["elapsed_s"].get<double>());
   std::ifstream report(folder / "report.md");
   const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
   EXPECT_NE(md.find("## methods (shadow)"), std::string::npos);
