@@ -2,11 +2,13 @@
 #include "experiments/harness/durable_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -134,6 +136,38 @@ bool file_is_locked(const fs::path& path) {
   return locked;
 }
 
+std::string this_host() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0 || name[0] == 0) return "host";
+  std::string host(name);
+  for (char& c : host)
+    if (c == '/' || c == '.') c = '_';
+  return host;
+}
+
+std::string filling_folder_name(const std::string& host, long pid) {
+  return ".new-" + host + "-" + std::to_string(pid) + ".partial";
+}
+
+void remove_abandoned_filling_folders(const fs::path& parent) {
+  const std::string prefix = ".new-" + this_host() + "-", suffix = ".partial";
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(parent, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string digits =
+        name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+    if (digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::atol(digits.c_str());
+    if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove_all(entry.path(), ignored);
+    }
+  }
+}
+
 fs::path make_filled_run_folder(const fs::path& out, const std::string& suite,
                                 const std::string& git_sha, const std::string& tag,
                                 const std::function<void(const fs::path&)>& fill) {
@@ -141,7 +175,8 @@ fs::path make_filled_run_folder(const fs::path& out, const std::string& suite,
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw InputError(parent.string(), "cannot create folder: " + ec.message());
-  const fs::path tmp = parent / (".new-" + std::to_string(::getpid()) + ".partial");
+  remove_abandoned_filling_folders(parent);
+  const fs::path tmp = parent / filling_folder_name(this_host(), long(::getpid()));
   fs::remove_all(tmp, ec);
   if (!fs::create_directory(tmp, ec))
     throw ResultWriteError(tmp.string(), "cannot create folder: " + ec.message());

@@ -62,9 +62,18 @@ class AppendFile {
 // Whether a process holds the lock of AppendFile::try_lock on `path` now.
 bool file_is_locked(const std::filesystem::path& path);
 
+// This machine's name for file names ('/' and '.' made '_'; "host" when it has none).
+std::string this_host();
+// ".new-HOST-PID.partial": the hidden folder a new result folder is filled in.
+std::string filling_folder_name(const std::string& host, long pid);
+// Removes the hidden filling folders under `parent` of this host's processes that are gone (a
+// run killed while it filled one); another host's, and a live process's, are left alone.
+void remove_abandoned_filling_folders(const std::filesystem::path& parent);
+
 // Makes OUT/<suite>/<name> (run_folder.h) with its first files at once: `fill` writes into a
-// hidden folder OUT/<suite>/.new-PID.partial, which is synced, then the name is reserved and
-// the hidden folder renamed over the reserved (empty) one. Returns the folder.
+// hidden folder OUT/<suite>/.new-HOST-PID.partial, which is synced, then the name is reserved
+// and the hidden folder renamed over the reserved (empty) one. Returns the folder. Abandoned
+// filling folders of this host are removed first.
 std::filesystem::path make_filled_run_folder(
     const std::filesystem::path& out, const std::string& suite, const std::string& git_sha,
     const std::string& tag, const std::function<void(const std::filesystem::path&)>& fill);

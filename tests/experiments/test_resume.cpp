@@ -7,8 +7,9 @@
 // on; a full disk (a small tmpfs) stops the run with a clear error, its own exit code (4) and a
 // folder that resumes; RunJournal::open_or_resume, the one door all of it goes through, on its
 // own (a new folder, the newest unfinished run found, each refusal before the folder is
-// touched). What the tests share is in resume_support.h; resumed --gpus and SLURM
-// sessions and the folder's lock file are tested in test_long_runs.cpp.
+// touched) and removing a killed run's hidden filling folder. What the tests share is in
+// resume_support.h; resumed --gpus and SLURM sessions and the folder's lock file are tested in
+// test_long_runs.cpp.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -16,6 +17,7 @@
 #include <spawn.h>
 #include <sys/mount.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -33,6 +35,7 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "experiments/harness/durable_file.h"
 #include "experiments/harness/merge.h"
 #include "experiments/harness/report.h"
 #include "experiments/harness/rows.h"
@@ -447,6 +450,39 @@ TEST_F(OpenOrResume, CreatesThenFindsChecksAndReopensTheUnfinishedRun) {
   EXPECT_EQ(reopened.forced, std::vector<std::string>{"commit"});
   EXPECT_EQ(reopened.before.missing, (std::vector<int>{0, 1}));
   reopened.journal.close();
+}
+
+// A run killed while it filled its new folder leaves the hidden filling folder behind; the next
+// run on this host removes it when its process is gone, and leaves a live process's (this test's
+// parent) and another host's alone.
+TEST_F(OpenOrResume, NewRunRemovesTheFillingFolderOfAKilledProcess) {
+  const fs::path parent = dir_ / "out" / "tiny";
+  fs::create_directories(parent);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) _exit(0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);  // reaped: its pid names no process now
+  const fs::path killed = parent / filling_folder_name(this_host(), long(child));
+  const fs::path alive = parent / filling_folder_name(this_host(), long(getppid()));
+  const fs::path elsewhere = parent / filling_folder_name(this_host() + "-other", long(child));
+  for (const fs::path& f : {killed, alive, elsewhere}) {
+    fs::create_directories(f);
+    std::ofstream(f / "meta.json") << "{}";
+  }
+  JournalRequest r = request();
+  r.meta = {{"suite", "tiny"}, {"state", "running"}, {"planned_items", {0}}};
+  r.suite_text = "{}";
+  r.command = "deepvox suite tiny";
+  OpenedRun created = RunJournal::open_or_resume(r);
+  created.journal.close();
+  EXPECT_FALSE(fs::exists(killed));
+  EXPECT_TRUE(fs::exists(alive));
+  EXPECT_TRUE(fs::exists(elsewhere));
+  int visible = 0;
+  for (const auto& e : fs::directory_iterator(parent))
+    visible += e.path().filename().string()[0] != '.';
+  EXPECT_EQ(visible, 1);  // the new run's folder
 }
 
 }  // namespace

@@ -103,7 +103,7 @@ TEST(SuiteCli, SigintStopsARunningSuiteWithRowsAndAReport) {
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, kBinary.c_str(), nullptr, nullptr, argv.data(), environ), 0);
   // Wait until the first experiment is recorded in the result folder, then press Ctrl-C. The
-  // folder is filled under a hidden ".new-PID.partial" name and renamed into place, so only a
+  // folder is filled under a hidden ".new-HOST-PID.partial" name and renamed into place, so only a
   // progress marker in a visible folder proves the first rows are there.
   fs::path rows;
   for (int i = 0; i < 600 && rows.empty(); ++i) {
