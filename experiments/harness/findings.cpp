@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/number_text.h"
+#include "experiments/harness/lossy.h"
 
 namespace dv {
 
@@ -94,6 +95,7 @@ SelectionMean selection_mean(const std::string& selector, const Column& column,
     if (const Row* r = find_row(rows, column)) {
       sum += r->value;
       ++s.items;
+      s.indices.push_back(index);
     }
   }
   if (s.items) s.mean = sum / s.items;
@@ -124,8 +126,8 @@ bool is_error_column(const Column& c) {
 }
 
 // "item 4: stats.storage.overflowed_texels = 8816, stats.storage.overflow_max_error = 1; 3 of 8
-// items lossy": the rows (any run) whose metric names an overflow or a drop with a value above 0,
-// those of the first such item named; empty when no item has one.
+// items lossy": the items with a loss (lossy.h) in any run, the first such item's rows named;
+// empty when no item has one.
 std::string lossy_rows(const std::vector<int>& items, const std::vector<RunView>& runs) {
   std::string first;
   int lossy = 0;
@@ -135,13 +137,9 @@ std::string lossy_rows(const std::vector<int>& items, const std::vector<RunView>
       const auto it = run.items.find(index);
       if (it == run.items.end()) continue;
       for (const Row* r : it->second)
-        if ((r->metric.find("overflow") != std::string::npos ||
-             r->metric.find("dropped") != std::string::npos) &&
-            r->value > 0.0 && named.find(r->metric + " ") == std::string::npos)
-          named += (named.empty() ? "" : ", ") + r->metric + " = " +
-                   (r->value == std::floor(r->value) && r->value < 1e15
-                        ? std::to_string(int64_t(r->value))
-                        : significant_text(r->value, 3));
+        if (const std::string one = loss_text({r});
+            !one.empty() && named.find(r->metric + " ") == std::string::npos)
+          named += (named.empty() ? "" : ", ") + one;
     }
     if (named.empty()) continue;
     if (first.empty()) first = "item " + std::to_string(index) + ": " + named;

@@ -90,6 +90,7 @@ bool selector_matches(const std::string& selector, const Row& first_row_of_item)
 struct SelectionMean {
   double mean = 0.0;
   int items = 0;
+  std::vector<int> indices;  // the items averaged
 };
 SelectionMean selection_mean(const std::string& selector, const Column& column,
                              const std::map<int, std::vector<const Row*>>& items);

@@ -105,9 +105,23 @@ def params_of(rows):
     return dict(kv.split("=", 1) for kv in rows[0]["params"].split() if "=" in kv)
 
 
+# The lossy mark (experiments/harness/lossy.h): an item with a loss count above 0 (a metric
+# naming an overflow or a drop) lost data in some run, so its error includes the loss.
+LOSSY_MARK = " \u2020"
+LOSSY_CAPTION = ("; \u2020 lossy: in at least one run a fixed-size structure overflowed (storage "
+                 "nodes merged, recompressed or refused past its capacity, or a walk's buffer "
+                 "full), so the item's error includes that loss")
+LOSSY = {"experiments": set()}
+
+
+def is_lossy(rows):
+    return any(("overflow" in r["metric"] or "dropped" in r["metric"]) and float(r["value"]) > 0
+               for r in rows)
+
+
 def label(rows):
     r = rows[0]
-    return (r["strategy"] + " " + r["params"]).strip()
+    return (r["strategy"] + " " + r["params"]).strip() + (LOSSY_MARK if is_lossy(rows) else "")
 
 
 def base_params(runs):
@@ -134,7 +148,7 @@ def short_label(rows, base):
             s = v
         elif base.get(rows[0]["strategy"], {}).get(k) != v:
             words.append("%s=%s" % (k.replace("storage.", ""), v))
-    return " ".join([s] + words)
+    return " ".join([s] + words) + (LOSSY_MARK if is_lossy(rows) else "")
 
 
 def load_catalog(argv):
@@ -262,6 +276,9 @@ def save(fig, folder, name, captions, exp, caption, fits=None):
     fig.savefig(os.path.join(folder, "plots", name), bbox_inches="tight",
                 metadata={"Software": None})
     plt.close(fig)
+    if exp["name"] in LOSSY["experiments"]:
+        caption = caption[:-1] + LOSSY_CAPTION + "." if caption.endswith(".") else \
+            caption + LOSSY_CAPTION
     captions.append({"experiment": exp["name"], "file": name, "caption": caption})
     if fits:
         captions[-1]["fits"] = fits
@@ -737,6 +754,8 @@ def main(folder):
         runs = [rows for rows in all_runs if rows[0]["experiment"] == exp["name"]]
         if not runs:
             continue  # not run in this folder (another shard, --only, interrupted)
+        if any(is_lossy(rows) for rows in runs):
+            LOSSY["experiments"].add(exp["name"])
         drawn = re.compile(re.escape(exp["name"]) + r"_(\d+|headline|pareto_\d+)\.png")
         for old in os.listdir(plots):  # redrawn below (an older script numbered them 1, 2, ...)
             if drawn.fullmatch(old):

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "experiments/harness/durable_file.h"
+#include "experiments/harness/lossy.h"
 #include "experiments/harness/run_journal.h"
 #include "experiments/harness/timing.h"
 
@@ -64,7 +65,7 @@ void record_runs(const std::string& folder, const std::vector<std::string>& othe
 // that item's row with the same metric and statistic (a timing: the median of the runs'
 // medians; values that do not vary between runs stay), and with several runs a timing's min and
 // max the lowest and highest of the runs' medians (the run-to-run range) instead of one run's
-// repetitions. With one run its rows.
+// repetitions; a loss count (lossy.h) the largest over the runs. With one run its rows.
 std::vector<Row> rows_over_runs(const std::vector<RunState>& states) {
   std::vector<Row> out = states[0].rows;
   if (states.size() < 2) return out;
@@ -78,6 +79,9 @@ std::vector<Row> rows_over_runs(const std::vector<RunState>& states) {
     if (range && medians != values.end()) {
       const auto [lo, hi] = std::minmax_element(medians->second.begin(), medians->second.end());
       r.value = r.stat == "min" ? *lo : *hi;
+    } else if (is_loss_metric(r.metric)) {
+      const std::vector<double>& v = values[{r.item, r.metric, r.stat}];
+      r.value = *std::max_element(v.begin(), v.end());  // a loss in any run shows
     } else if (!range) {
       r.value = spread_of(values[{r.item, r.metric, r.stat}]).median;
     }

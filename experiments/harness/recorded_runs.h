@@ -26,7 +26,7 @@ void record_runs(const std::string& dir, const std::vector<std::string>& others)
 // that item's row with the same metric and statistic (a timing: the median of the runs'
 // medians; values that do not vary between runs stay), and with several runs a timing's min and
 // max the lowest and highest of the runs' medians (the run-to-run range) instead of one run's
-// repetitions. With one run its rows.
+// repetitions; a loss count (lossy.h) the largest over the runs. With one run its rows.
 std::vector<Row> rows_over_runs(const std::vector<RunState>& states);
 
 }  // namespace dv

@@ -19,6 +19,7 @@
 #include "experiments/harness/driver.h"
 #include "experiments/harness/durable_file.h"
 #include "experiments/harness/findings.h"
+#include "experiments/harness/lossy.h"
 #include "experiments/harness/pareto.h"
 #include "experiments/harness/plot_fits.h"
 #include "experiments/harness/recorded_runs.h"
@@ -133,12 +134,16 @@ bool cell_selection(const Json& map, size_t row, size_t column, std::string& sel
 // Ours for one value cell of a mapped paper table: the mean of the cell's column over the items
 // of its selection; empty when unmapped or nothing matches.
 std::string our_cell(const Json& map, size_t row, size_t column,
-                     const std::map<int, std::vector<const Row*>>& items) {
+                     const std::map<int, std::vector<const Row*>>& items,
+                     const std::map<int, std::string>& lossy) {
   std::string selector;
   Column metric;
   if (!cell_selection(map, row, column, selector, metric)) return "";
   const SelectionMean m = selection_mean(selector, metric, items);
-  return m.items ? table_text(m.mean, 4) : "";
+  if (!m.items) return "";
+  const bool lost = std::any_of(m.indices.begin(), m.indices.end(),
+                                [&](int index) { return lossy.count(index) > 0; });
+  return table_text(m.mean, 4) + (lost ? kLossyMark : "");
 }
 
 // The shape table of a mapped paper table with a "shape" entry (suite-format.md): the paper's
@@ -264,7 +269,8 @@ Json milliseconds_from_fps(const Json& v) {
 // where the map says "paper_as": "ms_from_fps".
 void write_paper_table(std::ostream& md, const std::string& file, const std::string& our_machine,
                        const Json& map, const std::map<int, std::vector<const Row*>>& items,
-                       const std::string& experiment, const std::vector<RunView>& all_runs) {
+                       const std::map<int, std::string>& lossy, const std::string& experiment,
+                       const std::vector<RunView>& all_runs) {
   Json t;
   try {
     t = parse_json_file(file);
@@ -316,7 +322,7 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
       std::string text = paper_cell(rows[i][k]);
       if (beside && k >= labels && !rows[i][k].is_null()) {
         if (as_ms) text += " fps = " + cell(milliseconds_from_fps(rows[i][k])) + " ms";
-        const std::string ours = our_cell(map, i, k - labels, items);
+        const std::string ours = our_cell(map, i, k - labels, items, lossy);
         if (!ours.empty()) text += " / " + ours;
       }
       line.push_back(text);
@@ -329,6 +335,7 @@ void write_paper_table(std::ostream& md, const std::string& file, const std::str
     body.push_back(std::move(line));
   }
   if (!header.empty()) write_table(md, header, body);
+  if (beside && body_has_mark(body)) md << "\n" << kLossyMeaning << ".\n";
   if (beside && map.contains("shape")) write_shape_table(md, t, map, experiment, all_runs);
   if (t.contains("notes"))
     md << "<details><summary>paper table notes (setup mapping, formulas, ambiguities)</summary>\n\n"
@@ -370,7 +377,8 @@ std::vector<std::string> column_list(const Json& v) {
 // Per scene and (error, cost) pair: the Pareto front as a table and the regime sentence. A/A
 // copies are left out (the same configuration twice would crowd the front with itself).
 void write_pareto(std::ostream& md, const ExperimentSpec& e,
-                  const std::map<int, std::vector<const Row*>>& items) {
+                  const std::map<int, std::vector<const Row*>>& items,
+                  const std::map<int, std::string>& lossy) {
   if (e.pareto.is_null()) return;
   std::vector<std::string> scenes;
   for (const auto& [index, rows] : items)
@@ -384,7 +392,9 @@ void write_pareto(std::ostream& md, const ExperimentSpec& e,
           if (rows.front()->scene != scene || is_aa_copy(rows.front()->params)) continue;
           const Row* x = find_row(rows, parse_column(cost));
           const Row* y = find_row(rows, parse_column(error));
-          if (x && y) points.push_back({x->value, y->value, item_label(*rows.front())});
+          if (x && y)
+            points.push_back({x->value, y->value,
+                              item_label(*rows.front()) + (lossy.count(index) ? kLossyMark : "")});
         }
         const std::vector<size_t> front = pareto_front(points);
         md << "\nPareto front on `" << scene << "`, " << error << " vs " << cost << " ("
@@ -394,6 +404,7 @@ void write_pareto(std::ostream& md, const ExperimentSpec& e,
           body.push_back(
               {points[i].label, table_text(points[i].cost, 4), table_text(points[i].error, 4)});
         write_table(md, {"strategy and params", cost, error}, body);
+        if (body_has_mark(body)) md << "\n" << kLossyMeaning << ".\n";
         md << pareto_regimes(points, front, cost, error) << "\n\n";
       }
 }
@@ -454,13 +465,15 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     header.push_back(c.metric + (c.stat.empty() ? "" : " " + c.stat) +
                      (unit.empty() || unit == "1" ? "" : " (" + unit + ")"));
   }
+  const std::map<int, std::string> lossy = lossy_items(runs);
   std::vector<std::vector<std::string>> body;
   for (const auto& [index, rows] : items) {
     const Row& first = *rows.front();
     std::vector<std::string> line;
     if (e.scenes.size() > 1) line.push_back(first.scene);
     line.push_back(first.strategy);
-    line.push_back(first.params.empty() ? "-" : first.params);
+    line.push_back((first.params.empty() ? "-" : first.params) +
+                   (lossy.count(index) ? kLossyMark : ""));
     const Row* failed = find_row(rows, {"failed", "value"});
     const Row* skipped = find_row(rows, {"skipped", "value"});
     for (const Column& c : columns) {
@@ -475,6 +488,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
       if (const Row* r = find_row(rows, {what, "value"}))
         md << "- item " << index << " (" << r->strategy << " " << r->params << ") " << what << ": "
            << r->note << "\n";
+  write_lossy_list(md, items, lossy);
   if (!e.paper.is_null()) {
     md << "\nPaper values"
        << (e.paper.contains("source") ? " (" + cell(e.paper["source"]) + ")" : "") << ":\n\n";
@@ -490,14 +504,15 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
   }
   for (size_t p = 0; p < e.paper_files.size(); ++p)
     write_paper_table(md, e.paper_files[p], our_machine,
-                      p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items, e.name, all_runs);
+                      p < e.paper_maps.size() ? e.paper_maps[p] : Json(), items, lossy, e.name,
+                      all_runs);
   // The experiment's A/A controls: their false-positive rate and the tie bands the findings use.
   const AaControls aa = measure_aa_controls(runs);
   if (!aa.pairs.empty())
     md << "\nA/A controls (`aa_duplicates`): " << aa_rate_text(aa)
        << "; tie bands from the A/A spread: " << tie_bands_text(aa) << "\n";
   write_findings(md, e, runs, aa.tie_bands, practical_bands);
-  write_pareto(md, e, items);
+  write_pareto(md, e, items, lossy);
   // Image strip: the reference, then each render with its difference below.
   std::string reference;
   std::vector<std::string> labels, renders, diffs;
@@ -507,7 +522,7 @@ void write_experiment(std::ostream& md, const fs::path& dir, const ExperimentSpe
     const Row* diff = find_row(rows, {"image", "difference"});
     if (!render) continue;
     if (ref && reference.empty()) reference = ref->note;
-    labels.push_back(item_label(*render));
+    labels.push_back(item_label(*render) + (lossy.count(index) ? kLossyMark : ""));
     renders.push_back("![](" + render->note + ")");
     diffs.push_back(diff ? "![](" + diff->note + ")" : "");
   }

@@ -2,7 +2,7 @@
 // second): every output file, exact answers of the oracle against itself, shards merged equal one
 // unsharded run (timings aside), a failed experiment recorded while the suite goes on, and
 // Ctrl-C (a real SIGINT through the runner's handler) stopping after the current experiment
-// with a report of what was done.
+// with a report of what was done, and a lossy item marked in the report.
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -144,6 +144,37 @@ TEST_F(Runner, TinySuiteWritesEveryFileAndTheOracleMatchesItself) {
       std::string((std::istreambuf_iterator<char>(rebuilt)), std::istreambuf_iterator<char>()), md);
   // A second run makes a new folder.
   EXPECT_NE(run(write("tiny.json", tiny_suite())).folder, r.folder);
+}
+
+// A storage past its capacity (a 3D texture of one layer on demo.json's nested media) loses
+// nodes: its row is marked lossy in the experiment table with its loss counts listed, in the
+// image strip and in the findings' defect, while the exact storages' rows stay unmarked.
+TEST_F(Runner, LossyItemIsMarkedWhereverItIsPrinted) {
+  const SuiteOutcome r = run(write(
+      "tiny.json",
+      tiny_suite(
+          R"({"name": "dsm", "params": {"res": 32, "storage": "texture3d", "storage.layers": 1}},)")));
+  ASSERT_EQ(r.exit_code, 0);
+  const fs::path folder(r.folder);
+  const std::vector<Row> rows = read_rows_csv((folder / "rows.csv").string());
+  ASSERT_GT(value_of(rows, 1, "stats.storage.overflowed_texels", "value"), 0.0)
+      << "one layer held every texel: the test needs a scene with more";
+  EXPECT_EQ(value_of(rows, 3, "stats.storage.overflowed_texels", "value"), 0.0);  // compact
+  std::ifstream report(folder / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  const std::string lossy_params = "res=32 storage=texture3d storage.layers=1 †";
+  EXPECT_NE(md.find("| " + lossy_params.substr(0, lossy_params.size() - 4)), std::string::npos)
+      << md;
+  EXPECT_NE(md.find(lossy_params + " |"), std::string::npos) << md;  // the table's params cell
+  EXPECT_NE(md.find("† lossy: in at least one run a fixed-size structure overflowed"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- item 1 (dsm " + lossy_params.substr(0, lossy_params.size() - 4) +
+                    "): stats.storage.overflowed_texels = "),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("dsm " + lossy_params + " |"), std::string::npos) << md;  // image strip
+  EXPECT_EQ(md.find("eps=0.05 res=32 †"), std::string::npos) << md;           // the compact dsm
 }
 
 TEST_F(Runner, ShardsMergedGiveTheRowsOfOneUnshardedRun) {
