@@ -3,8 +3,8 @@
 colours and markers come from a catalog in the form of `deepvox list --json` (here a synthetic
 one with a storage the script has never heard of), dsm is plotted as its storage (the registered
 default when the row leaves it out), and a strategy the catalog lacks is "other"; the headline
-shades the region the exact oracle dominates. Skipped when the interpreter has no matplotlib (the
-script needs it to load)."""
+shades the region the exact oracle dominates; a lossy item (a loss count above 0) is marked.
+Skipped when the interpreter has no matplotlib (the script needs it to load)."""
 import importlib.util
 import json
 import os
@@ -99,6 +99,30 @@ class OracleDominatedRegion(unittest.TestCase):
         self.assertFalse(plot.shade_dominated(ax, oracle, "none.json"), "no oracle item")
         self.assertEqual(len(ax.patches), 1)
         plot.plt.close(fig)
+
+
+@unittest.skipIf(importlib.util.find_spec("matplotlib") is None, "no matplotlib here")
+class LossyMark(unittest.TestCase):
+    def test_a_lossy_item_is_marked_and_a_whole_one_is_not(self):
+        spec = importlib.util.spec_from_file_location("plot_suite", SCRIPT)
+        plot = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(plot)
+
+        def item(metric, value):
+            return [{"strategy": "dsm", "params": "res=512 storage=avsm storage.nodes=4",
+                     "metric": metric, "stat": "value", "value": str(value)}]
+
+        lossy = item("stats.storage.overflowed_texels", 11380)
+        whole = item("stats.storage.overflowed_texels", 0)
+        dropped = item("generate.dropped_tiles", 2)
+        self.assertTrue(plot.is_lossy(lossy))
+        self.assertTrue(plot.is_lossy(dropped))
+        self.assertFalse(plot.is_lossy(whole))
+        self.assertFalse(plot.is_lossy(item("probe_error_all", 0.5)))
+        self.assertEqual(plot.label(lossy), "dsm res=512 storage=avsm storage.nodes=4 \u2020")
+        self.assertEqual(plot.label(whole), "dsm res=512 storage=avsm storage.nodes=4")
+        self.assertEqual(plot.short_label(lossy, {"dsm": {"res": "512"}}), "avsm nodes=4 \u2020")
+        self.assertEqual(plot.short_label(whole, {"dsm": {"res": "512"}}), "avsm nodes=4")
 
 
 if __name__ == "__main__":
