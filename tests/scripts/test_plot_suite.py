@@ -34,6 +34,14 @@ CATALOG = {"strategies": [
 ]}
 
 
+def load_plot_suite():
+    """plot_suite.py as a module (it is a script, not on the path)."""
+    spec = importlib.util.spec_from_file_location("plot_suite", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def rows(strategy, params=""):
     return [{"strategy": strategy, "params": params}]
 
@@ -42,9 +50,7 @@ def rows(strategy, params=""):
 class PlotFamilies(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        spec = importlib.util.spec_from_file_location("plot_suite", SCRIPT)
-        cls.plot = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(cls.plot)
+        cls.plot = load_plot_suite()
         cls.tmp = tempfile.TemporaryDirectory()
         path = os.path.join(cls.tmp.name, "catalog.json")
         with open(path, "w") as f:
@@ -82,9 +88,7 @@ class PlotFamilies(unittest.TestCase):
 @unittest.skipIf(importlib.util.find_spec("matplotlib") is None, "no matplotlib here")
 class OracleDominatedRegion(unittest.TestCase):
     def test_the_region_beyond_the_oracles_time_is_shaded(self):
-        spec = importlib.util.spec_from_file_location("plot_suite", SCRIPT)
-        plot = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(plot)
+        plot = load_plot_suite()
         fig, ax = plot.plt.subplots()
         ax.set_xscale("log")
         ax.set_xlim(0.5, 20.0)
@@ -104,9 +108,7 @@ class OracleDominatedRegion(unittest.TestCase):
 @unittest.skipIf(importlib.util.find_spec("matplotlib") is None, "no matplotlib here")
 class LossyMark(unittest.TestCase):
     def test_a_lossy_item_is_marked_and_a_whole_one_is_not(self):
-        spec = importlib.util.spec_from_file_location("plot_suite", SCRIPT)
-        plot = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(plot)
+        plot = load_plot_suite()
 
         def item(metric, value):
             return [{"strategy": "dsm", "params": "res=512 storage=avsm storage.nodes=4",
