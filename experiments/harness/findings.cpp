@@ -429,7 +429,7 @@ Comparison compare_selections(const std::string& first_selector, const Column& f
       if (!s || !s->contains("probe_errors"))
         return not_comparable(c, "no probe samples for item " + std::to_string(index) +
                                      ": interval unavailable (a result folder from before "
-                                     "samples/)");
+                                     "samples/, or its probe errors left out)");
     }
     for (size_t i = 0; i < both.size(); ++i)
       sides[i < first.size() ? 0 : 1].push_back({&errors[i], first_row(run.items, both[i])->scene});
