@@ -45,6 +45,12 @@ void sync_folder(const fs::path& dir) {
   if (rc != 0 && errno != EINVAL) fail(dir, "cannot sync folder");
 }
 
+// ".new-HOST-" + PID + ".partial".
+std::string filling_prefix(const std::string& host) {
+  return ".new-" + host + "-";
+}
+constexpr const char* kFillingSuffix = ".partial";
+
 }  // namespace
 
 void write_file_atomically(const fs::path& path, const std::string& bytes) {
@@ -146,11 +152,11 @@ std::string this_host() {
 }
 
 std::string filling_folder_name(const std::string& host, long pid) {
-  return ".new-" + host + "-" + std::to_string(pid) + ".partial";
+  return filling_prefix(host) + std::to_string(pid) + kFillingSuffix;
 }
 
 void remove_abandoned_filling_folders(const fs::path& parent) {
-  const std::string prefix = ".new-" + this_host() + "-", suffix = ".partial";
+  const std::string prefix = filling_prefix(this_host()), suffix = kFillingSuffix;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(parent, ec)) {
     const std::string name = entry.path().filename().string();

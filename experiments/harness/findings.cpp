@@ -132,15 +132,11 @@ std::string lossy_rows(const std::vector<int>& items, const std::vector<RunView>
   std::string first;
   int lossy = 0;
   for (int index : items) {
-    std::string named;
-    for (const RunView& run : runs) {
-      const auto it = run.items.find(index);
-      if (it == run.items.end()) continue;
-      for (const Row* r : it->second)
-        if (const std::string one = loss_text({r});
-            !one.empty() && named.find(r->metric + " ") == std::string::npos)
-          named += (named.empty() ? "" : ", ") + one;
-    }
+    std::vector<const Row*> rows;  // the item's rows of every run, first run first
+    for (const RunView& run : runs)
+      if (const auto it = run.items.find(index); it != run.items.end())
+        rows.insert(rows.end(), it->second.begin(), it->second.end());
+    const std::string named = loss_text(rows);
     if (named.empty()) continue;
     if (first.empty()) first = "item " + std::to_string(index) + ": " + named;
     ++lossy;

@@ -1,6 +1,8 @@
 // Lossy rows (lossy.h).
 #include "experiments/harness/lossy.h"
 
+#include <set>
+
 #include "core/number_text.h"
 
 namespace dv {
@@ -12,9 +14,9 @@ bool is_loss_metric(const std::string& metric) {
 
 std::string loss_text(const std::vector<const Row*>& rows) {
   std::string named;
+  std::set<std::string> seen;
   for (const Row* r : rows)
-    if (is_loss_metric(r->metric) && r->value > 0.0 &&
-        named.find(r->metric + " ") == std::string::npos)
+    if (is_loss_metric(r->metric) && r->value > 0.0 && seen.insert(r->metric).second)
       named += (named.empty() ? "" : ", ") + r->metric + " = " + table_text(r->value, 3);
   return named;
 }
@@ -46,9 +48,7 @@ void write_lossy_list(std::ostream& md, const std::map<int, std::vector<const Ro
     if (it == lossy.end() || rows.empty()) continue;
     if (!any) md << "\n" << kLossyMeaning << ":\n\n";
     any = true;
-    const Row& r = *rows.front();
-    md << "- item " << index << " (" << r.strategy << (r.params.empty() ? "" : " " + r.params)
-       << "): " << it->second << "\n";
+    md << "- item " << index << " (" << item_label(*rows.front()) << "): " << it->second << "\n";
   }
 }
 

@@ -277,8 +277,8 @@ def save(fig, folder, name, captions, exp, caption, fits=None):
                 metadata={"Software": None})
     plt.close(fig)
     if exp["name"] in LOSSY["experiments"]:
-        caption = caption[:-1] + LOSSY_CAPTION + "." if caption.endswith(".") else \
-            caption + LOSSY_CAPTION
+        body, end = (caption[:-1], ".") if caption.endswith(".") else (caption, "")
+        caption = body + LOSSY_CAPTION + end
     captions.append({"experiment": exp["name"], "file": name, "caption": caption})
     if fits:
         captions[-1]["fits"] = fits

@@ -52,10 +52,6 @@ std::string paper_cell(const nlohmann::json& v) {
   return cell(v);
 }
 
-std::string item_label(const Row& r) {
-  return r.strategy + (r.params.empty() ? "" : " " + r.params);
-}
-
 // Runs the plot script; returns an empty string when plots were made, else why not.
 std::string draw_plots(const fs::path& dir) {
   fs::path script;

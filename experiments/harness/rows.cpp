@@ -136,6 +136,10 @@ Column parse_column(const std::string& text) {
   return {text.substr(0, colon), text.substr(colon + 1)};
 }
 
+std::string item_label(const Row& r) {
+  return r.strategy + (r.params.empty() ? "" : " " + r.params);
+}
+
 bool is_time_metric(const std::string& metric) {
   return metric.size() > 3 && metric.compare(metric.size() - 3, 3, "_ms") == 0;
 }

@@ -18,6 +18,9 @@ struct Row {
   std::string unit, note;
 };
 
+// "dsm res=512 storage=avsm": an item's strategy and its params, as tables label it.
+std::string item_label(const Row& r);
+
 // The whole file, written atomically (durable_file.h).
 void write_rows_csv(const std::string& path, const std::vector<Row>& rows);
 // InputError naming the file and line on a malformed file.
