@@ -147,8 +147,8 @@ TEST_F(Runner, TinySuiteWritesEveryFileAndTheOracleMatchesItself) {
 }
 
 // A storage past its capacity (a 3D texture of one layer on demo.json's nested media) loses
-// nodes: its row is marked lossy in the experiment table with its loss counts listed, in the
-// image strip and in the findings' defect, while the exact storages' rows stay unmarked.
+// nodes: its row is marked lossy in the experiment table with its loss counts listed and in the
+// image strip, while the exact storage's row stays unmarked.
 TEST_F(Runner, LossyItemIsMarkedWhereverItIsPrinted) {
   const SuiteOutcome r = run(write(
       "tiny.json",
@@ -162,15 +162,13 @@ TEST_F(Runner, LossyItemIsMarkedWhereverItIsPrinted) {
   EXPECT_EQ(value_of(rows, 3, "stats.storage.overflowed_texels", "value"), 0.0);  // compact
   std::ifstream report(folder / "report.md");
   const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
-  const std::string lossy_params = "res=32 storage=texture3d storage.layers=1 †";
-  EXPECT_NE(md.find("| " + lossy_params.substr(0, lossy_params.size() - 4)), std::string::npos)
-      << md;
-  EXPECT_NE(md.find(lossy_params + " |"), std::string::npos) << md;  // the table's params cell
+  const std::string params = "res=32 storage=texture3d storage.layers=1", marked = params + " †";
+  EXPECT_NE(md.find("| " + params), std::string::npos) << md;
+  EXPECT_NE(md.find(marked + " |"), std::string::npos) << md;  // the table's params cell
   EXPECT_NE(md.find("† lossy: in at least one run a fixed-size structure overflowed"),
             std::string::npos)
       << md;
-  const size_t listed =
-      md.find("- item 1 (dsm " + lossy_params.substr(0, lossy_params.size() - 4) + "): ");
+  const size_t listed = md.find("- item 1 (dsm " + params + "): ");
   ASSERT_NE(listed, std::string::npos) << md;
   const std::string line = md.substr(listed, md.find('\n', listed) - listed);
   EXPECT_NE(line.find("stats.storage.overflowed_texels = " +
@@ -178,8 +176,8 @@ TEST_F(Runner, LossyItemIsMarkedWhereverItIsPrinted) {
                           int64_t(value_of(rows, 1, "stats.storage.overflowed_texels", "value")))),
             std::string::npos)
       << line;
-  EXPECT_NE(md.find("dsm " + lossy_params + " |"), std::string::npos) << md;  // image strip
-  EXPECT_EQ(md.find("eps=0.05 res=32 †"), std::string::npos) << md;           // the compact dsm
+  EXPECT_NE(md.find("dsm " + marked + " |"), std::string::npos) << md;  // image strip
+  EXPECT_EQ(md.find("eps=0.05 res=32 †"), std::string::npos) << md;     // the compact dsm
 }
 
 TEST_F(Runner, ShardsMergedGiveTheRowsOfOneUnshardedRun) {
